@@ -1,0 +1,286 @@
+//! Exact sample coverage: interior / boundary / outside, by the rule of the model.
+//!
+//! For a sample `s = (x, y, u, v, t)` each vertex is moved to time t, sheared by its
+//! circle of confusion `c_i(t)` towards lens position (u, v), and translated so that
+//! the sample's pixel is the origin:
+//! `P_i = (x_i(t) + u c_i(t) - x w_i(t),  y_i(t) + k v c_i(t) - y w_i(t),  w_i(t))`.
+//! The edge values are `E_k = P_i.x P_j.y - P_i.y P_j.x` for (k, i, j) in
+//! (0,1,2), (1,2,0), (2,0,1), and `D = det(P_0, P_1, P_2)`.
+//!
+//! Two facts keep the evaluation cheap and tight. Subtracting `x` times the w column
+//! from the x column (and `y` times it from the y column) does not change a
+//! determinant, so `D` is the determinant of the sheared vertices alone and does not
+//! depend on (x, y). Expanding that determinant along its w column gives
+//! `D = w_0 E_0' + w_1 E_1' + w_2 E_2'` where `E_k'` are the edge values at x = y = 0.
+//!
+//! A sample is **interior** when `D != 0` and every `E_k` has the strict sign of `D`;
+//! **boundary** when it is not interior but all four values lie in {0, s} for one sign
+//! s (it is in the closure); **outside** otherwise. Interior implies a hit in front of
+//! the lens: the hit depth `w_hit = D / (E_0 + E_1 + E_2)` is then positive.
+//!
+//! The fast path evaluates the four values in outward-rounded interval arithmetic;
+//! when the signs it proves do not settle the class, every value is recomputed in
+//! exact dyadic arithmetic. There is no epsilon anywhere.
+
+use crate::dyadic::Dyadic;
+use crate::interval::Interval;
+use crate::ring::Ring;
+use crate::tri::Tri;
+
+/// The class of a sample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Coverage {
+    Interior,
+    Boundary,
+    Outside,
+}
+
+/// The four polynomials of the coverage rule, plus the depth numerator
+/// `N = sum_k E_k z_k(t)` (hit depth = N / D).
+#[derive(Clone, Debug)]
+pub struct EdgeValues<R> {
+    pub e: [R; 3],
+    pub d: R,
+    pub nz: R,
+}
+
+/// The sheared vertices at the sample's (u, v, t): `(x', y', z, w)` per vertex.
+pub fn sheared<R: Ring>(tri: &Tri, u: &R, v: &R, t: &R) -> [[R; 4]; 3] {
+    let kv = R::c(tri.k).mul(v);
+    let one = |i: usize| {
+        let l = |j: usize| R::lerp(&R::c(tri.q[i][j]), &R::c(tri.r[i][j]), t);
+        let c = R::lerp(&R::c(tri.c0[i]), &R::c(tri.c1[i]), t);
+        [l(0).add(&u.mul(&c)), l(1).add(&kv.mul(&c)), l(2), l(3)]
+    };
+    [one(0), one(1), one(2)]
+}
+
+/// D, the determinant of the sheared vertices (independent of x, y).
+pub fn det_of<R: Ring>(p: &[[R; 4]; 3]) -> R {
+    let e = |i: usize, j: usize| p[i][0].mul(&p[j][1]).sub(&p[i][1].mul(&p[j][0]));
+    p[0][3].mul(&e(1, 2)).add(&p[1][3].mul(&e(2, 0))).add(&p[2][3].mul(&e(0, 1)))
+}
+
+/// The edge values after translating the pixel (x, y) to the origin.
+pub fn edges_of<R: Ring>(p: &[[R; 4]; 3], x: &R, y: &R) -> [R; 3] {
+    let px = |i: usize| p[i][0].sub(&x.mul(&p[i][3]));
+    let py = |i: usize| p[i][1].sub(&y.mul(&p[i][3]));
+    let (x0, x1, x2) = (px(0), px(1), px(2));
+    let (y0, y1, y2) = (py(0), py(1), py(2));
+    [
+        x1.mul(&y2).sub(&y1.mul(&x2)),
+        x2.mul(&y0).sub(&y2.mul(&x0)),
+        x0.mul(&y1).sub(&y0.mul(&x1)),
+    ]
+}
+
+/// All the values of the coverage rule at one sample (or box, or ray), in ring R.
+pub fn edge_values<R: Ring>(tri: &Tri, x: &R, y: &R, u: &R, v: &R, t: &R) -> EdgeValues<R> {
+    let p = sheared(tri, u, v, t);
+    let d = det_of(&p);
+    let e = edges_of(&p, x, y);
+    let nz = e[0].mul(&p[0][2]).add(&e[1].mul(&p[1][2])).add(&e[2].mul(&p[2][2]));
+    EdgeValues { e, d, nz }
+}
+
+/// Class from exact signs (each -1, 0 or 1) of E_0, E_1, E_2, D.
+pub fn class_of_signs(s: [i8; 4]) -> Coverage {
+    let d = s[3];
+    if d != 0 && s.iter().all(|&x| x == d) {
+        return Coverage::Interior;
+    }
+    let has_pos = s.iter().any(|&x| x > 0);
+    let has_neg = s.iter().any(|&x| x < 0);
+    if has_pos && has_neg {
+        Coverage::Outside
+    } else {
+        Coverage::Boundary
+    }
+}
+
+/// Counts of how samples were decided.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CoverageStats {
+    pub samples: u64,
+    pub exact_fallbacks: u64,
+}
+
+impl CoverageStats {
+    pub fn merge(self, o: CoverageStats) -> CoverageStats {
+        CoverageStats { samples: self.samples + o.samples, exact_fallbacks: self.exact_fallbacks + o.exact_fallbacks }
+    }
+}
+
+fn check_sample(s: &[f64; 5]) {
+    debug_assert!(s.iter().all(|v| v.is_finite()), "sample {s:?} is not finite");
+}
+
+/// Interval signs, if they settle the class: `None` means go exact.
+#[inline]
+fn fast_class(ev: &EdgeValues<Interval>) -> Option<Coverage> {
+    let vals = [ev.e[0], ev.e[1], ev.e[2], ev.d];
+    let any_pos = vals.iter().any(|v| v.is_pos());
+    let any_neg = vals.iter().any(|v| v.is_neg());
+    if any_pos && any_neg {
+        return Some(Coverage::Outside);
+    }
+    if vals.iter().all(|v| v.is_pos()) || vals.iter().all(|v| v.is_neg()) {
+        return Some(Coverage::Interior);
+    }
+    None
+}
+
+/// Exact signs of the four values at a point sample.
+pub fn exact_signs(tri: &Tri, s: [f64; 5]) -> [i8; 4] {
+    let c = Dyadic::from_f64;
+    let ev = edge_values(tri, &c(s[0]), &c(s[1]), &c(s[2]), &c(s[3]), &c(s[4]));
+    [ev.e[0].signum(), ev.e[1].signum(), ev.e[2].signum(), ev.d.signum()]
+}
+
+/// Classify one sample `[x, y, u, v, t]`; also says whether the exact path was needed.
+#[inline]
+pub fn classify_traced(tri: &Tri, s: [f64; 5]) -> (Coverage, bool) {
+    check_sample(&s);
+    let p = Interval::point;
+    let ev = edge_values(tri, &p(s[0]), &p(s[1]), &p(s[2]), &p(s[3]), &p(s[4]));
+    if let Some(c) = fast_class(&ev) {
+        return (c, false);
+    }
+    (class_of_signs(exact_signs(tri, s)), true)
+}
+
+/// Classify one sample `[x, y, u, v, t]` exactly.
+#[inline]
+pub fn classify(tri: &Tri, s: [f64; 5]) -> Coverage {
+    classify_traced(tri, s).0
+}
+
+/// Classify many samples, counting exact fallbacks.
+pub fn classify_all(tri: &Tri, samples: &[[f64; 5]], out: &mut Vec<Coverage>) -> CoverageStats {
+    out.clear();
+    out.reserve(samples.len());
+    let mut st = CoverageStats::default();
+    for &s in samples {
+        let (c, ex) = classify_traced(tri, s);
+        st.samples += 1;
+        st.exact_fallbacks += ex as u64;
+        out.push(c);
+    }
+    st
+}
+
+/// Where the hit depth `N / D` of an interior sample lies relative to `[z0, z1]`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DepthCheck {
+    /// The sample is not interior: it has no hit depth.
+    NotInterior,
+    Below,
+    Inside,
+    Above,
+}
+
+/// The class of a sample and, if interior, where its exact hit depth lies against
+/// the closed interval `[z0, z1]`.
+pub fn classify_depth(tri: &Tri, s: [f64; 5], z0: f64, z1: f64) -> DepthCheck {
+    if classify(tri, s) != Coverage::Interior {
+        return DepthCheck::NotInterior;
+    }
+    // depth >= z0  <=>  sign(D) * (N - z0 D) >= 0; likewise for z1.
+    let p = Interval::point;
+    let ev = edge_values(tri, &p(s[0]), &p(s[1]), &p(s[2]), &p(s[3]), &p(s[4]));
+    let lo = ev.nz - p(z0) * ev.d;
+    let hi = p(z1) * ev.d - ev.nz;
+    let sd = ev.d.strict_sign();
+    let fast = |x: Interval| -> Option<i8> { Some(sd? * x.strict_sign()?) };
+    let (a, b) = match (fast(lo), fast(hi)) {
+        (Some(a), Some(b)) => (a, b),
+        _ => {
+            let c = Dyadic::from_f64;
+            let ev = edge_values(tri, &c(s[0]), &c(s[1]), &c(s[2]), &c(s[3]), &c(s[4]));
+            let sd = ev.d.signum();
+            let lo = &ev.nz - &(&c(z0) * &ev.d);
+            let hi = &(&c(z1) * &ev.d) - &ev.nz;
+            (lo.signum() * sd, hi.signum() * sd)
+        }
+    };
+    if a < 0 {
+        DepthCheck::Below
+    } else if b < 0 {
+        DepthCheck::Above
+    } else {
+        DepthCheck::Inside
+    }
+}
+
+/// The hit depth of a sample as an enclosing interval (None if D's enclosure holds 0).
+pub fn depth_enclosure(tri: &Tri, s: [f64; 5]) -> Option<Interval> {
+    let p = Interval::point;
+    let ev = edge_values(tri, &p(s[0]), &p(s[1]), &p(s[2]), &p(s[3]), &p(s[4]));
+    interval_div(ev.nz, ev.d)
+}
+
+/// Outward-rounded `a / b`, None if b's enclosure touches 0.
+pub fn interval_div(a: Interval, b: Interval) -> Option<Interval> {
+    if !(b.lo > 0.0 || b.hi < 0.0) {
+        return None;
+    }
+    let q = [a.lo / b.lo, a.lo / b.hi, a.hi / b.lo, a.hi / b.hi];
+    if q.iter().any(|v| v.is_nan()) {
+        return None;
+    }
+    let lo = q.iter().cloned().fold(f64::INFINITY, f64::min);
+    let hi = q.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    Some(Interval::new(lo.next_down(), hi.next_up()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat(v: [[f64; 2]; 3]) -> Tri {
+        let mk = |p: [f64; 2]| [p[0], p[1], 0.5, 1.0];
+        let q = [mk(v[0]), mk(v[1]), mk(v[2])];
+        Tri { q, r: q, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 }
+    }
+
+    #[test]
+    fn static_triangle_interior_boundary_outside() {
+        let t = flat([[0.0, 0.0], [4.0, 0.0], [0.0, 4.0]]);
+        assert_eq!(classify(&t, [1.0, 1.0, 0.0, 0.0, 0.5]), Coverage::Interior);
+        assert_eq!(classify(&t, [2.0, 2.0, 0.0, 0.0, 0.5]), Coverage::Boundary);
+        assert_eq!(classify(&t, [0.0, 0.0, 0.0, 0.0, 0.5]), Coverage::Boundary);
+        assert_eq!(classify(&t, [3.0, 3.0, 0.0, 0.0, 0.5]), Coverage::Outside);
+        // both windings
+        let t2 = flat([[0.0, 0.0], [0.0, 4.0], [4.0, 0.0]]);
+        assert_eq!(classify(&t2, [1.0, 1.0, 0.0, 0.0, 0.5]), Coverage::Interior);
+    }
+
+    #[test]
+    fn boundary_needs_the_exact_path() {
+        let t = flat([[0.0, 0.0], [4.0, 0.0], [0.0, 4.0]]);
+        let (c, exact) = classify_traced(&t, [0.125, 3.875, 0.0, 0.0, 0.3]);
+        assert_eq!(c, Coverage::Boundary);
+        assert!(exact);
+        // 0.1 + 3.9 is not 4 for doubles: the exact oracle sees the true sum.
+        assert_eq!(classify(&t, [0.1, 3.9, 0.0, 0.0, 0.3]), Coverage::Interior);
+    }
+
+    #[test]
+    fn behind_the_lens_is_not_covered() {
+        // All w < 0: the triangle is behind the lens; its projection would cover the
+        // pixel, but the hit is at negative depth.
+        let mk = |p: [f64; 2]| [-p[0], -p[1], -0.5, -1.0];
+        let q = [mk([0.0, 0.0]), mk([4.0, 0.0]), mk([0.0, 4.0])];
+        let t = Tri { q, r: q, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 };
+        assert_eq!(classify(&t, [1.0, 1.0, 0.0, 0.0, 0.0]), Coverage::Outside);
+    }
+
+    #[test]
+    fn depth_of_a_flat_triangle() {
+        let t = flat([[0.0, 0.0], [4.0, 0.0], [0.0, 4.0]]);
+        // z/w = 0.5 everywhere
+        assert_eq!(classify_depth(&t, [1.0, 1.0, 0.0, 0.0, 0.0], 0.5, 0.5), DepthCheck::Inside);
+        assert_eq!(classify_depth(&t, [1.0, 1.0, 0.0, 0.0, 0.0], 0.6, 0.9), DepthCheck::Below);
+        assert_eq!(classify_depth(&t, [1.0, 1.0, 0.0, 0.0, 0.0], 0.0, 0.4), DepthCheck::Above);
+    }
+}
