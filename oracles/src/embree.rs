@@ -142,6 +142,10 @@ pub enum EmbreeError {
     NonFiniteParameter { name: &'static str, value: f64 },
     /// `focus <= 0`.
     FocusNotPositive(f64),
+    /// `focus` rounds to an `f32` that is subnormal (below about `1.2e-38`)
+    /// or larger than Embree's `FLT_LARGE` (`1.844e18`): the ray direction's
+    /// `w` component would be (nearly) zero or no ray would be traceable.
+    FocusOutOfRange(f64),
     /// `a > 0` (the model has `a = -fx * R <= 0`).
     LensParameterPositive(f64),
     /// Embree reported an error; `stage` says during which step.
@@ -169,6 +173,11 @@ impl fmt::Display for EmbreeError {
             EmbreeError::FocusNotPositive(v) => {
                 write!(f, "focal distance must be > 0, got {v}")
             }
+            EmbreeError::FocusOutOfRange(v) => write!(
+                f,
+                "focal distance {v} is outside the usable f32 range [{:e}, {FLT_LARGE:e}]",
+                f32::MIN_POSITIVE
+            ),
             EmbreeError::LensParameterPositive(v) => {
                 write!(f, "lens parameter a = -fx*R must be <= 0, got {v}")
             }
@@ -196,7 +205,9 @@ pub struct EmbreeOracle {
 
 impl fmt::Debug for EmbreeOracle {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("EmbreeOracle").field("tri", &self.tri).finish_non_exhaustive()
+        f.debug_struct("EmbreeOracle")
+            .field("tri", &self.tri)
+            .finish_non_exhaustive()
     }
 }
 
@@ -208,6 +219,11 @@ const _: () = {
 
 /// The packet width used by [`EmbreeOracle::hits`].
 const PACKET: usize = 16;
+
+/// Embree's `FLT_LARGE`: a ray whose origin or direction has a component of
+/// larger magnitude (or NaN) fails Embree's `ray.valid()` assertion, which the
+/// Debian build keeps enabled, so tracing it would abort the whole process.
+const FLT_LARGE: f32 = 1.844e18;
 
 /// A valid mask with the 64-byte alignment Embree's 16-wide kernels may
 /// assume (the crate's `ValidMaskN` is only 16-byte aligned). `repr(C)` puts
@@ -251,9 +267,8 @@ fn shared_device() -> Result<Device, EmbreeError> {
                 })
             })
         })
-        .as_ref()
-        .map(Device::clone)
-        .map_err(|&code| EmbreeError::Embree {
+        .clone()
+        .map_err(|code| EmbreeError::Embree {
             stage: "device creation",
             code,
         })
@@ -289,6 +304,10 @@ fn validate(tri: &LensTri) -> Result<(), EmbreeError> {
     if tri.focus <= 0.0 {
         return Err(EmbreeError::FocusNotPositive(tri.focus));
     }
+    let focus32 = tri.focus as f32;
+    if !(f32::MIN_POSITIVE..=FLT_LARGE).contains(&focus32) {
+        return Err(EmbreeError::FocusOutOfRange(tri.focus));
+    }
     if tri.a > 0.0 {
         return Err(EmbreeError::LensParameterPositive(tri.a));
     }
@@ -298,7 +317,9 @@ fn validate(tri: &LensTri) -> Result<(), EmbreeError> {
 impl EmbreeOracle {
     /// Builds and commits the one-triangle scene.
     ///
-    /// Rejects non-finite numbers, `focus <= 0` and `a > 0`. Degenerate
+    /// Rejects non-finite numbers, `focus <= 0`, a `focus` whose `f32` is
+    /// subnormal or above `1.844e18` (see [`EmbreeError::FocusOutOfRange`]),
+    /// and `a > 0`. Degenerate
     /// triangles (zero area, coincident vertices) are accepted; Embree then
     /// simply reports whatever it reports (normally: no hits). So are vertices
     /// with `w <= 0`. Embree silently drops a primitive with a coordinate
@@ -359,17 +380,36 @@ impl EmbreeOracle {
         (org, dir)
     }
 
-    /// One ray, `rtcOccluded1` (any hit with ray parameter in `(0, inf)`).
-    ///
-    /// A sample with a non-finite component is reported not covered (no ray
-    /// is traced). `t` should be in `[0, 1]`; other values are passed to
-    /// Embree as they are.
-    pub fn hit(&self, s: [f64; 5]) -> bool {
+    /// The ray and time Embree is given for `s`, or `None` if Embree must not
+    /// be given this ray: a non-finite component of `s`, a ray component
+    /// beyond Embree's `FLT_LARGE` (about `1.8e18`), or a time outside
+    /// `[0, 1]`. Embree asserts against the last two (its kernels for
+    /// motion blur check the time), and the Debian build keeps assertions on.
+    fn traceable(&self, s: [f64; 5]) -> Option<([f32; 3], [f32; 3], f32)> {
         if !s.iter().all(|c| c.is_finite()) {
-            return false;
+            return None;
         }
         let (org, dir) = self.ray_for(s);
-        let mut ray = Ray::new(org, dir, 0.0, f32::INFINITY, s[4] as f32, u32::MAX, 0);
+        let time = s[4] as f32;
+        // `<=` is false for NaN, and the `as f32` casts turned overflow into inf.
+        let ok =
+            org.iter().chain(&dir).all(|c| c.abs() <= FLT_LARGE) && (0.0..=1.0).contains(&time);
+        ok.then_some((org, dir, time))
+    }
+
+    /// One ray, `rtcOccluded1` (any hit with ray parameter in `(0, inf)`).
+    ///
+    /// A sample that cannot be traced is reported not covered, and no ray is
+    /// given to Embree: one with a non-finite component, with `t` (as `f32`)
+    /// outside `[0, 1]`, or whose `f32` ray has a component of magnitude above
+    /// Embree's `FLT_LARGE` = `1.844e18`. (The Debian build of Embree keeps
+    /// its assertions, and it asserts against such rays: tracing one would
+    /// abort the process.)
+    pub fn hit(&self, s: [f64; 5]) -> bool {
+        let Some((org, dir, time)) = self.traceable(s) else {
+            return false;
+        };
+        let mut ray = Ray::new(org, dir, 0.0, f32::INFINITY, time, u32::MAX, 0);
         let mut ctx = IntersectContext::incoherent();
         self.scene.occluded(&mut ctx, &mut ray)
     }
@@ -379,7 +419,8 @@ impl EmbreeOracle {
     ///
     /// Uses `rtcOccluded16` on packets of 16 rays (SoA), with the valid mask
     /// switching off the lanes past the end of a ragged last packet and the
-    /// lanes of samples with a non-finite component (reported `false`).
+    /// lanes of samples that cannot be traced (reported `false`, as in
+    /// [`hit`](Self::hit)).
     /// Packets of 16 measured fastest here (AVX-512 machine, Debian Embree
     /// 3.13.5): faster than single rays, packets of 4 or 8, and the stream
     /// API; on a machine without AVX-512 Embree emulates 16-wide packets with
@@ -394,10 +435,9 @@ impl EmbreeOracle {
             for (i, lane) in mask.0.lanes_mut().iter_mut().enumerate() {
                 *lane = ValidMask::Invalid;
                 let Some(&s) = chunk.get(i) else { continue };
-                if !s.iter().all(|c| c.is_finite()) {
+                let Some((org, dir, time)) = self.traceable(s) else {
                     continue;
-                }
-                let (org, dir) = self.ray_for(s);
+                };
                 rays.org_x[i] = org[0];
                 rays.org_y[i] = org[1];
                 rays.org_z[i] = org[2];
@@ -406,7 +446,7 @@ impl EmbreeOracle {
                 rays.dir_z[i] = dir[2];
                 rays.tnear[i] = 0.0;
                 rays.tfar[i] = f32::INFINITY;
-                rays.time[i] = s[4] as f32;
+                rays.time[i] = time;
                 rays.mask[i] = u32::MAX;
                 rays.id[i] = i as u32;
                 *lane = ValidMask::Valid;

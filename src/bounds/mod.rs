@@ -1,0 +1,198 @@
+//! The culling tests under test: one trait, one registry, one file per published
+//! method (named by its id, see `shared/notes/model.md`, "Methods named in the papers").
+//!
+//! # The contract (model.md)
+//! For one triangle and one screen tile `T`, a test answers [`TileResult::Empty`] or
+//! [`TileBounds`]: intervals `u^`, `v^` (within [-1, 1]), `t^` (within [0, 1]), an optional
+//! depth interval `z^`, and optional per-sample constraints `g_m(s)`; a sample is culled
+//! when some `g_m(s) < 0`. The test is **conservative** iff every interior-covered sample
+//! with (x, y) in T has u in u^, v in v^, t in t^, its hit depth in z^, and every
+//! `g_m(s) >= 0`.
+//!
+//! Bounds compute in f32, as a hardware unit would, and never call the oracles.
+
+use crate::model::{Dims, Sample, Tile, Triangle};
+use crate::Interval;
+use serde::Serialize;
+
+pub mod bbox;
+pub mod gdam2010;
+pub mod la2011;
+pub mod lb2011;
+pub mod lc;
+pub mod mam2012;
+pub mod mam2012_hyperplane;
+pub mod mam2012_new;
+pub mod nilsson2012_depth;
+pub mod wu2013;
+
+/// What a method gives per tile.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Outputs {
+    /// It can answer "empty" for a tile.
+    pub tile_reject: bool,
+    /// It narrows u^ / v^.
+    pub lens: bool,
+    /// It narrows t^.
+    pub time: bool,
+    /// It gives z^.
+    pub depth: bool,
+    /// It gives per-sample constraints.
+    pub per_sample: bool,
+}
+
+/// Static description of a method.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct MethodInfo {
+    /// The id of model.md ("mam2012-hyperplane").
+    pub id: &'static str,
+    /// Paper, section, equations.
+    pub source: &'static str,
+    /// True when built from `reconstructions.md` rather than the paper itself.
+    pub reconstruction: bool,
+    /// The regimes it is designed for (others get the full domain or its best effort).
+    pub dims: &'static [Dims],
+    pub outputs: Outputs,
+}
+
+/// A box of samples: one interval per coordinate (x, y, u, v, t).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SampleBox {
+    pub x: Interval,
+    pub y: Interval,
+    pub u: Interval,
+    pub v: Interval,
+    pub t: Interval,
+}
+
+/// A per-sample culling constraint: the sample is culled when `eval(s) < 0`.
+pub trait SampleConstraint: Send + Sync + std::fmt::Debug {
+    /// A short label for reports ("ut lower line", "edge 1 hyperplane").
+    fn name(&self) -> String;
+    /// The value hardware would compute for this sample, in f32.
+    fn eval(&self, s: &Sample) -> f32;
+    /// An enclosure of every value [`eval`](Self::eval) can return for a sample in the
+    /// box, f32 rounding included (compute in outward-rounded f64 and widen by a
+    /// documented bound on the f32 evaluation error).
+    fn eval_box(&self, b: &SampleBox) -> Interval;
+}
+
+/// The non-empty answer of a tile test.
+#[derive(Debug)]
+pub struct TileBounds {
+    pub u: [f32; 2],
+    pub v: [f32; 2],
+    pub t: [f32; 2],
+    pub z: Option<[f32; 2]>,
+    pub constraints: Vec<Box<dyn SampleConstraint>>,
+}
+
+impl TileBounds {
+    /// The whole domain: what a disabled test answers.
+    pub fn full() -> Self {
+        TileBounds { u: [-1.0, 1.0], v: [-1.0, 1.0], t: [0.0, 1.0], z: None, constraints: Vec::new() }
+    }
+    /// True if a sample passes the intervals and every constraint (depth aside).
+    pub fn admits(&self, s: &Sample) -> bool {
+        let inside = |r: [f32; 2], x: f32| r[0] <= x && x <= r[1];
+        inside(self.u, s.u) && inside(self.v, s.v) && inside(self.t, s.t) && self.constraints.iter().all(|c| c.eval(s) >= 0.0)
+    }
+    /// Both tests at once: intervals intersected, constraints of both kept. Empty when
+    /// an interval becomes empty.
+    pub fn intersect(self, o: TileBounds) -> TileResult {
+        let cut = |a: [f32; 2], b: [f32; 2]| [a[0].max(b[0]), a[1].min(b[1])];
+        let (u, v, t) = (cut(self.u, o.u), cut(self.v, o.v), cut(self.t, o.t));
+        let z = match (self.z, o.z) {
+            (Some(a), Some(b)) => Some(cut(a, b)),
+            (a, b) => a.or(b),
+        };
+        if u[0] > u[1] || v[0] > v[1] || t[0] > t[1] || z.is_some_and(|z| z[0] > z[1]) {
+            return TileResult::Empty;
+        }
+        let mut constraints = self.constraints;
+        constraints.extend(o.constraints);
+        TileResult::Bounds(TileBounds { u, v, t, z, constraints })
+    }
+}
+
+/// The answer of a tile test.
+#[derive(Debug)]
+pub enum TileResult {
+    Empty,
+    Bounds(TileBounds),
+}
+
+impl TileResult {
+    /// Combine two tests of the same triangle and tile (both must pass).
+    pub fn and(self, o: TileResult) -> TileResult {
+        match (self, o) {
+            (TileResult::Bounds(a), TileResult::Bounds(b)) => a.intersect(b),
+            _ => TileResult::Empty,
+        }
+    }
+}
+
+/// The per-triangle state after setup (what hardware computes once per triangle).
+pub trait Prepared: Send + Sync {
+    /// The tile test.
+    fn tile(&self, tile: &Tile) -> TileResult;
+    /// Why the test is disabled for this triangle, if it is (e.g. "c_j(t) crosses 0").
+    fn disabled(&self) -> Option<&'static str> {
+        None
+    }
+}
+
+/// A culling method.
+pub trait Method: Send + Sync {
+    fn info(&self) -> &'static MethodInfo;
+    /// The per-triangle setup.
+    fn setup(&self, tri: &Triangle) -> Box<dyn Prepared>;
+}
+
+/// Every method, in the order of model.md.
+pub fn registry() -> Vec<&'static dyn Method> {
+    vec![
+        bbox::METHOD,
+        la2011::METHOD,
+        lb2011::METHOD,
+        lc::METHOD,
+        mam2012::METHOD,
+        mam2012_hyperplane::METHOD,
+        mam2012_hyperplane::METHOD_PS,
+        mam2012_new::METHOD,
+        wu2013::METHOD,
+        nilsson2012_depth::METHOD,
+        gdam2010::METHOD,
+    ]
+}
+
+/// The method with this id.
+pub fn by_id(id: &str) -> Option<&'static dyn Method> {
+    registry().into_iter().find(|m| m.info().id == id)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_are_unique_and_found() {
+        let r = registry();
+        let mut ids: Vec<_> = r.iter().map(|m| m.info().id).collect();
+        ids.sort();
+        ids.dedup();
+        assert_eq!(ids.len(), r.len());
+        for id in ids {
+            assert_eq!(by_id(id).unwrap().info().id, id);
+        }
+    }
+
+    #[test]
+    fn intersect_empties_on_disjoint_intervals() {
+        let mut a = TileBounds::full();
+        a.t = [0.0, 0.2];
+        let mut b = TileBounds::full();
+        b.t = [0.5, 1.0];
+        assert!(matches!(a.intersect(b), TileResult::Empty));
+    }
+}
