@@ -57,8 +57,9 @@
 //! is computed in `f64` and rounded to `f32` once per component; see
 //! [`EmbreeOracle::ray_for`].
 //!
-//! Embree triangles are two-sided (no back-face culling is compiled into the
-//! Debian build or requested here), so either winding hits. Vertices with
+//! Embree triangles are two-sided (the Debian build is compiled without
+//! `EMBREE_BACKFACE_CULLING`; the tests check both windings), so either
+//! winding hits. Vertices with
 //! `w <= 0` are not special: the triangle is just a triangle in 3D and the ray
 //! segment starts at `W = 0`, so only its in-front part can be hit.
 //!
@@ -89,10 +90,11 @@
 //!
 //! # Device sharing and the floating-point environment
 //!
-//! Embree recommends one device per application, and creating one costs
-//! milliseconds (ISA detection, task-system start-up), so all oracles share one
-//! process-wide device created on first use; each [`EmbreeOracle`] owns its own
-//! reference to it (reference-counted, released on drop) and its own scene.
+//! Embree recommends one device per application (the first one costs about
+//! a millisecond here: ISA detection, TBB start-up; a scene for one triangle
+//! costs a few microseconds), so all oracles share one process-wide device
+//! created on first use; each [`EmbreeOracle`] owns its own reference to it
+//! (reference-counted, released on drop) and its own scene.
 //! The `embree3` crate sets flush-to-zero/denormals-are-zero in the calling
 //! thread's MXCSR when it creates a device; this module saves and restores
 //! MXCSR around that call so that building an oracle never changes the
@@ -319,10 +321,9 @@ impl EmbreeOracle {
     ///
     /// Rejects non-finite numbers, `focus <= 0`, a `focus` whose `f32` is
     /// subnormal or above `1.844e18` (see [`EmbreeError::FocusOutOfRange`]),
-    /// and `a > 0`. Degenerate
-    /// triangles (zero area, coincident vertices) are accepted; Embree then
-    /// simply reports whatever it reports (normally: no hits). So are vertices
-    /// with `w <= 0`. Embree silently drops a primitive with a coordinate
+    /// and `a > 0`. Degenerate triangles (zero area, coincident vertices) are
+    /// accepted; Embree then simply reports whatever it reports (normally: no
+    /// hits). So are vertices with `w <= 0`. Embree silently drops a primitive with a coordinate
     /// beyond about `1.8e18` in magnitude, which then is never hit.
     pub fn new(tri: &LensTri) -> Result<Self, EmbreeError> {
         validate(tri)?;
@@ -422,9 +423,10 @@ impl EmbreeOracle {
     /// lanes of samples that cannot be traced (reported `false`, as in
     /// [`hit`](Self::hit)).
     /// Packets of 16 measured fastest here (AVX-512 machine, Debian Embree
-    /// 3.13.5): faster than single rays, packets of 4 or 8, and the stream
-    /// API; on a machine without AVX-512 Embree emulates 16-wide packets with
-    /// narrower ones, which is still correct.
+    /// 3.13.5; about 100 Mrays/s against 70 for packets of 8, 45 for 4, 30
+    /// for the stream API and 24 for single rays). Without AVX-512, Embree
+    /// serves 16-wide packets through its generic stream path: still correct,
+    /// maybe slower.
     pub fn hits(&self, samples: &[[f64; 5]], out: &mut Vec<bool>) {
         out.clear();
         out.reserve(samples.len());

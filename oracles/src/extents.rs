@@ -1,1 +1,721 @@
-//! (being written)
+//! Certified tile extents: enclosures of the infimum and supremum of u, v, t and the hit
+//! depth over the interior-covered samples of a tile, or a certificate that none is
+//! covered.
+//!
+//! # Method
+//! Best-first branch-and-bound over boxes of (x, y, u, v, t), one search per objective.
+//! A box is judged from enclosures of the four coverage polynomials (E_0, E_1, E_2, D)
+//! over it:
+//! - **empty** when one value is certainly <= 0 and another certainly >= 0 (or one is
+//!   certainly 0): no sample in it can have four values of one strict sign;
+//! - **full** when all four are certainly > 0 or all certainly < 0;
+//! - **undecided** otherwise.
+//!
+//! The enclosures are tight because of the structure of the polynomials: for a fixed t
+//! each `E_k` (and the depth numerator `N`) is affine in each of x, y, u, v separately
+//! (`P_i.x` is affine in (x, u), `P_i.y` in (y, v), and `E_k` multiplies one of each),
+//! and `D` is affine in each of u, v. A function affine in each variable separately
+//! takes its extremes over a box at the box's corners, so the range over the box is the
+//! hull over the 16 (x, y, u, v) corners of the range in t. In t each value is a
+//! polynomial of degree <= 3, carried exactly as a polynomial in `s = t - t_mid` with
+//! outward-rounded interval coefficients ([`TPoly`]) and bounded over `s in [-h, h]`
+//! term by term. All arithmetic rounds outward; nothing uses an epsilon.
+//!
+//! For a minimum (say of u) the search always splits the live box of smallest lower
+//! bound `u_lo`; that `u_lo` is a certified lower bound of the infimum. Each undecided or
+//! full box proposes a witness sample (its `u_lo` corner, then its centre) that the
+//! exact classifier ([`crate::coverage::classify`]) must confirm as interior; the best
+//! witness is a certified upper bound. The search stops when the two meet within the
+//! resolution. Boxes that reach the minimum size undecided, or remain when the box
+//! budget runs out, are counted and reported, never dropped: the enclosure then runs
+//! from the smallest lower bound among them.
+//!
+//! Dimensions a triangle does not have are not searched: a static triangle is judged at
+//! t = 0 and, when covered, its t extents are the whole requested range (coverage does
+//! not depend on t); a pinhole triangle (every CoC zero) likewise in u and v.
+
+use crate::coverage::{classify, det_of, edges_of, interval_div, sheared, Coverage};
+use crate::interval::Interval;
+use crate::ring::Ring;
+use crate::tri::Tri;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// A polynomial of degree <= 3 in `s = t - t_mid`, with interval coefficients; the
+/// degree is tracked so that coefficients known to be zero stay out of products.
+#[derive(Clone, Copy, Debug)]
+pub struct TPoly {
+    pub c: [Interval; 4],
+    pub deg: usize,
+}
+
+impl TPoly {
+    /// `t_mid + s`.
+    pub fn t_at(tm: f64) -> Self {
+        let z = Interval::point(0.0);
+        TPoly { c: [Interval::point(tm), Interval::point(1.0), z, z], deg: 1 }
+    }
+    /// Enclosure of the values for `s in [-h, h]` (h >= 0).
+    pub fn range(&self, h: f64) -> Interval {
+        let c = &self.c;
+        let hh = Interval::point(h);
+        let mut r = c[0];
+        if self.deg >= 1 {
+            r = r + c[1] * Interval::new(-h, h);
+        }
+        if self.deg >= 2 {
+            let h2 = (hh * hh).hi;
+            r = r + c[2] * Interval::new(0.0, h2);
+            if self.deg >= 3 {
+                let h3 = (Interval::point(h2) * hh).hi;
+                r = r + c[3] * Interval::new(-h3, h3);
+            }
+        }
+        r
+    }
+}
+
+impl Ring for TPoly {
+    fn c(x: f64) -> Self {
+        let z = Interval::point(0.0);
+        TPoly { c: [Interval::point(x), z, z, z], deg: 0 }
+    }
+    fn add(&self, o: &Self) -> Self {
+        TPoly { c: [0, 1, 2, 3].map(|i| self.c[i] + o.c[i]), deg: self.deg.max(o.deg) }
+    }
+    fn sub(&self, o: &Self) -> Self {
+        TPoly { c: [0, 1, 2, 3].map(|i| self.c[i] - o.c[i]), deg: self.deg.max(o.deg) }
+    }
+    fn mul(&self, o: &Self) -> Self {
+        let z = Interval::point(0.0);
+        let deg = self.deg + o.deg;
+        if deg > 3 {
+            // Never happens for the coverage polynomials (degree <= 3); if it did, the
+            // result would be unusable: poison it so the box stays undecided.
+            let nan = Interval::new(f64::NAN, f64::NAN);
+            return TPoly { c: [nan; 4], deg: 3 };
+        }
+        let mut r = [z; 4];
+        for i in 0..=self.deg {
+            for j in 0..=o.deg {
+                r[i + j] = r[i + j] + self.c[i] * o.c[j];
+            }
+        }
+        TPoly { c: r, deg }
+    }
+}
+
+/// Coordinates of a sample box, in the order x, y, u, v, t.
+pub type Box5 = [Interval; 5];
+
+/// The judgement of one box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BoxClass {
+    Empty,
+    Full,
+    Undecided,
+}
+
+/// Enclosures of E_0, E_1, E_2, D and the depth numerator N over a box.
+#[derive(Clone, Copy, Debug)]
+pub struct BoxValues {
+    pub e: [Interval; 3],
+    pub d: Interval,
+    pub nz: Interval,
+    /// Enclosure of the hit depth N / D over the box, when D keeps one sign.
+    pub depth: Option<Interval>,
+    /// How much each coordinate (x, y, u, v, t) moves the values over the box: the
+    /// largest change of an edge value or D between corners that differ in that
+    /// coordinate only (t: the non-constant terms of the Taylor form). Guides splitting.
+    /// Indexed [quantity][coordinate], quantities E_0, E_1, E_2, D.
+    pub smear: [[f64; 5]; 4],
+}
+
+impl BoxValues {
+    /// The smear of the quantities whose sign is still open over the box.
+    pub fn open_smear(&self) -> [f64; 5] {
+        let q = [self.e[0], self.e[1], self.e[2], self.d];
+        let mut s = [0.0f64; 5];
+        for k in 0..4 {
+            if !(q[k].lo > 0.0 || q[k].hi < 0.0) {
+                for i in 0..5 {
+                    s[i] = s[i].max(self.smear[k][i]);
+                }
+            }
+        }
+        s
+    }
+}
+
+fn ends(iv: Interval) -> ([f64; 2], usize) {
+    if iv.lo == iv.hi {
+        ([iv.lo, iv.lo], 1)
+    } else {
+        ([iv.lo, iv.hi], 2)
+    }
+}
+
+/// Enclosures of the coverage values over a box (corners in x, y, u, v; Taylor in t).
+pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
+    let tm = b[4].mid();
+    let h = (b[4].hi - tm).max(tm - b[4].lo).max(0.0);
+    let t = TPoly::t_at(tm);
+    let (xs, nx) = ends(b[0]);
+    let (ys, ny) = ends(b[1]);
+    let (us, nu) = ends(b[2]);
+    let (vs, nv) = ends(b[3]);
+    let mut e: [Option<Interval>; 3] = [None; 3];
+    let mut d: Option<Interval> = None;
+    let mut nz: Option<Interval> = None;
+    let mut depth: Option<Interval> = None;
+    let mut depth_ok = true;
+    // mid-t values of E_0..E_2 at each corner [u][v][x][y], and of D at [u][v]
+    let mut em = [[[[[0.0f64; 3]; 2]; 2]; 2]; 2];
+    let mut dm = [[0.0f64; 2]; 2];
+    let mut smear = [[0.0f64; 5]; 4];
+    let tvar = |p: &TPoly| -> f64 {
+        let m = |i: Interval| i.lo.abs().max(i.hi.abs());
+        m(p.c[1]) * h + m(p.c[2]) * h * h + m(p.c[3]) * h * h * h
+    };
+    let hull = |acc: &mut Option<Interval>, v: Interval| {
+        *acc = Some(match acc {
+            Some(a) => {
+                if v.lo.is_nan() || v.hi.is_nan() || a.lo.is_nan() {
+                    Interval::new(f64::NAN, f64::NAN)
+                } else {
+                    a.hull(v)
+                }
+            }
+            None => v,
+        })
+    };
+    for (iu, &u) in us[..nu].iter().enumerate() {
+        for (iv, &v) in vs[..nv].iter().enumerate() {
+            let p = sheared(tri, &TPoly::c(u), &TPoly::c(v), &t);
+            let dp = det_of(&p);
+            let dc = dp.range(h);
+            dm[iu][iv] = dp.c[0].mid();
+            smear[3][4] = smear[3][4].max(tvar(&dp));
+            hull(&mut d, dc);
+            for (ix, &x) in xs[..nx].iter().enumerate() {
+                for (iy, &y) in ys[..ny].iter().enumerate() {
+                    let ev = edges_of(&p, &TPoly::c(x), &TPoly::c(y));
+                    for k in 0..3 {
+                        hull(&mut e[k], ev[k].range(h));
+                        em[iu][iv][ix][iy][k] = ev[k].c[0].mid();
+                        smear[k][4] = smear[k][4].max(tvar(&ev[k]));
+                    }
+                    let n = ev[0].mul(&p[0][2]).add(&ev[1].mul(&p[1][2])).add(&ev[2].mul(&p[2][2]));
+                    let nc = n.range(h);
+                    hull(&mut nz, nc);
+                    // N / D is linear-fractional in each of x, y, u, v separately, hence
+                    // monotone in each while D keeps its sign: its extremes over the
+                    // box are at the corners too.
+                    match interval_div(nc, dc) {
+                        Some(z) if depth_ok => hull(&mut depth, z),
+                        _ => depth_ok = false,
+                    }
+                }
+            }
+        }
+    }
+    for iu in 0..nu {
+        for iv in 0..nv {
+            if nu == 2 && iu == 0 {
+                smear[3][2] = smear[3][2].max((dm[1][iv] - dm[0][iv]).abs());
+            }
+            if nv == 2 && iv == 0 {
+                smear[3][3] = smear[3][3].max((dm[iu][1] - dm[iu][0]).abs());
+            }
+            for ix in 0..nx {
+                for iy in 0..ny {
+                    for k in 0..3 {
+                        let here = em[iu][iv][ix][iy][k];
+                        if nx == 2 && ix == 0 {
+                            smear[k][0] = smear[k][0].max((em[iu][iv][1][iy][k] - here).abs());
+                        }
+                        if ny == 2 && iy == 0 {
+                            smear[k][1] = smear[k][1].max((em[iu][iv][ix][1][k] - here).abs());
+                        }
+                        if nu == 2 && iu == 0 {
+                            smear[k][2] = smear[k][2].max((em[1][iv][ix][iy][k] - here).abs());
+                        }
+                        if nv == 2 && iv == 0 {
+                            smear[k][3] = smear[k][3].max((em[iu][1][ix][iy][k] - here).abs());
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let d = d.unwrap();
+    // The per-corner quotients bound the depth only if D has one sign over the box.
+    let depth = if depth_ok && (d.lo > 0.0 || d.hi < 0.0) { depth } else { None };
+    BoxValues { e: e.map(|v| v.unwrap()), d, nz: nz.unwrap(), depth, smear }
+}
+
+/// Empty / full / undecided from the enclosures.
+pub fn classify_values(bv: &BoxValues) -> BoxClass {
+    let vals = [bv.e[0], bv.e[1], bv.e[2], bv.d];
+    if vals.iter().any(|v| v.lo.is_nan() || v.hi.is_nan()) {
+        return BoxClass::Undecided;
+    }
+    if vals.iter().any(|v| v.lo >= 0.0 && v.hi <= 0.0) {
+        return BoxClass::Empty;
+    }
+    let nonneg = vals.iter().any(|v| v.lo >= 0.0);
+    let nonpos = vals.iter().any(|v| v.hi <= 0.0);
+    if nonneg && nonpos {
+        return BoxClass::Empty;
+    }
+    if vals.iter().all(|v| v.lo > 0.0) || vals.iter().all(|v| v.hi < 0.0) {
+        return BoxClass::Full;
+    }
+    BoxClass::Undecided
+}
+
+/// What to find.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Objective {
+    /// Coordinate index 2 (u), 3 (v) or 4 (t); minimised or maximised.
+    Coord { index: usize, max: bool },
+    /// The hit depth (clip z / w of the hit).
+    Depth { max: bool },
+}
+
+/// Settings of the solver.
+#[derive(Clone, Copy, Debug)]
+pub struct ExtentsConfig {
+    /// Stop when the enclosure of an extreme is this narrow (u, v, t and depth).
+    pub resolution: f64,
+    /// Boxes one objective may pop before it gives up (the rest are reported undecided).
+    pub max_boxes: usize,
+    /// A box narrower than this fraction of the initial box in every searched
+    /// dimension is not split further.
+    pub min_fraction: f64,
+}
+
+impl Default for ExtentsConfig {
+    fn default() -> Self {
+        ExtentsConfig { resolution: 1e-4, max_boxes: 20_000, min_fraction: 1e-7 }
+    }
+}
+
+/// A certified enclosure `[lo, hi]` of an infimum or supremum, with its witness.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Extreme {
+    pub lo: f64,
+    pub hi: f64,
+    /// An interior sample (confirmed exactly) at the witnessed end of the enclosure.
+    pub witness: [f64; 5],
+}
+
+/// The result of one objective.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObjectiveResult {
+    /// None when no interior sample was found.
+    pub extreme: Option<Extreme>,
+    /// Boxes left undecided (at minimum size or over budget).
+    pub undecided: u64,
+    /// Boxes examined.
+    pub boxes: u64,
+}
+
+/// Extents of the interior-covered set over a tile and a (u, v, t) sub-box.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TileExtents {
+    /// True when the covered set is certified empty (no undecided box).
+    pub empty: bool,
+    /// [u_min, u_max, v_min, v_max, t_min, t_max, z_min, z_max]; None when empty or
+    /// unknown.
+    pub extremes: [Option<Extreme>; 8],
+    /// Boxes left undecided, over all objectives.
+    pub undecided: u64,
+    /// Boxes examined, over all objectives.
+    pub boxes: u64,
+}
+
+impl TileExtents {
+    pub fn u(&self) -> (Option<Extreme>, Option<Extreme>) {
+        (self.extremes[0], self.extremes[1])
+    }
+    pub fn v(&self) -> (Option<Extreme>, Option<Extreme>) {
+        (self.extremes[2], self.extremes[3])
+    }
+    pub fn t(&self) -> (Option<Extreme>, Option<Extreme>) {
+        (self.extremes[4], self.extremes[5])
+    }
+    pub fn z(&self) -> (Option<Extreme>, Option<Extreme>) {
+        (self.extremes[6], self.extremes[7])
+    }
+}
+
+struct Node {
+    key: f64,
+    depth: u32,
+    b: Box5,
+}
+impl PartialEq for Node {
+    fn eq(&self, o: &Self) -> bool {
+        self.key == o.key
+    }
+}
+impl Eq for Node {}
+impl PartialOrd for Node {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Node {
+    fn cmp(&self, o: &Self) -> Ordering {
+        // BinaryHeap is a max-heap: the smallest key comes out first; among equal keys
+        // the deepest box, so that ties (common: keys are split points) dive rather
+        // than sweep.
+        o.key.partial_cmp(&self.key).unwrap_or(Ordering::Equal).then(self.depth.cmp(&o.depth))
+    }
+}
+
+/// The dimensions that matter for this triangle.
+fn active_dims(tri: &Tri) -> [bool; 5] {
+    let lens = !tri.is_pinhole();
+    let time = !tri.is_static();
+    [true, true, lens, lens, time]
+}
+
+/// Lower bound (for a minimum) of the objective over a box, as a key to minimise.
+fn key_of(obj: Objective, b: &Box5, bv: &BoxValues) -> f64 {
+    match obj {
+        Objective::Coord { index, max: false } => b[index].lo,
+        Objective::Coord { index, max: true } => -b[index].hi,
+        Objective::Depth { max } => match bv.depth {
+            Some(z) => {
+                if max {
+                    -z.hi
+                } else {
+                    z.lo
+                }
+            }
+            None => f64::NEG_INFINITY,
+        },
+    }
+}
+
+/// The objective's value at a point, exactly enough for a witness (depth in f64 is
+/// only used to rank witnesses; its enclosure is reported via `depth_bounds`).
+fn value_at(tri: &Tri, obj: Objective, s: [f64; 5]) -> Interval {
+    match obj {
+        Objective::Coord { index, .. } => Interval::point(s[index]),
+        Objective::Depth { .. } => crate::coverage::depth_enclosure(tri, s).unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY)),
+    }
+}
+
+/// Witness candidates in a box: the point nearest the bound being sought (objective at
+/// its end, the rest at the centre), the centre, the far end, then a few points drawn
+/// from a generator seeded by the box itself (so runs are reproducible). Near an
+/// extreme the covered set is often a thin wedge through a box corner that its centre
+/// misses; scattered points find it.
+fn candidate_points(obj: Objective, b: &Box5) -> Vec<[f64; 5]> {
+    let centre = b.map(|i| i.mid());
+    let mut pts = Vec::with_capacity(7);
+    if let Objective::Coord { index, max } = obj {
+        let mut near = centre;
+        near[index] = if max { b[index].hi } else { b[index].lo };
+        pts.push(near);
+        pts.push(centre);
+        let mut far = centre;
+        far[index] = if max { b[index].lo } else { b[index].hi };
+        pts.push(far);
+    } else {
+        pts.push(centre);
+    }
+    let mut seed = b.iter().fold(0x9E37_79B9_7F4A_7C15u64, |h, i| (h ^ i.lo.to_bits()).wrapping_mul(0x100_0000_01B3) ^ i.hi.to_bits());
+    for _ in 0..4 {
+        let p = std::array::from_fn(|k| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let f = (seed >> 11) as f64 / (1u64 << 53) as f64;
+            let v = b[k].lo + f * (b[k].hi - b[k].lo);
+            v.clamp(b[k].lo, b[k].hi)
+        });
+        pts.push(p);
+    }
+    pts
+}
+
+/// From an interior point, move the objective coordinate towards the box's bound by
+/// exact bisection (every step confirmed by the exact classifier), so a witness hugs
+/// the boundary of the covered set instead of sitting where it was drawn.
+fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box5) -> [f64; 5] {
+    let Objective::Coord { index, max } = obj else { return p };
+    let mut inside = p;
+    let mut out = p;
+    out[index] = if max { b[index].hi } else { b[index].lo };
+    if classify(tri, out) == Coverage::Interior {
+        return out;
+    }
+    for _ in 0..48 {
+        let mut mid = inside;
+        mid[index] = inside[index] + 0.5 * (out[index] - inside[index]);
+        if mid[index] == inside[index] || mid[index] == out[index] {
+            break;
+        }
+        if classify(tri, mid) == Coverage::Interior {
+            inside = mid;
+        } else {
+            out = mid;
+        }
+    }
+    inside
+}
+
+/// Run one objective over the initial box.
+pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfig) -> ObjectiveResult {
+    let active = active_dims(tri);
+    let min_w: [f64; 5] = std::array::from_fn(|i| init[i].width() * cfg.min_fraction);
+    // Key of the best witness (minimised orientation) and the witness itself.
+    let mut best: Option<(f64, [f64; 5])> = None;
+    let mut heap = BinaryHeap::new();
+    let mut boxes = 0u64;
+    let mut stuck_lo = f64::INFINITY; // smallest key among boxes left undecided
+    let sign = |obj: Objective| match obj {
+        Objective::Coord { max, .. } | Objective::Depth { max } => {
+            if max {
+                -1.0
+            } else {
+                1.0
+            }
+        }
+    };
+    let sg = sign(obj);
+    let bv = box_values(tri, &init);
+    heap.push(Node { key: key_of(obj, &init, &bv), depth: 0, b: init });
+    let mut final_lo = f64::INFINITY;
+    let mut stuck: Vec<f64> = Vec::new(); // keys of boxes left undecided at minimum size
+    while let Some(Node { key, depth, b }) = heap.pop() {
+        let lower = key.min(stuck_lo);
+        if let Some((w, _)) = best {
+            if w - lower <= cfg.resolution {
+                final_lo = lower;
+                heap.clear();
+                break;
+            }
+        }
+        boxes += 1;
+        if boxes as usize > cfg.max_boxes {
+            stuck.push(key);
+            stuck.extend(heap.drain().map(|n| n.key));
+            final_lo = lower;
+            break;
+        }
+        let bv = box_values(tri, &b);
+        let class = classify_values(&bv);
+        if class == BoxClass::Empty {
+            continue;
+        }
+        // Witnesses, while one could still improve on the best.
+        if best.is_none_or(|(w, _)| w - key > cfg.resolution) {
+            for p in candidate_points(obj, &b) {
+                if classify(tri, p) == Coverage::Interior {
+                    let p = push_towards_bound(tri, obj, p, &b);
+                    let val = value_at(tri, obj, p);
+                    let k = if sg > 0.0 { val.hi } else { -val.lo };
+                    if best.is_none_or(|(w, _)| k < w) {
+                        best = Some((k, p));
+                    }
+                }
+            }
+        }
+        // Split where the values move most (the smear), among the dimensions still
+        // wider than the minimum; the objective's own coordinate is split at least
+        // every other time until it is finer than half the resolution, never after.
+        let smear = bv.open_smear();
+        let max_smear = smear.iter().cloned().fold(0.0, f64::max);
+        let mut dim = None;
+        let mut best_score = 0.0; // a coordinate that moves no open value is never split
+        for i in 0..5 {
+            if !active[i] || b[i].width() <= min_w[i] || init[i].width() == 0.0 {
+                continue;
+            }
+            let mut score = smear[i];
+            if let Objective::Depth { .. } = obj {
+                // The depth moves with every coordinate, covered or not: halve the
+                // widest, relative to the initial box.
+                score = b[i].width() / init[i].width();
+            }
+            if let Objective::Coord { index, .. } = obj {
+                if i == index {
+                    score = if b[i].width() > cfg.resolution * 0.5 { score.max(0.5 * max_smear) } else { -0.5 };
+                }
+            }
+            if !(score.is_finite()) {
+                score = f64::MAX;
+            }
+            if score > best_score {
+                best_score = score;
+                dim = Some(i);
+            }
+        }
+        let Some(dim) = dim else {
+            if class == BoxClass::Full {
+                continue; // a full box's witness already stands for it
+            }
+            stuck.push(key);
+            stuck_lo = stuck_lo.min(key);
+            continue;
+        };
+        let m = b[dim].mid();
+        for half in [Interval::new(b[dim].lo, m), Interval::new(m, b[dim].hi)] {
+            let mut c = b;
+            c[dim] = half;
+            let cv = box_values(tri, &c);
+            if classify_values(&cv) == BoxClass::Empty {
+                continue;
+            }
+            let k = key_of(obj, &c, &cv).max(key);
+            heap.push(Node { key: k, depth: depth + 1, b: c });
+        }
+    }
+    if final_lo == f64::INFINITY {
+        final_lo = stuck_lo;
+    }
+    // Undecided boxes are the ones that keep the enclosure wider than the resolution.
+    let undecided = match best {
+        Some((w, _)) => stuck.iter().filter(|&&k| w - k > cfg.resolution).count() as u64,
+        None => stuck.len() as u64,
+    };
+    let extreme = best.map(|(w, p)| {
+        let lo = final_lo.min(w);
+        if sg > 0.0 {
+            Extreme { lo, hi: w, witness: p }
+        } else {
+            Extreme { lo: -w, hi: -lo, witness: p }
+        }
+    });
+    ObjectiveResult { extreme, undecided, boxes }
+}
+
+/// Certified extents of the interior-covered set over the tile `[x0, x1] x [y0, y1]`
+/// and the sub-box `uvt = [[u0, u1], [v0, v1], [t0, t1]]` (use
+/// `[[-1, 1], [-1, 1], [0, 1]]` for the whole lens and shutter).
+pub fn tile_extents(tri: &Tri, tile: [f64; 4], uvt: [[f64; 2]; 3], cfg: &ExtentsConfig) -> TileExtents {
+    let active = active_dims(tri);
+    let full: Box5 = [
+        Interval::new(tile[0], tile[1]),
+        Interval::new(tile[2], tile[3]),
+        Interval::new(uvt[0][0], uvt[0][1]),
+        Interval::new(uvt[1][0], uvt[1][1]),
+        Interval::new(uvt[2][0], uvt[2][1]),
+    ];
+    // Inactive dimensions are searched at one point; their extents are the whole range.
+    let mut init = full;
+    for i in 2..5 {
+        if !active[i] {
+            let p = if i == 4 { full[4].lo } else { full[i].lo.max(0.0).min(full[i].hi) };
+            init[i] = Interval::point(p);
+        }
+    }
+    let objs = [
+        Objective::Coord { index: 2, max: false },
+        Objective::Coord { index: 2, max: true },
+        Objective::Coord { index: 3, max: false },
+        Objective::Coord { index: 3, max: true },
+        Objective::Coord { index: 4, max: false },
+        Objective::Coord { index: 4, max: true },
+        Objective::Depth { max: false },
+        Objective::Depth { max: true },
+    ];
+    let mut extremes = [None; 8];
+    let mut undecided = 0;
+    let mut boxes = 0;
+    let mut empty = false;
+    for (n, obj) in objs.iter().enumerate() {
+        let inactive_coord = matches!(obj, Objective::Coord { index, .. } if !active[*index]);
+        if inactive_coord {
+            continue; // filled in below from a witness
+        }
+        let first = boxes == 0;
+        let r = solve_objective(tri, init, *obj, cfg);
+        boxes += r.boxes;
+        undecided += r.undecided;
+        extremes[n] = r.extreme;
+        if first && r.extreme.is_none() && r.undecided == 0 {
+            // The first search discarded every box as empty: a certificate.
+            empty = true;
+            break;
+        }
+    }
+    if empty {
+        return TileExtents { empty: true, extremes: [None; 8], undecided, boxes };
+    }
+    // Inactive coordinates: coverage does not depend on them, so any witness moved to
+    // the end of the range is still interior (re-confirmed exactly).
+    let any_witness = extremes.iter().flatten().next().map(|e| e.witness);
+    if let Some(w) = any_witness {
+        for (n, obj) in objs.iter().enumerate() {
+            if let Objective::Coord { index, max } = *obj {
+                if !active[index] {
+                    let mut p = w;
+                    p[index] = if max { full[index].hi } else { full[index].lo };
+                    if classify(tri, p) == Coverage::Interior {
+                        extremes[n] = Some(Extreme { lo: p[index], hi: p[index], witness: p });
+                    }
+                }
+            }
+        }
+    }
+    TileExtents { empty: false, extremes, undecided, boxes }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat(v: [[f64; 2]; 3]) -> Tri {
+        let mk = |p: [f64; 2]| [p[0], p[1], 0.5, 1.0];
+        let q = [mk(v[0]), mk(v[1]), mk(v[2])];
+        Tri { q, r: q, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 }
+    }
+
+    const WHOLE: [[f64; 2]; 3] = [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]];
+
+    #[test]
+    fn static_tile_inside_has_full_extents() {
+        let t = flat([[0.0, 0.0], [10.0, 0.0], [0.0, 10.0]]);
+        let ex = tile_extents(&t, [1.0, 3.0, 1.0, 3.0], WHOLE, &ExtentsConfig::default());
+        assert!(!ex.empty);
+        assert_eq!(ex.u().0.unwrap().lo, -1.0);
+        assert_eq!(ex.t().1.unwrap().hi, 1.0);
+        let z = ex.z();
+        assert!(z.0.unwrap().lo <= 0.5 && z.1.unwrap().hi >= 0.5);
+        assert!(z.1.unwrap().hi - z.0.unwrap().lo < 1e-3);
+    }
+
+    #[test]
+    fn far_tile_is_certified_empty() {
+        let t = flat([[0.0, 0.0], [10.0, 0.0], [0.0, 10.0]]);
+        let ex = tile_extents(&t, [20.0, 22.0, 20.0, 22.0], WHOLE, &ExtentsConfig::default());
+        assert!(ex.empty);
+        assert_eq!(ex.undecided, 0);
+    }
+
+    #[test]
+    fn moving_triangle_time_extents() {
+        // Moves right by 8 px; tile [5, 6] x [1, 2] is covered while 0 < x - 8t < 4 - y:
+        // earliest t: x = 5 at the left edge needs 5 - 8t < 4 - y, i.e. t > (1 + y)/8
+        // minimised at y = 1 -> t > 1/4... with x = 5 -> and x = 6 gives (2 + y)/8; the
+        // minimum over the tile is at x = 5, y = 1: t_min = 1/4. Latest t: x - 8t > 0
+        // with x = 6: t < 3/4.
+        let mk = |x: f64, y: f64| [x, y, 0.5, 1.0];
+        let q = [mk(0.0, 0.0), mk(4.0, 0.0), mk(0.0, 4.0)];
+        let r = [mk(8.0, 0.0), mk(12.0, 0.0), mk(8.0, 4.0)];
+        let tri = Tri { q, r, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 };
+        let cfg = ExtentsConfig::default();
+        let ex = tile_extents(&tri, [5.0, 6.0, 1.0, 2.0], WHOLE, &cfg);
+        let (tmin, tmax) = ex.t();
+        let (tmin, tmax) = (tmin.unwrap(), tmax.unwrap());
+        assert!(tmin.lo <= 0.25 && 0.25 <= tmin.hi && tmin.hi - tmin.lo <= 1e-4, "{tmin:?}");
+        assert!(tmax.lo <= 0.75 && 0.75 <= tmax.hi && tmax.hi - tmax.lo <= 1e-4, "{tmax:?}");
+        assert_eq!(ex.undecided, 0);
+    }
+}

@@ -110,6 +110,13 @@ impl Add for Interval {
     type Output = Interval;
     #[inline(always)]
     fn add(self, o: Interval) -> Interval {
+        // Adding an exact zero is exact: keep it so (zeros stay zeros).
+        if o.lo == 0.0 && o.hi == 0.0 {
+            return self;
+        }
+        if self.lo == 0.0 && self.hi == 0.0 {
+            return o;
+        }
         Interval { lo: down(self.lo + o.lo), hi: up(self.hi + o.hi) }
     }
 }
@@ -118,6 +125,9 @@ impl Sub for Interval {
     type Output = Interval;
     #[inline(always)]
     fn sub(self, o: Interval) -> Interval {
+        if o.lo == 0.0 && o.hi == 0.0 {
+            return self;
+        }
         Interval { lo: down(self.lo - o.hi), hi: up(self.hi - o.lo) }
     }
 }
@@ -134,6 +144,12 @@ impl Mul for Interval {
     type Output = Interval;
     #[inline(always)]
     fn mul(self, o: Interval) -> Interval {
+        // A product with an exact zero (of finite numbers) is an exact zero.
+        if (self.lo == 0.0 && self.hi == 0.0 && o.lo.is_finite() && o.hi.is_finite())
+            || (o.lo == 0.0 && o.hi == 0.0 && self.lo.is_finite() && self.hi.is_finite())
+        {
+            return Interval::point(0.0);
+        }
         let a = self.lo * o.lo;
         let b = self.lo * o.hi;
         let c = self.hi * o.lo;
