@@ -8,6 +8,7 @@
 //! The ground truth lives in the separate `oracles` crate, which never imports this one.
 
 pub mod agree;
+pub mod gen;
 pub mod bounds;
 pub mod model;
 

@@ -196,3 +196,32 @@ mod tests {
         assert!(matches!(a.intersect(b), TileResult::Empty));
     }
 }
+
+/// The `methods` table.
+pub fn render_methods(ms: &[MethodInfo]) -> String {
+    let mut s = format!("{:<24} {:<6} {:<30} {:<40} source\n", "id", "recon", "dims", "outputs");
+    for m in ms {
+        let dims: Vec<_> = m.dims.iter().map(|d| d.name()).collect();
+        let o = m.outputs;
+        let outs: Vec<&str> = [
+            (o.tile_reject, "tile-reject"),
+            (o.lens, "uv"),
+            (o.time, "t"),
+            (o.depth, "z"),
+            (o.per_sample, "per-sample"),
+        ]
+        .iter()
+        .filter(|(b, _)| *b)
+        .map(|(_, n)| *n)
+        .collect();
+        s += &format!(
+            "{:<24} {:<6} {:<30} {:<40} {}\n",
+            m.id,
+            if m.reconstruction { "yes" } else { "no" },
+            dims.join(","),
+            outs.join(","),
+            m.source
+        );
+    }
+    s
+}
