@@ -1,1 +1,105 @@
-fn main(){}
+//! Speed of the ground truth: exact coverage (fast path + fallback rate), Embree rays
+//! (single vs packets of 16) on the same samples, and certified tile extents.
+//! `cargo bench --bench oracles`; criterion writes estimates.json under target/criterion.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
+use cullproof::agree::samples_for;
+use cullproof::gen::{physical_case, rng_for, Regime};
+use oracles::embree::{EmbreeOracle, LensTri};
+use oracles::extents::{tile_extents, ExtentsConfig};
+
+fn cases() -> Vec<(cullproof::model::Case, Vec<[f64; 5]>)> {
+    (0..14u64)
+        .map(|i| {
+            let mut rng = rng_for(99, i);
+            let c = physical_case(&mut rng, Regime::ALL[(i % 7) as usize]);
+            let s = samples_for(&c, &mut rng, 4096);
+            (c, s)
+        })
+        .collect()
+}
+
+fn lens_tri(c: &cullproof::model::Case) -> LensTri {
+    let l = c.lens.unwrap();
+    let f = |p: [f32; 4]| [p[0], p[1], p[3]];
+    LensTri { q: c.triangle.q.map(f), r: c.triangle.r.map(f), a: l.a() as f64, focus: l.focus as f64, k: c.triangle.k as f64 }
+}
+
+fn coverage(c: &mut Criterion) {
+    let cs = cases();
+    let n: u64 = cs.iter().map(|(_, s)| s.len() as u64).sum();
+    let mut g = c.benchmark_group("coverage");
+    g.throughput(Throughput::Elements(n));
+    let tris: Vec<_> = cs.iter().map(|(c, _)| c.triangle.to_oracle()).collect();
+    g.bench_function("exact", |b| {
+        b.iter(|| {
+            let mut k = 0u64;
+            for (t, (_, s)) in tris.iter().zip(&cs) {
+                for &x in s {
+                    k += (oracles::classify(t, x) == oracles::Coverage::Interior) as u64;
+                }
+            }
+            black_box(k)
+        })
+    });
+    let ors: Vec<_> = cs.iter().map(|(c, _)| EmbreeOracle::new(&lens_tri(c)).unwrap()).collect();
+    g.bench_function("embree_single", |b| {
+        b.iter(|| {
+            let mut k = 0u64;
+            for (o, (_, s)) in ors.iter().zip(&cs) {
+                for &x in s {
+                    k += o.hit(x) as u64;
+                }
+            }
+            black_box(k)
+        })
+    });
+    g.bench_function("embree_packet16", |b| {
+        let mut out = Vec::new();
+        b.iter(|| {
+            let mut k = 0u64;
+            for (o, (_, s)) in ors.iter().zip(&cs) {
+                o.hits(s, &mut out);
+                k += out.iter().filter(|&&h| h).count() as u64;
+            }
+            black_box(k)
+        })
+    });
+    g.finish();
+    // Fallback rate on uniform samples (printed once; not a timing).
+    let mut st = oracles::CoverageStats::default();
+    let mut out = Vec::new();
+    for (t, (_, s)) in tris.iter().zip(&cs) {
+        let uni: Vec<_> = s.iter().step_by(2).cloned().collect();
+        st = st.merge(oracles::coverage::classify_all(t, &uni, &mut out));
+    }
+    eprintln!("exact fallbacks on uniform samples: {} of {}", st.exact_fallbacks, st.samples);
+}
+
+fn extents(c: &mut Criterion) {
+    // 2x2-pixel tiles on the footprint of each case at (u, v, t) = (0, 0, 0.5).
+    let cs = cases();
+    let mut jobs = Vec::new();
+    for (case, s) in &cs {
+        let t = case.triangle.to_oracle();
+        if let Some(x) = s.iter().find(|x| oracles::classify(&t, **x) == oracles::Coverage::Interior) {
+            let (x0, y0) = (x[0].floor(), x[1].floor());
+            jobs.push((t, [x0, x0 + 2.0, y0, y0 + 2.0]));
+        }
+    }
+    let cfg = ExtentsConfig::default();
+    let mut g = c.benchmark_group("extents");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(jobs.len() as u64));
+    g.bench_function("tile_2x2_res1e-4", |b| {
+        b.iter(|| {
+            for (t, tile) in &jobs {
+                black_box(tile_extents(t, *tile, [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg));
+            }
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, coverage, extents);
+criterion_main!(benches);
