@@ -18,11 +18,14 @@
 //! s (it is in the closure); **outside** otherwise. Interior implies a hit in front of
 //! the lens: the hit depth `w_hit = D / (E_0 + E_1 + E_2)` is then positive.
 //!
-//! The fast path evaluates the four values in outward-rounded interval arithmetic;
-//! when the signs it proves do not settle the class, every value is recomputed in
-//! exact dyadic arithmetic. There is no epsilon anywhere.
+//! The fast path evaluates the four values as certified enclosures (midpoint-radius
+//! intervals, [`crate::filter::Fe`]: the f64 value and a rigorous bound on its rounding
+//! error); when the signs they prove do not settle the class, every value is recomputed
+//! in exact dyadic arithmetic. There is no epsilon anywhere: a sign is taken from the
+//! fast path only when the enclosure excludes zero.
 
 use crate::dyadic::Dyadic;
+use crate::filter::Fe;
 use crate::interval::Interval;
 use crate::ring::Ring;
 use crate::tri::Tri;
@@ -115,16 +118,16 @@ fn check_sample(s: &[f64; 5]) {
     debug_assert!(s.iter().all(|v| v.is_finite()), "sample {s:?} is not finite");
 }
 
-/// Interval signs, if they settle the class: `None` means go exact.
+/// Certified signs, if they settle the class: `None` means go exact.
 #[inline]
-fn fast_class(ev: &EdgeValues<Interval>) -> Option<Coverage> {
-    let vals = [ev.e[0], ev.e[1], ev.e[2], ev.d];
-    let any_pos = vals.iter().any(|v| v.is_pos());
-    let any_neg = vals.iter().any(|v| v.is_neg());
+fn fast_class(ev: &EdgeValues<Fe>) -> Option<Coverage> {
+    let s = [ev.e[0].sign(), ev.e[1].sign(), ev.e[2].sign(), ev.d.sign()];
+    let any_pos = s.contains(&Some(1));
+    let any_neg = s.contains(&Some(-1));
     if any_pos && any_neg {
         return Some(Coverage::Outside);
     }
-    if vals.iter().all(|v| v.is_pos()) || vals.iter().all(|v| v.is_neg()) {
+    if s.iter().all(|&x| x == Some(1)) || s.iter().all(|&x| x == Some(-1)) {
         return Some(Coverage::Interior);
     }
     None
@@ -141,7 +144,7 @@ pub fn exact_signs(tri: &Tri, s: [f64; 5]) -> [i8; 4] {
 #[inline]
 pub fn classify_traced(tri: &Tri, s: [f64; 5]) -> (Coverage, bool) {
     check_sample(&s);
-    let p = Interval::point;
+    let p = Fe::c;
     let ev = edge_values(tri, &p(s[0]), &p(s[1]), &p(s[2]), &p(s[3]), &p(s[4]));
     if let Some(c) = fast_class(&ev) {
         return (c, false);

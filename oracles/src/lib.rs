@@ -8,6 +8,7 @@ pub mod coverage;
 pub mod dyadic;
 pub mod embree;
 pub mod extents;
+pub mod filter;
 pub mod interval;
 pub mod poly;
 pub mod ring;
