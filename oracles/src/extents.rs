@@ -354,6 +354,7 @@ struct Node {
     key: f64,
     depth: u32,
     b: Box5,
+    bv: BoxValues,
 }
 impl PartialEq for Node {
     fn eq(&self, o: &Self) -> bool {
@@ -489,10 +490,10 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
     };
     let sg = sign(obj);
     let bv = box_values(tri, &init);
-    heap.push(Node { key: key_of(obj, &init, &bv), depth: 0, b: init });
+    heap.push(Node { key: key_of(obj, &init, &bv), depth: 0, b: init, bv });
     let mut final_lo = f64::INFINITY;
     let mut stuck: Vec<f64> = Vec::new(); // keys of boxes left undecided at minimum size
-    while let Some(Node { key, depth, b }) = heap.pop() {
+    while let Some(Node { key, depth, b, bv }) = heap.pop() {
         let lower = key.min(stuck_lo);
         if let Some((w, _)) = best {
             if w - lower <= cfg.resolution {
@@ -508,7 +509,6 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
             final_lo = lower;
             break;
         }
-        let bv = box_values(tri, &b);
         let class = classify_values(&bv);
         if class == BoxClass::Empty {
             continue;
@@ -573,7 +573,7 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
                 continue;
             }
             let k = key_of(obj, &c, &cv).max(key);
-            heap.push(Node { key: k, depth: depth + 1, b: c });
+            heap.push(Node { key: k, depth: depth + 1, b: c, bv: cv });
         }
     }
     if final_lo == f64::INFINITY {
