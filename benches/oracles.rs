@@ -22,7 +22,13 @@ fn cases() -> Vec<(cullproof::model::Case, Vec<[f64; 5]>)> {
 fn lens_tri(c: &cullproof::model::Case) -> LensTri {
     let l = c.lens.unwrap();
     let f = |p: [f32; 4]| [p[0], p[1], p[3]];
-    LensTri { q: c.triangle.q.map(f), r: c.triangle.r.map(f), a: l.a() as f64, focus: l.focus as f64, k: c.triangle.k as f64 }
+    LensTri {
+        q: c.triangle.q.map(f),
+        r: c.triangle.r.map(f),
+        a: l.a() as f64,
+        focus: l.focus as f64,
+        k: c.triangle.k as f64,
+    }
 }
 
 fn coverage(c: &mut Criterion) {

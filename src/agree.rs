@@ -295,7 +295,16 @@ pub fn render(r: &AgreeReport) -> String {
     let row = |name: &str, c: &AgreeCounts| {
         format!(
             "{:<15} {:>6} {:>10} {:>10} {:>9} {:>9} {:>8} {:>8} {:>10} {:>12.3e}\n",
-            name, c.cases, c.samples, c.agree, c.boundary, c.disagree, c.embree_over, c.embree_under, c.unsettled, c.max_disagreement_distance
+            name,
+            c.cases,
+            c.samples,
+            c.agree,
+            c.boundary,
+            c.disagree,
+            c.embree_over,
+            c.embree_under,
+            c.unsettled,
+            c.max_disagreement_distance
         )
     };
     for (name, c) in &r.by_regime {

@@ -24,8 +24,15 @@ pub enum Regime {
 }
 
 impl Regime {
-    pub const ALL: [Regime; 7] =
-        [Regime::Static, Regime::Motion, Regime::Defocus, Regime::Both, Regime::FocalCrossing, Regime::BehindLens, Regime::Sliver];
+    pub const ALL: [Regime; 7] = [
+        Regime::Static,
+        Regime::Motion,
+        Regime::Defocus,
+        Regime::Both,
+        Regime::FocalCrossing,
+        Regime::BehindLens,
+        Regime::Sliver,
+    ];
     pub fn name(self) -> &'static str {
         match self {
             Regime::Static => "static",
@@ -69,7 +76,8 @@ pub fn camera(rng: &mut ChaCha8Rng, lens: bool) -> ThinLens {
 /// A physical case of the regime.
 pub fn physical_case(rng: &mut ChaCha8Rng, regime: Regime) -> Case {
     use Regime::*;
-    let lens = matches!(regime, Defocus | Both | FocalCrossing | BehindLens | Sliver) && !(regime == Sliver && rng.gen_bool(0.3));
+    let lens = matches!(regime, Defocus | Both | FocalCrossing | BehindLens | Sliver)
+        && !(regime == Sliver && rng.gen_bool(0.3));
     let cam = camera(rng, lens);
     let moving = matches!(regime, Motion | Both | BehindLens) || (regime == Sliver && rng.gen_bool(0.5));
     // Centre depth and size.

@@ -8,8 +8,8 @@
 //! The ground truth lives in the separate `oracles` crate, which never imports this one.
 
 pub mod agree;
-pub mod gen;
 pub mod bounds;
+pub mod gen;
 pub mod model;
 
 /// Outward-rounded interval arithmetic (the same small type the oracles use: it is

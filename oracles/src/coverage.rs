@@ -70,11 +70,7 @@ pub fn edges_of<R: Ring>(p: &[[R; 4]; 3], x: &R, y: &R) -> [R; 3] {
     let py = |i: usize| p[i][1].sub(&y.mul(&p[i][3]));
     let (x0, x1, x2) = (px(0), px(1), px(2));
     let (y0, y1, y2) = (py(0), py(1), py(2));
-    [
-        x1.mul(&y2).sub(&y1.mul(&x2)),
-        x2.mul(&y0).sub(&y2.mul(&x0)),
-        x0.mul(&y1).sub(&y0.mul(&x1)),
-    ]
+    [x1.mul(&y2).sub(&y1.mul(&x2)), x2.mul(&y0).sub(&y2.mul(&x0)), x0.mul(&y1).sub(&y0.mul(&x1))]
 }
 
 /// All the values of the coverage rule at one sample (or box, or ray), in ring R.

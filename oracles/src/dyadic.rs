@@ -35,11 +35,7 @@ impl Dyadic {
         let sign = if bits >> 63 == 1 { -1i64 } else { 1 };
         let exp = ((bits >> 52) & 0x7ff) as i64;
         let frac = bits & ((1u64 << 52) - 1);
-        let (mant, e) = if exp == 0 {
-            (frac, -1074)
-        } else {
-            (frac | (1u64 << 52), exp - 1075)
-        };
+        let (mant, e) = if exp == 0 { (frac, -1074) } else { (frac | (1u64 << 52), exp - 1075) };
         Dyadic { m: BigInt::from(mant) * sign, e }.normalized()
     }
     /// Strip trailing zero bits of the mantissa (keeps numbers small).

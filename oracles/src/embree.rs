@@ -110,8 +110,8 @@ use std::fmt;
 use std::sync::OnceLock;
 
 use embree3::{
-    BufferUsage, Config, Device, Format, GeometryKind, IntersectContext, Ray, Ray16, Scene,
-    SceneFlags, ValidMask, ValidMaskN,
+    BufferUsage, Config, Device, Format, GeometryKind, IntersectContext, Ray, Ray16, Scene, SceneFlags, ValidMask,
+    ValidMaskN,
 };
 
 /// A thin-lens case as plain numbers (`f32` vertex data exactly as stored by
@@ -134,12 +134,7 @@ pub struct LensTri {
 #[derive(Debug, Clone, PartialEq)]
 pub enum EmbreeError {
     /// A vertex coordinate is NaN or infinite. `time` is 0 for `q`, 1 for `r`.
-    NonFiniteVertex {
-        time: u8,
-        vertex: usize,
-        coord: usize,
-        value: f32,
-    },
+    NonFiniteVertex { time: u8, vertex: usize, coord: usize, value: f32 },
     /// `a`, `focus` or `k` is NaN or infinite.
     NonFiniteParameter { name: &'static str, value: f64 },
     /// `focus <= 0`.
@@ -151,35 +146,24 @@ pub enum EmbreeError {
     /// `a > 0` (the model has `a = -fx * R <= 0`).
     LensParameterPositive(f64),
     /// Embree reported an error; `stage` says during which step.
-    Embree {
-        stage: &'static str,
-        code: embree3::Error,
-    },
+    Embree { stage: &'static str, code: embree3::Error },
 }
 
 impl fmt::Display for EmbreeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            EmbreeError::NonFiniteVertex {
-                time,
-                vertex,
-                coord,
-                value,
-            } => write!(
-                f,
-                "vertex {vertex} at t = {time} has non-finite coordinate {coord}: {value}"
-            ),
+            EmbreeError::NonFiniteVertex { time, vertex, coord, value } => {
+                write!(f, "vertex {vertex} at t = {time} has non-finite coordinate {coord}: {value}")
+            }
             EmbreeError::NonFiniteParameter { name, value } => {
                 write!(f, "lens parameter `{name}` is not finite: {value}")
             }
             EmbreeError::FocusNotPositive(v) => {
                 write!(f, "focal distance must be > 0, got {v}")
             }
-            EmbreeError::FocusOutOfRange(v) => write!(
-                f,
-                "focal distance {v} is outside the usable f32 range [{:e}, {FLT_LARGE:e}]",
-                f32::MIN_POSITIVE
-            ),
+            EmbreeError::FocusOutOfRange(v) => {
+                write!(f, "focal distance {v} is outside the usable f32 range [{:e}, {FLT_LARGE:e}]", f32::MIN_POSITIVE)
+            }
             EmbreeError::LensParameterPositive(v) => {
                 write!(f, "lens parameter a = -fx*R must be <= 0, got {v}")
             }
@@ -207,9 +191,7 @@ pub struct EmbreeOracle {
 
 impl fmt::Debug for EmbreeOracle {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("EmbreeOracle")
-            .field("tri", &self.tri)
-            .finish_non_exhaustive()
+        f.debug_struct("EmbreeOracle").field("tri", &self.tri).finish_non_exhaustive()
     }
 }
 
@@ -261,19 +243,10 @@ fn shared_device() -> Result<Device, EmbreeError> {
     static DEVICE: OnceLock<Result<Device, embree3::Error>> = OnceLock::new();
     DEVICE
         .get_or_init(|| {
-            preserving_fp_env(|| {
-                Device::with_config(Config {
-                    threads: 1,
-                    report_errors: false,
-                    ..Config::default()
-                })
-            })
+            preserving_fp_env(|| Device::with_config(Config { threads: 1, report_errors: false, ..Config::default() }))
         })
         .clone()
-        .map_err(|code| EmbreeError::Embree {
-            stage: "device creation",
-            code,
-        })
+        .map_err(|code| EmbreeError::Embree { stage: "device creation", code })
 }
 
 fn check(device: &Device, stage: &'static str) -> Result<(), EmbreeError> {
@@ -288,12 +261,7 @@ fn validate(tri: &LensTri) -> Result<(), EmbreeError> {
         for (vertex, p) in verts.iter().enumerate() {
             for (coord, &value) in p.iter().enumerate() {
                 if !value.is_finite() {
-                    return Err(EmbreeError::NonFiniteVertex {
-                        time,
-                        vertex,
-                        coord,
-                        value,
-                    });
+                    return Err(EmbreeError::NonFiniteVertex { time, vertex, coord, value });
                 }
             }
         }
@@ -333,9 +301,7 @@ impl EmbreeOracle {
 
         let embree_err = |stage| move |code| EmbreeError::Embree { stage, code };
 
-        let mut geom = device
-            .create_geometry(GeometryKind::TRIANGLE)
-            .map_err(embree_err("geometry creation"))?;
+        let mut geom = device.create_geometry(GeometryKind::TRIANGLE).map_err(embree_err("geometry creation"))?;
         geom.set_time_step_count(2);
         for (slot, verts) in [(0u32, &tri.q), (1u32, &tri.r)] {
             geom.set_new_buffer::<[f32; 3]>(BufferUsage::VERTEX, slot, Format::FLOAT3, 12, 3)
@@ -348,9 +314,7 @@ impl EmbreeOracle {
         let geom = geom.commit();
         check(&device, "geometry commit")?;
 
-        let mut scene: Scene<'static> = device
-            .create_scene()
-            .map_err(embree_err("scene creation"))?;
+        let mut scene: Scene<'static> = device.create_scene().map_err(embree_err("scene creation"))?;
         scene.set_flags(SceneFlags::ROBUST);
         scene.attach_geometry(&geom);
         scene.commit();
@@ -373,11 +337,7 @@ impl EmbreeOracle {
         let [x, y, u, v, _t] = s;
         let LensTri { a, focus, k, .. } = self.tri;
         let org = [(-a * u) as f32, (-a * k * v) as f32, 0.0];
-        let dir = [
-            (x * focus + a * u) as f32,
-            (y * focus + a * k * v) as f32,
-            focus as f32,
-        ];
+        let dir = [(x * focus + a * u) as f32, (y * focus + a * k * v) as f32, focus as f32];
         (org, dir)
     }
 
@@ -393,8 +353,7 @@ impl EmbreeOracle {
         let (org, dir) = self.ray_for(s);
         let time = s[4] as f32;
         // `<=` is false for NaN, and the `as f32` casts turned overflow into inf.
-        let ok =
-            org.iter().chain(&dir).all(|c| c.abs() <= FLT_LARGE) && (0.0..=1.0).contains(&time);
+        let ok = org.iter().chain(&dir).all(|c| c.abs() <= FLT_LARGE) && (0.0..=1.0).contains(&time);
         ok.then_some((org, dir, time))
     }
 

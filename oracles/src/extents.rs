@@ -406,7 +406,9 @@ fn key_of(obj: Objective, b: &Box5, bv: &BoxValues) -> f64 {
 fn value_at(tri: &Tri, obj: Objective, s: [f64; 5]) -> Interval {
     match obj {
         Objective::Coord { index, .. } => Interval::point(s[index]),
-        Objective::Depth { .. } => crate::coverage::depth_enclosure(tri, s).unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY)),
+        Objective::Depth { .. } => {
+            crate::coverage::depth_enclosure(tri, s).unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY))
+        }
     }
 }
 
@@ -429,7 +431,9 @@ fn candidate_points(obj: Objective, b: &Box5) -> Vec<[f64; 5]> {
     } else {
         pts.push(centre);
     }
-    let mut seed = b.iter().fold(0x9E37_79B9_7F4A_7C15u64, |h, i| (h ^ i.lo.to_bits()).wrapping_mul(0x100_0000_01B3) ^ i.hi.to_bits());
+    let mut seed = b
+        .iter()
+        .fold(0x9E37_79B9_7F4A_7C15u64, |h, i| (h ^ i.lo.to_bits()).wrapping_mul(0x100_0000_01B3) ^ i.hi.to_bits());
     for _ in 0..4 {
         let p = std::array::from_fn(|k| {
             seed ^= seed << 13;

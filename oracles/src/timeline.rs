@@ -89,7 +89,8 @@ pub fn roots_in_unit(p: &RatPoly, width: f64) -> Vec<Enclosure> {
 
 /// The exact class of the ray at time t.
 pub fn class_at(polys: &[DyPoly; 4], t: f64) -> Coverage {
-    let s = [polys[0].eval(t).signum(), polys[1].eval(t).signum(), polys[2].eval(t).signum(), polys[3].eval(t).signum()];
+    let s =
+        [polys[0].eval(t).signum(), polys[1].eval(t).signum(), polys[2].eval(t).signum(), polys[3].eval(t).signum()];
     class_of_signs(s)
 }
 

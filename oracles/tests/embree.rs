@@ -9,13 +9,7 @@ use oracles::embree::{EmbreeError, EmbreeOracle, LensTri};
 
 /// A triangle that does not move.
 fn fixed(p: [[f32; 3]; 3], a: f64, focus: f64, k: f64) -> LensTri {
-    LensTri {
-        q: p,
-        r: p,
-        a,
-        focus,
-        k,
-    }
+    LensTri { q: p, r: p, a, focus, k }
 }
 
 fn oracle(tri: &LensTri) -> EmbreeOracle {
@@ -43,13 +37,7 @@ impl XorShift {
     }
     /// A sample with x, y in [lo, hi], u, v in [-1, 1], t in [0, 1].
     fn sample(&mut self, lo: f64, hi: f64) -> [f64; 5] {
-        [
-            self.range(lo, hi),
-            self.range(lo, hi),
-            self.range(-1.0, 1.0),
-            self.range(-1.0, 1.0),
-            self.unit(),
-        ]
+        [self.range(lo, hi), self.range(lo, hi), self.range(-1.0, 1.0), self.range(-1.0, 1.0), self.unit()]
     }
 }
 
@@ -58,22 +46,12 @@ fn ray_for_follows_the_formula() {
     // a = -0.5, F = 2, k = 1.5; sample (x, y, u, v) = (0.25, -1, 1, -0.5):
     // origin    = (-a u, -a k v, 0) = (0.5, -0.375, 0)
     // direction = (x F + a u, y F + a k v, F) = (0.5 - 0.5, -2 + 0.375, 2) = (0, -1.625, 2)
-    let o = oracle(&fixed(
-        [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]],
-        -0.5,
-        2.0,
-        1.5,
-    ));
+    let o = oracle(&fixed([[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]], -0.5, 2.0, 1.5));
     let (org, dir) = o.ray_for([0.25, -1.0, 1.0, -0.5, 0.3]);
     assert_eq!(org, [0.5, -0.375, 0.0]);
     assert_eq!(dir, [0.0, -1.625, 2.0]);
     // Rounding happens once, from the f64 value: x F = 0.1 * 3 is not 0.3f32 * 3f32.
-    let o = oracle(&fixed(
-        [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]],
-        0.0,
-        3.0,
-        1.0,
-    ));
+    let o = oracle(&fixed([[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]], 0.0, 3.0, 1.0));
     let (org, dir) = o.ray_for([0.1, 0.0, 0.0, 0.0, 0.0]);
     assert_eq!(org[2], 0.0);
     assert_eq!(dir, [(0.1f64 * 3.0) as f32, 0.0, 3.0]);
@@ -83,36 +61,20 @@ fn ray_for_follows_the_formula() {
 fn static_triangle_in_focus() {
     // a = 0 (pinhole): pixel = (X / W, Y / W). Triangle at w = 2 with clip
     // vertices (-10,-10), (10,-10), (0,10): in pixels (-5,-5), (5,-5), (0,5).
-    let o = oracle(&fixed(
-        [[-10.0, -10.0, 2.0], [10.0, -10.0, 2.0], [0.0, 10.0, 2.0]],
-        0.0,
-        1.0,
-        1.0,
-    ));
+    let o = oracle(&fixed([[-10.0, -10.0, 2.0], [10.0, -10.0, 2.0], [0.0, 10.0, 2.0]], 0.0, 1.0, 1.0));
     // Centroid in pixels: (0, -5/3).
     assert!(o.hit([0.0, -5.0 / 3.0, 0.0, 0.0, 0.0]));
-    assert!(
-        o.hit([0.0, -5.0 / 3.0, 0.3, -0.7, 0.9]),
-        "u, v, t irrelevant here"
-    );
+    assert!(o.hit([0.0, -5.0 / 3.0, 0.3, -0.7, 0.9]), "u, v, t irrelevant here");
     // Far outside.
     assert!(!o.hit([50.0, 50.0, 0.0, 0.0, 0.0]));
-    assert!(
-        !o.hit([0.0, -6.0, 0.0, 0.0, 0.5]),
-        "below the bottom edge y = -5"
-    );
+    assert!(!o.hit([0.0, -6.0, 0.0, 0.0, 0.5]), "below the bottom edge y = -5");
     // The division by w matters: at y = 0 the clip triangle spans X in [-5, 5],
     // i.e. pixels x in [-2.5, 2.5]. Pixel 2 is inside, pixel 4 is not (it
     // would be inside if w were ignored).
     assert!(o.hit([2.0, 0.0, 0.0, 0.0, 0.0]));
     assert!(!o.hit([4.0, 0.0, 0.0, 0.0, 0.0]));
     // Reversed winding: two-sided.
-    let o2 = oracle(&fixed(
-        [[-10.0, -10.0, 2.0], [0.0, 10.0, 2.0], [10.0, -10.0, 2.0]],
-        0.0,
-        1.0,
-        1.0,
-    ));
+    let o2 = oracle(&fixed([[-10.0, -10.0, 2.0], [0.0, 10.0, 2.0], [10.0, -10.0, 2.0]], 0.0, 1.0, 1.0));
     assert!(o2.hit([0.0, -5.0 / 3.0, 0.0, 0.0, 0.0]));
     assert!(!o2.hit([4.0, 0.0, 0.0, 0.0, 0.0]));
 }
@@ -217,13 +179,7 @@ fn vertex_behind_the_lens() {
     // equals 1 only at s = -0.2 < 0, i.e. only behind the eye: not covered.
     assert!(!o.hit([0.0, -3.0, 0.0, 0.0, 0.0]));
     // With a lens and motion through w = 0: no panic, packets agree.
-    let tri = LensTri {
-        q: p,
-        r: [[-1.0, -1.0, 1.5], [1.0, -1.0, -0.2], [0.0, 1.0, 2.0]],
-        a: -0.3,
-        focus: 1.5,
-        k: 1.0,
-    };
+    let tri = LensTri { q: p, r: [[-1.0, -1.0, 1.5], [1.0, -1.0, -0.2], [0.0, 1.0, 2.0]], a: -0.3, focus: 1.5, k: 1.0 };
     let o = oracle(&tri);
     assert!(o.hit([0.0, -0.8 / 0.85, 0.0, 0.0, 0.0]));
     let mut rng = XorShift(0x0bad_cafe_1234_5678);
@@ -267,12 +223,7 @@ fn degenerate_triangles_do_not_panic() {
 /// w = 0) for the packet/single comparison.
 fn assorted() -> Vec<LensTri> {
     vec![
-        fixed(
-            [[-2.0, -2.0, 1.0], [2.0, -1.0, 1.5], [0.0, 2.5, 1.2]],
-            0.0,
-            1.0,
-            1.0,
-        ),
+        fixed([[-2.0, -2.0, 1.0], [2.0, -1.0, 1.5], [0.0, 2.5, 1.2]], 0.0, 1.0, 1.0),
         LensTri {
             q: [[-3.0, -1.0, 1.0], [-1.0, -1.0, 1.0], [-2.0, 1.0, 1.0]],
             r: [[1.0, -1.0, 2.0], [3.0, -1.0, 1.0], [2.0, 1.5, 1.0]],
@@ -305,10 +256,7 @@ fn packets_agree_with_single_rays() {
             n_hit += h as usize;
         }
         // The comparison is not vacuous: both answers occur often.
-        assert!(
-            n_hit > 200 && n_hit < 9_800,
-            "{n_hit} hits of 10000 for {tri:?}"
-        );
+        assert!(n_hit > 200 && n_hit < 9_800, "{n_hit} hits of 10000 for {tri:?}");
     }
 }
 
@@ -341,10 +289,7 @@ fn packets_with_ragged_tails_and_bad_samples() {
         mixed.push(good);
     }
     o.hits(&mixed, &mut out);
-    let expect: Vec<bool> = mixed
-        .iter()
-        .map(|s| s[0] == -2.0 && s[1] == -0.5 && s[3] == 0.0 && s[4] == 0.0)
-        .collect();
+    let expect: Vec<bool> = mixed.iter().map(|s| s[0] == -2.0 && s[1] == -0.5 && s[3] == 0.0 && s[4] == 0.0).collect();
     assert_eq!(out, expect);
 }
 
@@ -418,12 +363,7 @@ fn oracle_is_send_sync_and_shareable() {
 
 #[test]
 fn bad_input_is_an_error_not_a_panic() {
-    let good = fixed(
-        [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]],
-        -0.1,
-        1.0,
-        1.0,
-    );
+    let good = fixed([[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]], -0.1, 1.0, 1.0);
     assert!(EmbreeOracle::new(&good).is_ok());
 
     let mut t = good;
@@ -434,64 +374,35 @@ fn bad_input_is_an_error_not_a_panic() {
 
     let mut t = good;
     t.focus = -2.0;
-    assert!(matches!(
-        EmbreeOracle::new(&t),
-        Err(EmbreeError::FocusNotPositive(_))
-    ));
+    assert!(matches!(EmbreeOracle::new(&t), Err(EmbreeError::FocusNotPositive(_))));
 
     let mut t = good;
     t.q[1][2] = f32::NAN;
     let e = EmbreeOracle::new(&t).unwrap_err();
-    assert!(
-        matches!(
-            e,
-            EmbreeError::NonFiniteVertex {
-                time: 0,
-                vertex: 1,
-                coord: 2,
-                ..
-            }
-        ),
-        "{e:?}"
-    );
+    assert!(matches!(e, EmbreeError::NonFiniteVertex { time: 0, vertex: 1, coord: 2, .. }), "{e:?}");
     // Usable as a boxed std error.
     let boxed: Box<dyn std::error::Error> = Box::new(e);
     assert!(boxed.to_string().contains("non-finite"));
 
     let mut t = good;
     t.r[2][0] = f32::INFINITY;
-    assert!(matches!(
-        EmbreeOracle::new(&t),
-        Err(EmbreeError::NonFiniteVertex { time: 1, .. })
-    ));
+    assert!(matches!(EmbreeOracle::new(&t), Err(EmbreeError::NonFiniteVertex { time: 1, .. })));
 
-    for (i, bad) in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY]
-        .into_iter()
-        .enumerate()
-    {
+    for (i, bad) in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY].into_iter().enumerate() {
         let mut t = good;
         match i {
             0 => t.a = bad,
             1 => t.focus = bad,
             _ => t.k = bad,
         }
-        assert!(
-            matches!(
-                EmbreeOracle::new(&t),
-                Err(EmbreeError::NonFiniteParameter { .. })
-            ),
-            "case {i}"
-        );
+        assert!(matches!(EmbreeOracle::new(&t), Err(EmbreeError::NonFiniteParameter { .. })), "case {i}");
     }
 
     // A focus that rounds to a subnormal (or zero) f32, or beyond FLT_LARGE.
     for f in [1e-40, 1e-50, 1e19, 1e300] {
         let mut t = good;
         t.focus = f;
-        assert!(
-            matches!(EmbreeOracle::new(&t), Err(EmbreeError::FocusOutOfRange(_))),
-            "focus {f}"
-        );
+        assert!(matches!(EmbreeOracle::new(&t), Err(EmbreeError::FocusOutOfRange(_))), "focus {f}");
     }
     for f in [1e-30, 1e18] {
         let mut t = good;
@@ -501,10 +412,7 @@ fn bad_input_is_an_error_not_a_panic() {
 
     let mut t = good;
     t.a = 0.5;
-    assert!(matches!(
-        EmbreeOracle::new(&t),
-        Err(EmbreeError::LensParameterPositive(_))
-    ));
+    assert!(matches!(EmbreeOracle::new(&t), Err(EmbreeError::LensParameterPositive(_))));
 }
 
 /// Throughput of `hit` (rtcOccluded1) vs `hits` (packets) over 1e6 samples.

@@ -30,9 +30,18 @@ fn reference(t: &Tri, s: [f64; 5]) -> Coverage {
     let es = [e(1, 2), e(2, 0), e(0, 1)];
     // det by cofactors along the first row
     let m = &p;
-    let d = &m[0][0] * (&m[1][1] * &m[2][2] - &m[1][2] * &m[2][1]) - &m[0][1] * (&m[1][0] * &m[2][2] - &m[1][2] * &m[2][0])
+    let d = &m[0][0] * (&m[1][1] * &m[2][2] - &m[1][2] * &m[2][1])
+        - &m[0][1] * (&m[1][0] * &m[2][2] - &m[1][2] * &m[2][0])
         + &m[0][2] * (&m[1][0] * &m[2][1] - &m[1][1] * &m[2][0]);
-    let sg = |v: &BigRational| if v.is_zero() { 0 } else if v.is_positive() { 1 } else { -1 };
+    let sg = |v: &BigRational| {
+        if v.is_zero() {
+            0
+        } else if v.is_positive() {
+            1
+        } else {
+            -1
+        }
+    };
     let signs = [sg(&es[0]), sg(&es[1]), sg(&es[2]), sg(&d)];
     if signs[3] != 0 && signs.iter().all(|&z| z == signs[3]) {
         Coverage::Interior
@@ -93,7 +102,11 @@ fn exact_matches_reference_on_ordinary_triangles_with_samples_on_vertices() {
     // Samples placed exactly on projected vertices / edges of integer triangles are
     // boundary cases the fast path cannot settle.
     fn prop(a: (i8, i8, i8, i8, i8, i8), px: i8, py: i8) -> bool {
-        let q = [[a.0 as f64, a.1 as f64, 0.0, 1.0], [a.2 as f64, a.3 as f64, 0.0, 1.0], [a.4 as f64, a.5 as f64, 0.0, 1.0]];
+        let q = [
+            [a.0 as f64, a.1 as f64, 0.0, 1.0],
+            [a.2 as f64, a.3 as f64, 0.0, 1.0],
+            [a.4 as f64, a.5 as f64, 0.0, 1.0],
+        ];
         let t = Tri { q, r: q, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 };
         let s = [px as f64 / 2.0, py as f64 / 2.0, 0.0, 0.0, 0.0];
         classify(&t, s) == reference(&t, s)

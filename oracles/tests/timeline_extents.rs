@@ -42,7 +42,8 @@ fn ray_spans_agree_with_per_sample_coverage() {
                 let t = (k as f64 + 0.5) / 200.0;
                 let c = classify(&tri, [x, y, u, v, t]);
                 let in_span = spans.iter().any(|s| s.start.hi < t && t < s.end.lo);
-                let near_end = spans.iter().any(|s| (s.start.lo <= t && t <= s.start.hi) || (s.end.lo <= t && t <= s.end.hi));
+                let near_end =
+                    spans.iter().any(|s| (s.start.lo <= t && t <= s.start.hi) || (s.end.lo <= t && t <= s.end.hi));
                 if near_end {
                     continue; // inside an endpoint enclosure: either answer is consistent
                 }
@@ -74,7 +75,13 @@ fn tile_extents_enclose_every_sampled_covered_sample() {
         }
         let mut any = false;
         for _ in 0..20_000 {
-            let s = [rng.gen_range(tile[0]..tile[1]), rng.gen_range(tile[2]..tile[3]), rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), rng.gen_range(0.0..1.0)];
+            let s = [
+                rng.gen_range(tile[0]..tile[1]),
+                rng.gen_range(tile[2]..tile[3]),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(0.0..1.0),
+            ];
             if classify(&tri, s) != Coverage::Interior {
                 continue;
             }

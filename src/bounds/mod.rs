@@ -95,7 +95,10 @@ impl TileBounds {
     /// True if a sample passes the intervals and every constraint (depth aside).
     pub fn admits(&self, s: &Sample) -> bool {
         let inside = |r: [f32; 2], x: f32| r[0] <= x && x <= r[1];
-        inside(self.u, s.u) && inside(self.v, s.v) && inside(self.t, s.t) && self.constraints.iter().all(|c| c.eval(s) >= 0.0)
+        inside(self.u, s.u)
+            && inside(self.v, s.v)
+            && inside(self.t, s.t)
+            && self.constraints.iter().all(|c| c.eval(s) >= 0.0)
     }
     /// Both tests at once: intervals intersected, constraints of both kept. Empty when
     /// an interval becomes empty.

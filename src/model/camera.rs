@@ -35,7 +35,9 @@ impl ThinLens {
         ] {
             finite(format!("lens.{n}"), v)?;
         }
-        let bad = |f: &str, v: f32, why| Err(ModelError::OutOfRange { field: format!("lens.{f}"), value: format!("{v}"), why });
+        let bad = |f: &str, v: f32, why| {
+            Err(ModelError::OutOfRange { field: format!("lens.{f}"), value: format!("{v}"), why })
+        };
         if self.radius < 0.0 {
             return bad("radius", self.radius, "a lens radius cannot be negative");
         }

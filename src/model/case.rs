@@ -27,6 +27,8 @@ impl Case {
 fn prefix(p: &str, e: ModelError) -> ModelError {
     match e {
         ModelError::NotFinite { field, value } => ModelError::NotFinite { field: format!("{p}.{field}"), value },
-        ModelError::OutOfRange { field, value, why } => ModelError::OutOfRange { field: format!("{p}.{field}"), value, why },
+        ModelError::OutOfRange { field, value, why } => {
+            ModelError::OutOfRange { field: format!("{p}.{field}"), value, why }
+        }
     }
 }

@@ -125,7 +125,11 @@ mod tests {
 
     #[test]
     fn json_round_trip_is_bit_exact() {
-        let mut t = Triangle::fixed([[0.1, -3.7e-12, 0.3, 1.0], [1e30, 2.0, 0.5, 7.0], [f32::MIN_POSITIVE / 8.0, 0.0, -0.0, 2.5]]);
+        let mut t = Triangle::fixed([
+            [0.1, -3.7e-12, 0.3, 1.0],
+            [1e30, 2.0, 0.5, 7.0],
+            [f32::MIN_POSITIVE / 8.0, 0.0, -0.0, 2.5],
+        ]);
         t.r[1][0] = 0.33333334;
         t.c1 = [1e-40, -2.5, 123456.79];
         let s = serde_json::to_string(&t).unwrap();
