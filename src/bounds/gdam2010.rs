@@ -160,7 +160,7 @@ fn roots_in_unit(a: f32, b: f32, c: f32, out: &mut [f32; 8], n: &mut usize) {
         return;
     }
     let disc = b * b - 4.0 * a * c;
-    if !(disc >= 0.0) {
+    if disc.is_nan() || disc < 0.0 {
         return; // negative, or NaN from overflow
     }
     if disc == 0.0 {
@@ -204,7 +204,7 @@ impl TimeSpans {
         let mut out = Spans { n: 0, s: [[0.0; 2]; 8] };
         for w in cuts[..n].windows(2) {
             let (lo, hi) = (w[0], w[1]);
-            if !(hi > lo) {
+            if hi <= lo {
                 continue;
             }
             let mid = lo + 0.5 * (hi - lo);
@@ -445,7 +445,7 @@ mod tests {
         let inside_e = |t: f64| exact.iter().any(|s| s[0] <= t && t <= s[1]);
         let (mut run, mut worst) = ([0.0f64; 2], [0.0f64; 2]);
         for w in pts.windows(2) {
-            if !(w[1] > w[0]) {
+            if w[1] <= w[0] {
                 continue;
             }
             let mid = 0.5 * (w[0] + w[1]);
@@ -580,7 +580,9 @@ mod tests {
     /// `E_AB = 4 (t - 1/2)^2 - 19 d` and the pixel is covered only for
     /// `|t - 1/2| < sqrt(19 d / 4)` (the other two edges stay negative). `d` is a few
     /// ulps of `o - 19`. Returns (d, exact spans, f32 spans) per d.
-    fn grazing(o: f32, steps: &[i32]) -> Vec<(f32, Vec<[f64; 2]>, Vec<[f32; 2]>)> {
+    type Grazing = (f32, Vec<[f64; 2]>, Vec<[f32; 2]>);
+
+    fn grazing(o: f32, steps: &[i32]) -> Vec<Grazing> {
         let mut out = Vec::new();
         for &k in steps {
             let ay = {

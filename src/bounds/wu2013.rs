@@ -360,7 +360,7 @@ impl Prepared for Prep {
         if let Some(ln) = self.y.lines(tile.y0, tile.y1, self.guarded) {
             apply_lines(ln, Lens::V, b.v, &mut t, &mut cons);
         }
-        if !(t[0] <= t[1]) {
+        if t[0].is_nan() || t[1].is_nan() || t[0] > t[1] {
             return TileResult::Empty;
         }
         b.t = t;
