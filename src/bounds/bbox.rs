@@ -169,9 +169,8 @@ pub static METHOD: &dyn Method = &BBox;
 
 #[cfg(test)]
 mod tests {
+    use super::super::testkit::assert_spot;
     use super::*;
-    use rand::{Rng, SeedableRng};
-    use rand_chacha::ChaCha8Rng;
 
     fn admits_any(r: &TileResult) -> bool {
         matches!(r, TileResult::Bounds(_))
@@ -180,28 +179,7 @@ mod tests {
     /// Random samples in the tile: no interior-covered sample may be rejected.
     /// Returns the number of covered samples seen.
     fn spot_check(tri: &Triangle, tile: &Tile, n: usize, seed: u64) -> usize {
-        let p = METHOD.setup(tri);
-        let res = p.tile(tile);
-        let o = tri.to_oracle();
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let mut covered = 0;
-        for _ in 0..n {
-            let s = Sample::new(
-                rng.gen_range(tile.x0..=tile.x1),
-                rng.gen_range(tile.y0..=tile.y1),
-                rng.gen_range(-1.0..=1.0),
-                rng.gen_range(-1.0..=1.0),
-                rng.gen_range(0.0..=1.0),
-            );
-            if oracles::classify(&o, s.to_oracle()) == oracles::Coverage::Interior {
-                covered += 1;
-                match &res {
-                    TileResult::Empty => panic!("tile {tile:?} culled but {s:?} is covered"),
-                    TileResult::Bounds(b) => assert!(b.admits(&s), "{s:?} covered but rejected"),
-                }
-            }
-        }
-        covered
+        assert_spot(METHOD, tri, tile, n, seed).0
     }
 
     fn moving() -> Triangle {

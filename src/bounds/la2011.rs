@@ -418,6 +418,7 @@ pub(crate) mod cases {
 
 #[cfg(test)]
 mod tests {
+    use super::super::testkit::assert_spot;
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
@@ -432,26 +433,7 @@ mod tests {
     /// Random samples in the tile: no interior-covered sample may be rejected.
     /// Returns (covered, admitted) sample counts.
     fn spot_check(tri: &Triangle, tile: &Tile, n: usize, seed: u64) -> (usize, usize) {
-        let res = bounds(tri, tile);
-        let o = tri.to_oracle();
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let (mut covered, mut admitted) = (0, 0);
-        for _ in 0..n {
-            let s = Sample::new(
-                rng.gen_range(tile.x0..=tile.x1),
-                rng.gen_range(tile.y0..=tile.y1),
-                rng.gen_range(-1.0..=1.0),
-                rng.gen_range(-1.0..=1.0),
-                rng.gen_range(0.0..=1.0),
-            );
-            let ok = res.as_ref().is_some_and(|b| b.admits(&s));
-            admitted += ok as usize;
-            if oracles::classify(&o, s.to_oracle()) == oracles::Coverage::Interior {
-                covered += 1;
-                assert!(ok, "{tri:?}\ntile {tile:?}: covered sample {s:?} rejected by {res:?}");
-            }
-        }
-        (covered, admitted)
+        assert_spot(METHOD, tri, tile, n, seed)
     }
 
     #[test]

@@ -67,31 +67,15 @@ pub static METHOD: &dyn Method = &Lc;
 #[cfg(test)]
 mod tests {
     use super::super::la2011::{cases, figure1};
+    use super::super::testkit::{bounds_of, random_sample};
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
-    fn bounds(m: &dyn Method, tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
-        match m.setup(tri).tile(tile) {
-            TileResult::Empty => None,
-            TileResult::Bounds(b) => Some(b),
-        }
-    }
-
-    fn random_sample(rng: &mut ChaCha8Rng, tile: &Tile) -> Sample {
-        Sample::new(
-            rng.gen_range(tile.x0..=tile.x1),
-            rng.gen_range(tile.y0..=tile.y1),
-            rng.gen_range(-1.0..=1.0),
-            rng.gen_range(-1.0..=1.0),
-            rng.gen_range(0.0..=1.0),
-        )
-    }
-
     #[test]
     fn static_triangle_keeps_whole_time_range() {
         let tri = Triangle::fixed([[0.0, 0.0, 0.5, 1.0], [100.0, 0.0, 0.5, 1.0], [0.0, 100.0, 0.5, 1.0]]);
-        let b = bounds(METHOD, &tri, &Tile::square(10.0, 10.0, 4.0)).expect("inside tile culled");
+        let b = bounds_of(METHOD, &tri, &Tile::square(10.0, 10.0, 4.0)).expect("inside tile culled");
         assert_eq!(b.t, [0.0, 1.0]);
         assert!(METHOD.setup(&tri).disabled().is_none());
     }
@@ -100,7 +84,7 @@ mod tests {
     fn far_tiles_are_culled() {
         let tri = figure1::triangle();
         for tile in [Tile::square(30.0, -0.5, 1.0), Tile::square(-31.0, -0.5, 1.0), Tile::square(0.0, 10.0, 1.0)] {
-            assert!(bounds(METHOD, &tri, &tile).is_none(), "{tile:?}");
+            assert!(bounds_of(METHOD, &tri, &tile).is_none(), "{tile:?}");
         }
     }
 
@@ -116,9 +100,9 @@ mod tests {
             for tx in -5..5 {
                 for ty in -5..5 {
                     let tile = Tile::square(tx as f32 * 4.0, ty as f32 * 4.0, 4.0);
-                    let lc = bounds(METHOD, tri, &tile);
-                    let la = bounds(super::super::la2011::METHOD, tri, &tile);
-                    let lb = bounds(super::super::lb2011::METHOD, tri, &tile);
+                    let lc = bounds_of(METHOD, tri, &tile);
+                    let la = bounds_of(super::super::la2011::METHOD, tri, &tile);
+                    let lb = bounds_of(super::super::lb2011::METHOD, tri, &tile);
                     for _ in 0..300 {
                         let s = random_sample(&mut rng, &tile);
                         let a = la.as_ref().is_some_and(|b| b.admits(&s));
@@ -157,9 +141,9 @@ mod tests {
             k: 1.0,
         };
         let tile = Tile { x0: 0.0, y0: 4.0, x1: 1.0, y1: 6.0 };
-        let la = bounds(super::super::la2011::METHOD, &tri, &tile).unwrap();
-        let lb = bounds(super::super::lb2011::METHOD, &tri, &tile).unwrap();
-        let lc = bounds(METHOD, &tri, &tile).unwrap();
+        let la = bounds_of(super::super::la2011::METHOD, &tri, &tile).unwrap();
+        let lb = bounds_of(super::super::lb2011::METHOD, &tri, &tile).unwrap();
+        let lc = bounds_of(METHOD, &tri, &tile).unwrap();
         assert_eq!(la.u[1], -0.5);
         assert!((lb.u[1] - 3.0 / 7.0).abs() < 1e-6, "{:?}", lb.u);
         assert_eq!(lc.u[1], -0.5);
@@ -181,7 +165,7 @@ mod tests {
     #[test]
     fn figure1_keeps_the_strip_inside_las_box() {
         let tri = figure1::triangle();
-        let b = bounds(METHOD, &tri, &figure1::tile()).unwrap();
+        let b = bounds_of(METHOD, &tri, &figure1::tile()).unwrap();
         let close = |a: [f32; 2], e: [f32; 2]| (a[0] - e[0]).abs() < 1e-6 && (a[1] - e[1]).abs() < 1e-6;
         assert!(close(b.t, figure1::LA_T) && close(b.u, figure1::LA_U) && close(b.v, figure1::LA_V), "{b:?}");
         assert!(!b.constraints.is_empty());

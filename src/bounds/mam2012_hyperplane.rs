@@ -429,6 +429,7 @@ impl Prepared for Prep {
 
 #[cfg(test)]
 mod tests {
+    use super::super::testkit::{near_miss_check, random_sample, spot_check};
     use super::*;
     use crate::model::ThinLens;
     use rand::{Rng, SeedableRng};
@@ -436,98 +437,6 @@ mod tests {
 
     fn cam() -> ThinLens {
         ThinLens { fx: 100.0, fy: 100.0, cx: 0.0, cy: 0.0, radius: 0.5, focus: 4.0, near: 0.1, far: 100.0 }
-    }
-
-    fn covered(tri: &Triangle, s: &Sample) -> bool {
-        oracles::classify(&tri.to_oracle(), s.to_oracle()) == oracles::Coverage::Interior
-    }
-
-    fn random_sample(rng: &mut ChaCha8Rng, tile: &Tile) -> Sample {
-        Sample::new(
-            rng.gen_range(tile.x0..=tile.x1),
-            rng.gen_range(tile.y0..=tile.y1),
-            rng.gen_range(-1.0..=1.0),
-            rng.gen_range(-1.0..=1.0),
-            rng.gen_range(0.0..=1.0),
-        )
-    }
-
-    /// Samples just outside each per-tile interval edge and just on the culled side of
-    /// each constraint (moved along u or v onto its zero, then past it): none may be
-    /// interior-covered. Returns (samples tried, covered samples culled).
-    fn near_miss_check(p: &dyn Prepared, tri: &Triangle, tile: &Tile, n: usize, seed: u64) -> (usize, Vec<Sample>) {
-        let TileResult::Bounds(b) = p.tile(tile) else {
-            return (0, Vec::new());
-        };
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let (mut tried, mut bad) = (0, Vec::new());
-        let mut probe = |s: Sample, bad: &mut Vec<Sample>| {
-            if (-1.0..=1.0).contains(&s.u) && (-1.0..=1.0).contains(&s.v) && (0.0..=1.0).contains(&s.t) && !b.admits(&s)
-            {
-                tried += 1;
-                if covered(tri, &s) {
-                    bad.push(s);
-                }
-            }
-        };
-        for _ in 0..n {
-            let s = random_sample(&mut rng, tile);
-            let d: f32 = rng.gen_range(1e-6..0.02);
-            for (lo, hi, set) in [
-                (b.u[0], b.u[1], (|s: &mut Sample, x: f32| s.u = x) as fn(&mut Sample, f32)),
-                (b.v[0], b.v[1], |s: &mut Sample, x: f32| s.v = x),
-                (b.t[0], b.t[1], |s: &mut Sample, x: f32| s.t = x),
-            ] {
-                for x in [lo - d, hi + d] {
-                    let mut s2 = s;
-                    set(&mut s2, x);
-                    probe(s2, &mut bad);
-                }
-            }
-            for c in &b.constraints {
-                for along_v in [false, true] {
-                    let at = |x: f32| {
-                        let mut s2 = s;
-                        if along_v {
-                            s2.v = x
-                        } else {
-                            s2.u = x
-                        }
-                        s2
-                    };
-                    let (g0, g1) = (c.eval(&at(0.0)), c.eval(&at(1.0)));
-                    let slope = g1 - g0;
-                    let usable = slope.abs() > 1e-3 * (g0.abs() + g1.abs());
-                    if !usable {
-                        continue;
-                    }
-                    let root = -g0 / slope;
-                    probe(at(root - d * slope.signum()), &mut bad);
-                }
-            }
-        }
-        (tried, bad)
-    }
-
-    /// (covered samples, covered samples the test culls).
-    fn spot_check(p: &dyn Prepared, tri: &Triangle, tile: &Tile, n: usize, seed: u64) -> (usize, Vec<Sample>) {
-        let res = p.tile(tile);
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let (mut cov, mut bad) = (0, Vec::new());
-        for _ in 0..n {
-            let s = random_sample(&mut rng, tile);
-            if covered(tri, &s) {
-                cov += 1;
-                let ok = match &res {
-                    TileResult::Empty => false,
-                    TileResult::Bounds(b) => b.admits(&s),
-                };
-                if !ok {
-                    bad.push(s);
-                }
-            }
-        }
-        (cov, bad)
     }
 
     fn cases() -> Vec<(Triangle, Vec<Tile>)> {

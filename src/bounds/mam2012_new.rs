@@ -93,6 +93,7 @@ impl Prepared for Prep {
 
 #[cfg(test)]
 mod tests {
+    use super::super::testkit::{covered, random_sample};
     use super::*;
     use crate::model::ThinLens;
     use rand::{Rng, SeedableRng};
@@ -100,20 +101,6 @@ mod tests {
 
     fn cam() -> ThinLens {
         ThinLens { fx: 100.0, fy: 100.0, cx: 0.0, cy: 0.0, radius: 0.5, focus: 4.0, near: 0.1, far: 100.0 }
-    }
-
-    fn covered(tri: &Triangle, s: &Sample) -> bool {
-        oracles::classify(&tri.to_oracle(), s.to_oracle()) == oracles::Coverage::Interior
-    }
-
-    fn random_sample(rng: &mut ChaCha8Rng, tile: &Tile) -> Sample {
-        Sample::new(
-            rng.gen_range(tile.x0..=tile.x1),
-            rng.gen_range(tile.y0..=tile.y1),
-            rng.gen_range(-1.0..=1.0),
-            rng.gen_range(-1.0..=1.0),
-            rng.gen_range(0.0..=1.0),
-        )
     }
 
     #[test]

@@ -24,6 +24,8 @@ pub mod mam2012;
 pub mod mam2012_hyperplane;
 pub mod mam2012_new;
 pub mod nilsson2012_depth;
+#[cfg(test)]
+pub(crate) mod testkit;
 pub mod wu2013;
 
 /// What a method gives per tile.

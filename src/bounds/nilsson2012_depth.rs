@@ -360,6 +360,7 @@ pub static METHOD: &dyn Method = &Nilsson2012Depth;
 
 #[cfg(test)]
 mod tests {
+    use super::super::testkit::{bounds_of, random_sample};
     use super::*;
     use crate::model::ThinLens;
     use oracles::DepthCheck;
@@ -367,10 +368,7 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     fn bounds(tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
-        match METHOD.setup(tri).tile(tile) {
-            TileResult::Empty => None,
-            TileResult::Bounds(b) => Some(b),
-        }
+        bounds_of(METHOD, tri, tile)
     }
 
     fn cam() -> ThinLens {
@@ -385,13 +383,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut covered = 0;
         for _ in 0..n {
-            let s = Sample::new(
-                rng.gen_range(tile.x0..=tile.x1),
-                rng.gen_range(tile.y0..=tile.y1),
-                rng.gen_range(-1.0..=1.0),
-                rng.gen_range(-1.0..=1.0),
-                rng.gen_range(0.0..=1.0),
-            );
+            let s = random_sample(&mut rng, tile);
             let Some(b) = &res else {
                 assert_ne!(
                     oracles::classify(&o, s.to_oracle()),

@@ -434,17 +434,11 @@ static GUARDED: &dyn Method = &Wu2013 { guarded: true };
 
 #[cfg(test)]
 mod tests {
+    use super::super::testkit::{assert_spot, bounds_of, random_sample, spot};
     use super::*;
     use crate::model::ThinLens;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
-
-    fn bounds_of(m: &dyn Method, tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
-        match m.setup(tri).tile(tile) {
-            TileResult::Empty => None,
-            TileResult::Bounds(b) => Some(b),
-        }
-    }
 
     fn bounds(tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
         bounds_of(METHOD, tri, tile)
@@ -454,39 +448,8 @@ mod tests {
         ThinLens { fx: 100.0, fy: 120.0, cx: 32.0, cy: 32.0, radius: 0.15, focus: 4.0, near: 0.5, far: 50.0 }
     }
 
-    /// Random samples in the tile; returns (covered, admitted) and the first covered
-    /// sample that is rejected, if any.
-    fn check(m: &dyn Method, tri: &Triangle, tile: &Tile, n: usize, seed: u64) -> (usize, usize, Option<Sample>) {
-        let res = bounds_of(m, tri, tile);
-        let o = tri.to_oracle();
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let (mut covered, mut admitted, mut bad) = (0, 0, None);
-        for _ in 0..n {
-            let s = Sample::new(
-                rng.gen_range(tile.x0..=tile.x1),
-                rng.gen_range(tile.y0..=tile.y1),
-                rng.gen_range(-1.0..=1.0),
-                rng.gen_range(-1.0..=1.0),
-                rng.gen_range(0.0..=1.0),
-            );
-            let ok = res.as_ref().is_some_and(|b| b.admits(&s));
-            admitted += ok as usize;
-            if oracles::classify(&o, s.to_oracle()) == oracles::Coverage::Interior {
-                covered += 1;
-                if !ok && bad.is_none() {
-                    bad = Some(s);
-                }
-            }
-        }
-        (covered, admitted, bad)
-    }
-
     fn spot_check_of(m: &dyn Method, tri: &Triangle, tile: &Tile, n: usize, seed: u64) -> (usize, usize) {
-        let (c, a, bad) = check(m, tri, tile, n, seed);
-        if let Some(s) = bad {
-            panic!("{tri:?}\ntile {tile:?}: covered sample {s:?} rejected by {:?}", bounds_of(m, tri, tile));
-        }
-        (c, a)
+        assert_spot(m, tri, tile, n, seed)
     }
 
     fn spot_check(tri: &Triangle, tile: &Tile, n: usize, seed: u64) -> (usize, usize) {
@@ -761,23 +724,27 @@ mod tests {
     /// Finding: stage 1 assumes every CoC has one sign. A triangle straddling the focal
     /// plane, in focus where it crosses the pixel's focus point, is seen from the whole
     /// lens while all u_i are close to 0.
+    /// The test pins the finding: it passes while the published bound culls a covered
+    /// sample here.
     #[test]
-    #[ignore = "finding: wu2013 stage 1 is not conservative when the triangle straddles the focal plane"]
     fn finding_focal_plane_straddle() {
         let c = cam();
         // Camera-space triangle through the focal plane (F = 4) around the optical axis.
         let g = [[-1.0, -1.0, 2.5], [1.0, -1.0, 6.0], [0.0, 1.2, 6.0]];
         let tri = c.triangle(g, g);
         assert!(tri.c0.iter().any(|&x| x < 0.0) && tri.c0.iter().any(|&x| x > 0.0));
-        spot_check(&tri, &Tile::square(31.0, 31.0, 2.0), 4000, 21);
+        let tile = Tile::square(31.0, 31.0, 2.0);
+        let r = spot(bounds(&tri, &tile).as_ref(), &tri, &tile, 4000, 21);
+        assert!(!r.culled.is_empty(), "wu2013 no longer culls covered samples here: update the finding");
     }
 
     /// Finding: stage 2 assumes all vertices cross the pixel column in one direction.
     /// Here A moves right across x = 20 (at t = 0.25), B moves left across it (t = 1/3)
     /// and C creeps right far from it: [min t_i, max t_i] = [-10, 1/3], but the pixel
     /// (20, 20) is inside the triangle at t = 1.
+    /// The test pins the finding: it passes while the published bound culls the
+    /// covered sample (20, 20, 0, 0, 1).
     #[test]
-    #[ignore = "finding: wu2013 stage 2 is not conservative when vertices cross the column in opposite directions"]
     fn finding_opposite_motion() {
         let tri = Triangle {
             q: [[15.0, 10.0, 0.5, 1.0], [30.0, 30.0, 0.5, 1.0], [40.0, 20.0, 0.5, 1.0]],
@@ -788,7 +755,8 @@ mod tests {
         };
         let s = Sample::new(20.0, 20.0, 0.0, 0.0, 1.0);
         assert_eq!(oracles::classify(&tri.to_oracle(), s.to_oracle()), oracles::Coverage::Interior);
-        spot_check(&tri, &Tile::square(19.0, 19.0, 2.0), 4000, 22);
+        let b = bounds(&tri, &Tile::square(19.0, 19.0, 2.0));
+        assert!(!b.is_some_and(|b| b.admits(&s)), "wu2013 no longer culls {s:?}: update the finding");
     }
 
     /// Random triangles that violate the thesis's assumptions: vertices on both sides of
@@ -828,13 +796,7 @@ mod tests {
                 let o = tri.to_oracle();
                 let mut r2 = ChaCha8Rng::seed_from_u64(rng.gen());
                 for _ in 0..200 {
-                    let s = Sample::new(
-                        r2.gen_range(tile.x0..=tile.x1),
-                        r2.gen_range(tile.y0..=tile.y1),
-                        r2.gen_range(-1.0..=1.0),
-                        r2.gen_range(-1.0..=1.0),
-                        r2.gen_range(0.0..=1.0),
-                    );
+                    let s = random_sample(&mut r2, &tile);
                     if oracles::classify(&o, s.to_oracle()) == oracles::Coverage::Interior {
                         covered += 1;
                         if !res.as_ref().is_some_and(|b| b.admits(&s)) {
