@@ -14,15 +14,16 @@
 //! moves the ray's pixel position by about 2^-24 (|x| + |a u| / F) pixels; the
 //! intersection adds a few ulps of the vertex coordinates, which is a pixel error
 //! relative to the projected vertex magnitudes. The band allowed is
-//! `BAND_REL * (1 + |x| + |y| + max_i |projected vertex i|) * stretch` pixels, where
-//! `stretch = 1 + max_i |a c_i| / min_i |w_i|`-like amplification is not modelled: the
+//! `BAND_REL * (1 + |x| + |y| + max_i |projected vertex i|)` pixels with
+//! `BAND_REL = 2^-16`, a wide margin over those few-ulp effects. Amplification by
+//! near-degenerate geometry (a ray grazing the triangle's plane) is not modelled; the
 //! run reports `max_disagreement_distance` so the band can be judged against data.
 
 use crate::gen::{physical_case, rng_for, Regime};
 use crate::model::Case;
 use indicatif::{ProgressBar, ProgressStyle};
 use oracles::embree::{EmbreeOracle, LensTri};
-use oracles::{classify, Coverage, CoverageStats, Tri};
+use oracles::{Coverage, Tri};
 use rand::Rng;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -216,11 +217,9 @@ fn run_case(seed: u64, index: u64, per_case: usize) -> (Regime, AgreeCounts, Vec
     let samples = samples_for(&case, &mut rng, per_case);
     let mut hits = Vec::new();
     oracle.hits(&samples, &mut hits);
-    let mut st = CoverageStats::default();
     for (s, &hit) in samples.iter().zip(&hits) {
         let (cov, ex) = oracles::coverage::classify_traced(&tri, *s);
-        st.samples += 1;
-        st.exact_fallbacks += ex as u64;
+        c.exact_fallbacks += ex as u64;
         c.samples += 1;
         match (cov, hit) {
             (Coverage::Boundary, _) => c.boundary += 1,
@@ -249,8 +248,6 @@ fn run_case(seed: u64, index: u64, per_case: usize) -> (Regime, AgreeCounts, Vec
             }
         }
     }
-    debug_assert_eq!(classify(&tri, samples[0]), classify(&tri, samples[0]));
-    c.exact_fallbacks = st.exact_fallbacks;
     (regime, c, worst)
 }
 

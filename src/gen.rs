@@ -103,8 +103,9 @@ pub fn physical_case(rng: &mut ChaCha8Rng, regime: Regime) -> Case {
         }
         Sliver => {
             let f = log_uniform(rng, 1e-5, 1e-2);
-            for j in 0..3 {
-                q[2][j] = q[0][j] + (q[1][j] - q[0][j]) * rng.gen_range(0.2..0.8) + f * size * rng.gen_range(-1.0..1.0);
+            let (a, b) = (q[0], q[1]);
+            for (j, c) in q[2].iter_mut().enumerate() {
+                *c = a[j] + (b[j] - a[j]) * rng.gen_range(0.2..0.8) + f * size * rng.gen_range(-1.0..1.0);
             }
         }
         _ => {}

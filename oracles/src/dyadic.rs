@@ -6,7 +6,7 @@
 
 use num_bigint::{BigInt, Sign};
 use num_rational::BigRational;
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Zero};
 use std::cmp::Ordering;
 use std::ops::{Add, Mul, Neg, Sub};
 
@@ -95,13 +95,6 @@ impl Dyadic {
     /// Exact comparison.
     pub fn cmp_exact(&self, o: &Dyadic) -> Ordering {
         (self - o).signum().cmp(&0)
-    }
-    /// `x * 2^k`.
-    pub fn ldexp(&self, k: i64) -> Dyadic {
-        Dyadic { m: self.m.clone(), e: self.e + k }
-    }
-    pub fn abs(&self) -> Dyadic {
-        Dyadic { m: self.m.abs(), e: self.e }
     }
 }
 

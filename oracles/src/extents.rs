@@ -136,10 +136,10 @@ impl BoxValues {
     pub fn open_smear(&self) -> [f64; 5] {
         let q = [self.e[0], self.e[1], self.e[2], self.d];
         let mut s = [0.0f64; 5];
-        for k in 0..4 {
-            if !(q[k].lo > 0.0 || q[k].hi < 0.0) {
-                for i in 0..5 {
-                    s[i] = s[i].max(self.smear[k][i]);
+        for (qk, smear) in q.iter().zip(&self.smear) {
+            if !(qk.lo > 0.0 || qk.hi < 0.0) {
+                for (si, m) in s.iter_mut().zip(smear) {
+                    *si = si.max(*m);
                 }
             }
         }
@@ -401,8 +401,8 @@ fn key_of(obj: Objective, b: &Box5, bv: &BoxValues) -> f64 {
     }
 }
 
-/// The objective's value at a point, exactly enough for a witness (depth in f64 is
-/// only used to rank witnesses; its enclosure is reported via `depth_bounds`).
+/// An enclosure of the objective's value at a point (a coordinate exactly; the depth as
+/// an outward-rounded quotient, whole line if D's enclosure holds 0).
 fn value_at(tri: &Tri, obj: Objective, s: [f64; 5]) -> Interval {
     match obj {
         Objective::Coord { index, .. } => Interval::point(s[index]),

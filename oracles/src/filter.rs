@@ -1,11 +1,14 @@
 //! The fast path of exact coverage: midpoint-radius intervals on plain `f64`.
 //!
 //! Each value carries `v` (the f64 result) and `e`, a bound on `|v - exact|`. With
-//! `u = 2^-53` (unit roundoff) and `eta = 2^-1074` (the largest absolute error of an
-//! underflowing operation), the rules are, for exact inputs `e = 0`:
+//! `u = 2^-53` (unit roundoff) and `eta = 4 * 2^-1074`, the rules are, for exact
+//! inputs `e = 0`:
 //! - `a ± b`: `e = e_a + e_b + u |v| + eta`
 //! - `a * b`: `e = |a| e_b + |b| e_a + e_a e_b + u |v| + eta`
-//! These are the error bounds of IEEE round-to-nearest. The bounds are themselves
+//!
+//! `eta` covers what underflow can lose in one operation: the value's own rounding
+//! (at most 2^-1075 below the normal range) and the three error products, each of which
+//! may round to zero (at most 2^-1075 each). These are the error bounds of IEEE round-to-nearest. The bounds are themselves
 //! computed in rounded arithmetic, so a sign is trusted only when
 //! `|v| > e (1 + 2^-40)`: the few dozen roundings in the error terms cannot inflate
 //! them by more than that factor. An overflowed or NaN value never decides. This is an
@@ -15,7 +18,7 @@
 use crate::ring::Ring;
 
 const U: f64 = 1.0 / 9007199254740992.0; // 2^-53
-const ETA: f64 = 4.9406564584124654e-324; // 2^-1074
+const ETA: f64 = f64::from_bits(4); // 4 * 2^-1074
 
 /// A value and a bound on its absolute error.
 #[derive(Clone, Copy, Debug)]

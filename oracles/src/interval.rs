@@ -48,16 +48,6 @@ impl Interval {
     pub fn is_neg(self) -> bool {
         self.hi < 0.0
     }
-    /// True if every value is >= 0.
-    #[inline(always)]
-    pub fn is_nonneg(self) -> bool {
-        self.lo >= 0.0
-    }
-    /// True if every value is <= 0.
-    #[inline(always)]
-    pub fn is_nonpos(self) -> bool {
-        self.hi <= 0.0
-    }
     /// The sign of every value: Some(1), Some(-1), or None when it straddles 0
     /// (or touches it, or is NaN).
     #[inline(always)]
@@ -86,23 +76,6 @@ impl Interval {
     #[inline(always)]
     pub fn hull(self, o: Interval) -> Interval {
         Interval { lo: self.lo.min(o.lo), hi: self.hi.max(o.hi) }
-    }
-    /// `(1 - t) * a + t * b`, enclosed.
-    #[inline(always)]
-    pub fn lerp(a: Interval, b: Interval, t: Interval) -> Interval {
-        (Interval::point(1.0) - t) * a + t * b
-    }
-    /// Square, tighter than `x * x` when the interval straddles 0.
-    #[inline(always)]
-    pub fn sqr(self) -> Interval {
-        if self.lo >= 0.0 {
-            Interval { lo: down(self.lo * self.lo).max(0.0), hi: up(self.hi * self.hi) }
-        } else if self.hi <= 0.0 {
-            Interval { lo: down(self.hi * self.hi).max(0.0), hi: up(self.lo * self.lo) }
-        } else {
-            let m = self.lo.abs().max(self.hi);
-            Interval { lo: 0.0, hi: up(m * m) }
-        }
     }
 }
 

@@ -176,32 +176,6 @@ pub fn by_id(id: &str) -> Option<&'static dyn Method> {
     registry().into_iter().find(|m| m.info().id == id)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn ids_are_unique_and_found() {
-        let r = registry();
-        let mut ids: Vec<_> = r.iter().map(|m| m.info().id).collect();
-        ids.sort();
-        ids.dedup();
-        assert_eq!(ids.len(), r.len());
-        for id in ids {
-            assert_eq!(by_id(id).unwrap().info().id, id);
-        }
-    }
-
-    #[test]
-    fn intersect_empties_on_disjoint_intervals() {
-        let mut a = TileBounds::full();
-        a.t = [0.0, 0.2];
-        let mut b = TileBounds::full();
-        b.t = [0.5, 1.0];
-        assert!(matches!(a.intersect(b), TileResult::Empty));
-    }
-}
-
 /// The `methods` table.
 pub fn render_methods(ms: &[MethodInfo]) -> String {
     let mut s = format!("{:<24} {:<6} {:<30} {:<40} source\n", "id", "recon", "dims", "outputs");
@@ -229,4 +203,30 @@ pub fn render_methods(ms: &[MethodInfo]) -> String {
         );
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_are_unique_and_found() {
+        let r = registry();
+        let mut ids: Vec<_> = r.iter().map(|m| m.info().id).collect();
+        ids.sort();
+        ids.dedup();
+        assert_eq!(ids.len(), r.len());
+        for id in ids {
+            assert_eq!(by_id(id).unwrap().info().id, id);
+        }
+    }
+
+    #[test]
+    fn intersect_empties_on_disjoint_intervals() {
+        let mut a = TileBounds::full();
+        a.t = [0.0, 0.2];
+        let mut b = TileBounds::full();
+        b.t = [0.5, 1.0];
+        assert!(matches!(a.intersect(b), TileResult::Empty));
+    }
 }

@@ -50,7 +50,7 @@ impl ThinLens {
         if self.fy <= 0.0 {
             return bad("fy", self.fy, "the focal scale must be > 0");
         }
-        if !(self.near < self.far) {
+        if self.near >= self.far {
             return bad("far", self.far, "far must be greater than near");
         }
         Ok(())

@@ -22,14 +22,14 @@ impl Tile {
         for (n, v) in [("x0", self.x0), ("y0", self.y0), ("x1", self.x1), ("y1", self.y1)] {
             finite(format!("tile.{n}"), v)?;
         }
-        if !(self.x0 < self.x1) {
+        if self.x0 >= self.x1 {
             return Err(ModelError::OutOfRange {
                 field: "tile.x1".into(),
                 value: format!("{} (x0 = {})", self.x1, self.x0),
                 why: "the tile is empty: x1 must be greater than x0",
             });
         }
-        if !(self.y0 < self.y1) {
+        if self.y0 >= self.y1 {
             return Err(ModelError::OutOfRange {
                 field: "tile.y1".into(),
                 value: format!("{} (y0 = {})", self.y1, self.y0),
