@@ -102,7 +102,7 @@ fn tile_extents_enclose_every_sampled_covered_sample() {
             // within resolution of the witnesses (unless undecided boxes widened them)
             if ex.undecided == 0 {
                 for e in ex.extremes.iter().flatten() {
-                    assert!(e.hi - e.lo <= cfg.resolution * 1.0001, "{e:?}");
+                    assert!(e.hi - e.lo <= cfg.resolution, "{e:?}");
                 }
             }
         } else if ex.empty {
