@@ -18,7 +18,7 @@
 //! takes its extremes over a box at the box's corners, so the range over the box is the
 //! hull over the 16 (x, y, u, v) corners of the range in t. In t each value is a
 //! polynomial of degree <= 3, carried exactly as a polynomial in `s = t - t_mid` with
-//! outward-rounded interval coefficients ([`TPoly`]) and bounded over `s in [-h, h]`
+//! coefficients carrying rigorous rounding-error bounds ([`TPoly`]) and bounded over `s in [-h, h]`
 //! term by term. All arithmetic rounds outward; nothing uses an epsilon.
 //!
 //! For a minimum (say of u) the search always splits the live box of smallest lower
@@ -34,71 +34,113 @@
 //! t = 0 and, when covered, its t extents are the whole requested range (coverage does
 //! not depend on t); a pinhole triangle (every CoC zero) likewise in u and v.
 
-use crate::coverage::{classify, det_of, edges_of, interval_div, sheared, Coverage};
+use crate::coverage::{classify, interval_div, Coverage};
+use crate::filter::Fe;
 use crate::interval::Interval;
 use crate::ring::Ring;
 use crate::tri::Tri;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-/// A polynomial of degree <= 3 in `s = t - t_mid`, with interval coefficients; the
-/// degree is tracked so that coefficients known to be zero stay out of products.
+/// A polynomial of degree <= 3 in `s = t - t_mid`, each coefficient an f64 value with
+/// a rigorous bound on its rounding error ([`Fe`]); the degree is tracked so that
+/// coefficients known to be zero stay out of products. At a box corner every input is a
+/// point and t is symbolic, so the coefficients carry rounding error only: the
+/// value-plus-error form is as tight as an interval there, and cheaper.
 #[derive(Clone, Copy, Debug)]
 pub struct TPoly {
-    pub c: [Interval; 4],
+    pub c: [Fe; 4],
     pub deg: usize,
 }
+
+const FE0: Fe = Fe { v: 0.0, e: 0.0 };
 
 impl TPoly {
     /// `t_mid + s`.
     pub fn t_at(tm: f64) -> Self {
-        let z = Interval::point(0.0);
-        TPoly { c: [Interval::point(tm), Interval::point(1.0), z, z], deg: 1 }
+        TPoly { c: [Fe::c(tm), Fe::c(1.0), FE0, FE0], deg: 1 }
     }
-    /// Enclosure of the values for `s in [-h, h]` (h >= 0).
+    /// The value at `s = 0` (the box's middle time), without its error.
+    pub fn mid(&self) -> f64 {
+        self.c[0].v
+    }
+    /// How much the non-constant terms can move the value over `s in [-h, h]`.
+    pub fn variation(&self, h: f64) -> f64 {
+        let m = |k: usize| self.c[k].v.abs() + self.c[k].e;
+        m(1) * h + m(2) * h * h + m(3) * h * h * h
+    }
+    /// Enclosure of the values for `s in [-h, h]` (h >= 0). Each coefficient `c_k` lies
+    /// in `[v_k - e_k, v_k + e_k]`; odd terms span `+-|c_k| h^k`, the square term has the
+    /// sign of `c_2`. The bounds are summed in f64 and then widened by `2^-48` of the
+    /// sum of magnitudes (the dozen roundings of the sum cost less) plus an underflow
+    /// floor. NaN when anything overflowed: such a box stays undecided.
     pub fn range(&self, h: f64) -> Interval {
         let c = &self.c;
-        let hh = Interval::point(h);
-        let mut r = c[0];
+        let h2 = (h * h).next_up();
+        let h3 = (h2 * h).next_up();
+        let (mut lo, mut hi) = (c[0].v - c[0].e, c[0].v + c[0].e);
+        let mut mag = c[0].v.abs() + c[0].e;
         if self.deg >= 1 {
-            r = r + c[1] * Interval::new(-h, h);
+            let a = (c[1].v.abs() + c[1].e) * h;
+            lo -= a;
+            hi += a;
+            mag += a;
         }
         if self.deg >= 2 {
-            let h2 = (hh * hh).hi;
-            r = r + c[2] * Interval::new(0.0, h2);
-            if self.deg >= 3 {
-                let h3 = (Interval::point(h2) * hh).hi;
-                r = r + c[3] * Interval::new(-h3, h3);
-            }
+            lo += (c[2].v - c[2].e).min(0.0) * h2;
+            hi += (c[2].v + c[2].e).max(0.0) * h2;
+            mag += (c[2].v.abs() + c[2].e) * h2;
         }
-        r
+        if self.deg >= 3 {
+            let a = (c[3].v.abs() + c[3].e) * h3;
+            lo -= a;
+            hi += a;
+            mag += a;
+        }
+        if !(mag.is_finite() && lo.is_finite() && hi.is_finite()) {
+            return Interval::new(f64::NAN, f64::NAN);
+        }
+        let pad = mag * (1.0 / 281474976710656.0) + f64::from_bits(64);
+        Interval::new(lo - pad, hi + pad)
     }
 }
 
 impl Ring for TPoly {
+    #[inline(always)]
     fn c(x: f64) -> Self {
-        let z = Interval::point(0.0);
-        TPoly { c: [Interval::point(x), z, z, z], deg: 0 }
+        TPoly { c: [Fe::c(x), FE0, FE0, FE0], deg: 0 }
     }
+    #[inline(always)]
     fn add(&self, o: &Self) -> Self {
-        TPoly { c: [0, 1, 2, 3].map(|i| self.c[i] + o.c[i]), deg: self.deg.max(o.deg) }
+        let deg = self.deg.max(o.deg);
+        let mut c = [FE0; 4];
+        for (k, ck) in c.iter_mut().enumerate().take(deg + 1) {
+            *ck = self.c[k].add(&o.c[k]);
+        }
+        TPoly { c, deg }
     }
+    #[inline(always)]
     fn sub(&self, o: &Self) -> Self {
-        TPoly { c: [0, 1, 2, 3].map(|i| self.c[i] - o.c[i]), deg: self.deg.max(o.deg) }
+        let deg = self.deg.max(o.deg);
+        let mut c = [FE0; 4];
+        for (k, ck) in c.iter_mut().enumerate().take(deg + 1) {
+            *ck = self.c[k].sub(&o.c[k]);
+        }
+        TPoly { c, deg }
     }
+    #[inline(always)]
     fn mul(&self, o: &Self) -> Self {
-        let z = Interval::point(0.0);
         let deg = self.deg + o.deg;
         if deg > 3 {
             // Never happens for the coverage polynomials (degree <= 3); if it did, the
             // result would be unusable: poison it so the box stays undecided.
-            let nan = Interval::new(f64::NAN, f64::NAN);
+            let nan = Fe { v: f64::NAN, e: f64::NAN };
             return TPoly { c: [nan; 4], deg: 3 };
         }
-        let mut r = [z; 4];
+        let mut r = [FE0; 4];
         for i in 0..=self.deg {
             for j in 0..=o.deg {
-                r[i + j] = r[i + j] + self.c[i] * o.c[j];
+                r[i + j] = r[i + j].add(&self.c[i].mul(&o.c[j]));
             }
         }
         TPoly { c: r, deg }
@@ -173,10 +215,6 @@ pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
     let mut em = [[[[[0.0f64; 3]; 2]; 2]; 2]; 2];
     let mut dm = [[0.0f64; 2]; 2];
     let mut smear = [[0.0f64; 5]; 4];
-    let tvar = |p: &TPoly| -> f64 {
-        let m = |i: Interval| i.lo.abs().max(i.hi.abs());
-        m(p.c[1]) * h + m(p.c[2]) * h * h + m(p.c[3]) * h * h * h
-    };
     let hull = |acc: &mut Option<Interval>, v: Interval| {
         *acc = Some(match acc {
             Some(a) => {
@@ -189,23 +227,47 @@ pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
             None => v,
         })
     };
-    for (iu, &u) in us[..nu].iter().enumerate() {
-        for (iv, &v) in vs[..nv].iter().enumerate() {
-            let p = sheared(tri, &TPoly::c(u), &TPoly::c(v), &t);
-            let dp = det_of(&p);
+    // Per vertex, as polynomials in s: position, depth row, w, CoC at time t.
+    let lerp = |i: usize, j: usize| TPoly::lerp(&TPoly::c(tri.q[i][j]), &TPoly::c(tri.r[i][j]), &t);
+    let xb = [0, 1, 2].map(|i| lerp(i, 0));
+    let yb = [0, 1, 2].map(|i| lerp(i, 1));
+    let zb = [0, 1, 2].map(|i| lerp(i, 2));
+    let wb = [0, 1, 2].map(|i| lerp(i, 3));
+    let cb = [0, 1, 2].map(|i| TPoly::lerp(&TPoly::c(tri.c0[i]), &TPoly::c(tri.c1[i]), &t));
+    // Sheared coordinates at the lens corners: x' depends on u only, y' on v only.
+    let xs_u: [[TPoly; 3]; 2] = std::array::from_fn(|iu| [0, 1, 2].map(|i| xb[i].add(&TPoly::c(us[iu]).mul(&cb[i]))));
+    let kv: [TPoly; 2] = std::array::from_fn(|iv| TPoly::c(tri.k).mul(&TPoly::c(vs[iv])));
+    let ys_v: [[TPoly; 3]; 2] = std::array::from_fn(|iv| [0, 1, 2].map(|i| yb[i].add(&kv[iv].mul(&cb[i]))));
+    // Translated coordinates: P.x depends on (x, u), P.y on (y, v).
+    let px: [[[TPoly; 3]; 2]; 2] = std::array::from_fn(|ix| {
+        std::array::from_fn(|iu| [0, 1, 2].map(|i| xs_u[iu][i].sub(&TPoly::c(xs[ix]).mul(&wb[i]))))
+    });
+    let py: [[[TPoly; 3]; 2]; 2] = std::array::from_fn(|iy| {
+        std::array::from_fn(|iv| [0, 1, 2].map(|i| ys_v[iv][i].sub(&TPoly::c(ys[iy]).mul(&wb[i]))))
+    });
+    const EDGES: [(usize, usize); 3] = [(1, 2), (2, 0), (0, 1)];
+    for iu in 0..nu {
+        for iv in 0..nv {
+            // D = sum_i w_i E_i at x = y = 0 (the determinant of the sheared vertices).
+            let (xa, ya) = (&xs_u[iu], &ys_v[iv]);
+            let mut dp = TPoly::c(0.0);
+            for (k, &(i, j)) in EDGES.iter().enumerate() {
+                dp = dp.add(&wb[k].mul(&xa[i].mul(&ya[j]).sub(&ya[i].mul(&xa[j]))));
+            }
             let dc = dp.range(h);
-            dm[iu][iv] = dp.c[0].mid();
-            smear[3][4] = smear[3][4].max(tvar(&dp));
+            dm[iu][iv] = dp.mid();
+            smear[3][4] = smear[3][4].max(dp.variation(h));
             hull(&mut d, dc);
-            for (ix, &x) in xs[..nx].iter().enumerate() {
-                for (iy, &y) in ys[..ny].iter().enumerate() {
-                    let ev = edges_of(&p, &TPoly::c(x), &TPoly::c(y));
+            for ix in 0..nx {
+                for iy in 0..ny {
+                    let (pxc, pyc) = (&px[ix][iu], &py[iy][iv]);
+                    let ev = EDGES.map(|(i, j)| pxc[i].mul(&pyc[j]).sub(&pyc[i].mul(&pxc[j])));
                     for k in 0..3 {
                         hull(&mut e[k], ev[k].range(h));
-                        em[iu][iv][ix][iy][k] = ev[k].c[0].mid();
-                        smear[k][4] = smear[k][4].max(tvar(&ev[k]));
+                        em[iu][iv][ix][iy][k] = ev[k].mid();
+                        smear[k][4] = smear[k][4].max(ev[k].variation(h));
                     }
-                    let n = ev[0].mul(&p[0][2]).add(&ev[1].mul(&p[1][2])).add(&ev[2].mul(&p[2][2]));
+                    let n = ev[0].mul(&zb[0]).add(&ev[1].mul(&zb[1])).add(&ev[2].mul(&zb[2]));
                     let nc = n.range(h);
                     hull(&mut nz, nc);
                     // N / D is linear-fractional in each of x, y, u, v separately, hence
