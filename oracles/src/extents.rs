@@ -171,6 +171,8 @@ pub struct BoxValues {
     /// coordinate only (t: the non-constant terms of the Taylor form). Guides splitting.
     /// Indexed [quantity][coordinate], quantities E_0, E_1, E_2, D.
     pub smear: [[f64; 5]; 4],
+    /// The same for the hit depth N / D (zero where D's sign is open).
+    pub depth_smear: [f64; 5],
 }
 
 impl BoxValues {
@@ -214,6 +216,8 @@ pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
     // mid-t values of E_0..E_2 at each corner [u][v][x][y], and of D at [u][v]
     let mut em = [[[[[0.0f64; 3]; 2]; 2]; 2]; 2];
     let mut dm = [[0.0f64; 2]; 2];
+    let mut zm = [[[[0.0f64; 2]; 2]; 2]; 2];
+    let mut depth_smear = [0.0f64; 5];
     let mut smear = [[0.0f64; 5]; 4];
     let hull = |acc: &mut Option<Interval>, v: Interval| {
         *acc = Some(match acc {
@@ -270,10 +274,23 @@ pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
                     let n = ev[0].mul(&zb[0]).add(&ev[1].mul(&zb[1])).add(&ev[2].mul(&zb[2]));
                     let nc = n.range(h);
                     hull(&mut nz, nc);
+                    // The depth N / D around a centre value z_c: N / D = z_c + M / D with
+                    // M = N - z_c D. M keeps the correlation of N and D in t, so the
+                    // quotient of enclosures stays tight where N and D move together.
+                    let dmid = dp.mid();
+                    let zc = n.mid() / dmid;
+                    zm[iu][iv][ix][iy] = zc;
+                    let zq = if zc.is_finite() {
+                        let m = n.sub(&TPoly::c(zc).mul(&dp));
+                        depth_smear[4] = depth_smear[4].max(m.variation(h) / dmid.abs());
+                        interval_div(m.range(h), dc).map(|q| Interval::point(zc) + q)
+                    } else {
+                        None
+                    };
                     // N / D is linear-fractional in each of x, y, u, v separately, hence
                     // monotone in each while D keeps its sign: its extremes over the
                     // box are at the corners too.
-                    match interval_div(nc, dc) {
+                    match zq {
                         Some(z) if depth_ok => hull(&mut depth, z),
                         _ => depth_ok = false,
                     }
@@ -291,6 +308,19 @@ pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
             }
             for ix in 0..nx {
                 for iy in 0..ny {
+                    let z = zm[iu][iv][ix][iy];
+                    if nx == 2 && ix == 0 {
+                        depth_smear[0] = depth_smear[0].max((zm[iu][iv][1][iy] - z).abs());
+                    }
+                    if ny == 2 && iy == 0 {
+                        depth_smear[1] = depth_smear[1].max((zm[iu][iv][ix][1] - z).abs());
+                    }
+                    if nu == 2 && iu == 0 {
+                        depth_smear[2] = depth_smear[2].max((zm[1][iv][ix][iy] - z).abs());
+                    }
+                    if nv == 2 && iv == 0 {
+                        depth_smear[3] = depth_smear[3].max((zm[iu][1][ix][iy] - z).abs());
+                    }
                     for k in 0..3 {
                         let here = em[iu][iv][ix][iy][k];
                         if nx == 2 && ix == 0 {
@@ -313,7 +343,10 @@ pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
     let d = d.unwrap();
     // The per-corner quotients bound the depth only if D has one sign over the box.
     let depth = if depth_ok && (d.lo > 0.0 || d.hi < 0.0) { depth } else { None };
-    BoxValues { e: e.map(|v| v.unwrap()), d, nz: nz.unwrap(), depth, smear }
+    if depth.is_none() || depth_smear.iter().any(|v| !v.is_finite()) {
+        depth_smear = [0.0; 5];
+    }
+    BoxValues { e: e.map(|v| v.unwrap()), d, nz: nz.unwrap(), depth, smear, depth_smear }
 }
 
 /// Empty / full / undecided from the enclosures.
@@ -576,6 +609,9 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
             break;
         }
         let class = classify_values(&bv);
+        if std::env::var("XDBG").is_ok() && boxes % 1500 == 0 {
+            eprintln!("{boxes} key={key:.6} best={:?} {:?} {class:?} z={:?} dsm={:?} sm={:?}", best.map(|b| b.0), b.map(|i| (i.lo as f32, i.hi as f32)), bv.depth, bv.depth_smear, bv.open_smear());
+        }
         if class == BoxClass::Empty {
             continue;
         }
@@ -605,9 +641,17 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
             }
             let mut score = smear[i];
             if let Objective::Depth { .. } = obj {
-                // The depth moves with every coordinate, covered or not: halve the
-                // widest, relative to the initial box.
-                score = b[i].width() / init[i].width();
+                // Both what decides coverage and what moves the depth matter: each
+                // smear relative to its largest coordinate; with neither known, the
+                // widest side relative to the initial box.
+                let (ds, dmax) = (bv.depth_smear[i], bv.depth_smear.iter().cloned().fold(0.0, f64::max));
+                score = if dmax > 0.0 { ds / dmax } else { 0.0 };
+                if max_smear > 0.0 {
+                    score = score.max(smear[i] / max_smear);
+                }
+                if dmax == 0.0 && max_smear == 0.0 {
+                    score = b[i].width() / init[i].width();
+                }
             }
             if let Objective::Coord { index, .. } = obj {
                 if i == index {
