@@ -609,9 +609,6 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
             break;
         }
         let class = classify_values(&bv);
-        if std::env::var("XDBG").is_ok() && boxes % 1500 == 0 {
-            eprintln!("{boxes} key={key:.6} best={:?} {:?} {class:?} z={:?} dsm={:?} sm={:?}", best.map(|b| b.0), b.map(|i| (i.lo as f32, i.hi as f32)), bv.depth, bv.depth_smear, bv.open_smear());
-        }
         if class == BoxClass::Empty {
             continue;
         }
@@ -630,7 +627,9 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
         }
         // Split where the values move most (the smear), among the dimensions still
         // wider than the minimum; the objective's own coordinate is split at least
-        // every other time until it is finer than half the resolution, never after.
+        // every other time until it is finer than half the resolution, and after that
+        // like any other coordinate (for deciding boxes, not for the bound).
+
         let smear = bv.open_smear();
         let max_smear = smear.iter().cloned().fold(0.0, f64::max);
         let mut dim = None;
@@ -655,7 +654,9 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
             }
             if let Objective::Coord { index, .. } = obj {
                 if i == index {
-                    score = if b[i].width() > cfg.resolution * 0.5 { score.max(0.5 * max_smear) } else { -0.5 };
+                    if b[i].width() > cfg.resolution * 0.5 {
+                        score = score.max(0.5 * max_smear);
+                    }
                 }
             }
             if !(score.is_finite()) {
