@@ -652,14 +652,10 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
                     score = b[i].width() / init[i].width();
                 }
             }
-            if let Objective::Coord { index, .. } = obj {
-                if i == index {
-                    if b[i].width() > cfg.resolution * 0.5 {
-                        score = score.max(0.5 * max_smear);
-                    }
-                }
+            if matches!(obj, Objective::Coord { index, .. } if i == index) && b[i].width() > cfg.resolution * 0.5 {
+                score = score.max(0.5 * max_smear);
             }
-            if !(score.is_finite()) {
+            if !score.is_finite() {
                 score = f64::MAX;
             }
             if score > best_score {
