@@ -702,76 +702,142 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
     ObjectiveResult { extreme, undecided, boxes }
 }
 
+/// The eight objectives, in the order of [`TileExtents::extremes`].
+pub const OBJECTIVES: [Objective; 8] = [
+    Objective::Coord { index: 2, max: false },
+    Objective::Coord { index: 2, max: true },
+    Objective::Coord { index: 3, max: false },
+    Objective::Coord { index: 3, max: true },
+    Objective::Coord { index: 4, max: false },
+    Objective::Coord { index: 4, max: true },
+    Objective::Depth { max: false },
+    Objective::Depth { max: true },
+];
+
+/// Whether a tile holds an interior-covered sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Occupancy {
+    /// Certified: every box was proven empty.
+    Empty,
+    /// This interior sample (confirmed exactly) is in the tile.
+    Covered([f64; 5]),
+    /// The search ended with undecided boxes and no witness.
+    Unknown,
+}
+
+/// Extents of one tile, computed objective by objective on demand and kept: a caller
+/// that needs only some of them (a culling test that narrows only t, say) pays only
+/// for those.
+pub struct TileSolver<'a> {
+    tri: &'a Tri,
+    full: Box5,
+    init: Box5,
+    active: [bool; 5],
+    cfg: ExtentsConfig,
+    results: [Option<ObjectiveResult>; 8],
+    occupancy: Option<Occupancy>,
+    /// Boxes examined so far.
+    pub boxes: u64,
+}
+
+impl<'a> TileSolver<'a> {
+    /// The tile `[x0, x1] x [y0, y1]` and the sub-box `uvt = [[u0, u1], [v0, v1], [t0, t1]]`.
+    pub fn new(tri: &'a Tri, tile: [f64; 4], uvt: [[f64; 2]; 3], cfg: &ExtentsConfig) -> Self {
+        let active = active_dims(tri);
+        let full: Box5 = [
+            Interval::new(tile[0], tile[1]),
+            Interval::new(tile[2], tile[3]),
+            Interval::new(uvt[0][0], uvt[0][1]),
+            Interval::new(uvt[1][0], uvt[1][1]),
+            Interval::new(uvt[2][0], uvt[2][1]),
+        ];
+        // Dimensions the triangle does not have are searched at one point.
+        let mut init = full;
+        for i in 2..5 {
+            if !active[i] {
+                let p = if i == 4 { full[4].lo } else { full[i].lo.max(0.0).min(full[i].hi) };
+                init[i] = Interval::point(p);
+            }
+        }
+        TileSolver { tri, full, init, active, cfg: *cfg, results: [None; 8], occupancy: None, boxes: 0 }
+    }
+
+    /// Is anything in the tile covered? The first search run answers it.
+    pub fn occupancy(&mut self) -> Occupancy {
+        if let Some(o) = self.occupancy {
+            return o;
+        }
+        if let Some(w) = self.results.iter().flatten().find_map(|r| r.extreme.map(|e| e.witness)) {
+            self.occupancy = Some(Occupancy::Covered(w));
+            return Occupancy::Covered(w);
+        }
+        // A search on the first coordinate (a point if inactive: then it only looks for
+        // a witness) settles it.
+        let r = solve_objective(self.tri, self.init, OBJECTIVES[0], &self.cfg);
+        self.boxes += r.boxes;
+        let o = match r.extreme {
+            Some(e) => Occupancy::Covered(e.witness),
+            None if r.undecided == 0 => Occupancy::Empty,
+            None => Occupancy::Unknown,
+        };
+        if self.active[2] {
+            self.results[0] = Some(r);
+        }
+        self.occupancy = Some(o);
+        o
+    }
+
+    /// The result of objective `n` (index into [`OBJECTIVES`]).
+    pub fn objective(&mut self, n: usize) -> ObjectiveResult {
+        if let Some(r) = self.results[n] {
+            return r;
+        }
+        let r = match OBJECTIVES[n] {
+            Objective::Coord { index, max } if !self.active[index] => {
+                // Coverage does not depend on this coordinate: any witness moved to the
+                // end of the range is still interior (re-confirmed exactly).
+                match self.occupancy() {
+                    Occupancy::Covered(w) => {
+                        let mut p = w;
+                        p[index] = if max { self.full[index].hi } else { self.full[index].lo };
+                        let extreme = (classify(self.tri, p) == Coverage::Interior)
+                            .then_some(Extreme { lo: p[index], hi: p[index], witness: p });
+                        ObjectiveResult { extreme, undecided: 0, boxes: 0 }
+                    }
+                    Occupancy::Empty => ObjectiveResult { extreme: None, undecided: 0, boxes: 0 },
+                    Occupancy::Unknown => ObjectiveResult { extreme: None, undecided: 1, boxes: 0 },
+                }
+            }
+            obj => {
+                if self.occupancy() == Occupancy::Empty {
+                    ObjectiveResult { extreme: None, undecided: 0, boxes: 0 }
+                } else {
+                    let r = solve_objective(self.tri, self.init, obj, &self.cfg);
+                    self.boxes += r.boxes;
+                    r
+                }
+            }
+        };
+        self.results[n] = Some(r);
+        r
+    }
+}
+
 /// Certified extents of the interior-covered set over the tile `[x0, x1] x [y0, y1]`
 /// and the sub-box `uvt = [[u0, u1], [v0, v1], [t0, t1]]` (use
 /// `[[-1, 1], [-1, 1], [0, 1]]` for the whole lens and shutter).
 pub fn tile_extents(tri: &Tri, tile: [f64; 4], uvt: [[f64; 2]; 3], cfg: &ExtentsConfig) -> TileExtents {
-    let active = active_dims(tri);
-    let full: Box5 = [
-        Interval::new(tile[0], tile[1]),
-        Interval::new(tile[2], tile[3]),
-        Interval::new(uvt[0][0], uvt[0][1]),
-        Interval::new(uvt[1][0], uvt[1][1]),
-        Interval::new(uvt[2][0], uvt[2][1]),
-    ];
-    // Inactive dimensions are searched at one point; their extents are the whole range.
-    let mut init = full;
-    for i in 2..5 {
-        if !active[i] {
-            let p = if i == 4 { full[4].lo } else { full[i].lo.max(0.0).min(full[i].hi) };
-            init[i] = Interval::point(p);
-        }
+    let mut solver = TileSolver::new(tri, tile, uvt, cfg);
+    if solver.occupancy() == Occupancy::Empty {
+        return TileExtents { empty: true, extremes: [None; 8], undecided: 0, boxes: solver.boxes };
     }
-    let objs = [
-        Objective::Coord { index: 2, max: false },
-        Objective::Coord { index: 2, max: true },
-        Objective::Coord { index: 3, max: false },
-        Objective::Coord { index: 3, max: true },
-        Objective::Coord { index: 4, max: false },
-        Objective::Coord { index: 4, max: true },
-        Objective::Depth { max: false },
-        Objective::Depth { max: true },
-    ];
-    let mut extremes = [None; 8];
-    let mut undecided = 0;
-    let mut boxes = 0;
-    let mut empty = false;
-    for (n, obj) in objs.iter().enumerate() {
-        let inactive_coord = matches!(obj, Objective::Coord { index, .. } if !active[*index]);
-        if inactive_coord {
-            continue; // filled in below from a witness
-        }
-        let first = boxes == 0;
-        let r = solve_objective(tri, init, *obj, cfg);
-        boxes += r.boxes;
-        undecided += r.undecided;
-        extremes[n] = r.extreme;
-        if first && r.extreme.is_none() && r.undecided == 0 {
-            // The first search discarded every box as empty: a certificate.
-            empty = true;
-            break;
-        }
+    let results: [ObjectiveResult; 8] = std::array::from_fn(|n| solver.objective(n));
+    TileExtents {
+        empty: false,
+        extremes: results.map(|r| r.extreme),
+        undecided: results.iter().map(|r| r.undecided).sum(),
+        boxes: solver.boxes,
     }
-    if empty {
-        return TileExtents { empty: true, extremes: [None; 8], undecided, boxes };
-    }
-    // Inactive coordinates: coverage does not depend on them, so any witness moved to
-    // the end of the range is still interior (re-confirmed exactly).
-    let any_witness = extremes.iter().flatten().next().map(|e| e.witness);
-    if let Some(w) = any_witness {
-        for (n, obj) in objs.iter().enumerate() {
-            if let Objective::Coord { index, max } = *obj {
-                if !active[index] {
-                    let mut p = w;
-                    p[index] = if max { full[index].hi } else { full[index].lo };
-                    if classify(tri, p) == Coverage::Interior {
-                        extremes[n] = Some(Extreme { lo: p[index], hi: p[index], witness: p });
-                    }
-                }
-            }
-        }
-    }
-    TileExtents { empty: false, extremes, undecided, boxes }
 }
 
 #[cfg(test)]
