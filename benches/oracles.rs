@@ -3,9 +3,9 @@
 //! `cargo bench --bench oracles`; criterion writes estimates.json under target/criterion.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
-use cullproof::agree::samples_for;
-use cullproof::gen::{physical_case, rng_for, Regime};
-use oracles::embree::{EmbreeOracle, LensTri};
+use cullproof::agree::lens_tri;
+use cullproof::gen::{physical_case, rng_for, samples_for, Regime};
+use oracles::embree::EmbreeOracle;
 use oracles::extents::{tile_extents, ExtentsConfig};
 
 fn cases() -> Vec<(cullproof::model::Case, Vec<[f64; 5]>)> {
@@ -17,18 +17,6 @@ fn cases() -> Vec<(cullproof::model::Case, Vec<[f64; 5]>)> {
             (c, s)
         })
         .collect()
-}
-
-fn lens_tri(c: &cullproof::model::Case) -> LensTri {
-    let l = c.lens.unwrap();
-    let f = |p: [f32; 4]| [p[0], p[1], p[3]];
-    LensTri {
-        q: c.triangle.q.map(f),
-        r: c.triangle.r.map(f),
-        a: l.a() as f64,
-        focus: l.focus as f64,
-        k: c.triangle.k as f64,
-    }
 }
 
 fn coverage(c: &mut Criterion) {
@@ -48,7 +36,7 @@ fn coverage(c: &mut Criterion) {
             black_box(k)
         })
     });
-    let ors: Vec<_> = cs.iter().map(|(c, _)| EmbreeOracle::new(&lens_tri(c)).unwrap()).collect();
+    let ors: Vec<_> = cs.iter().map(|(c, _)| EmbreeOracle::new(&lens_tri(c).unwrap()).unwrap()).collect();
     g.bench_function("embree_single", |b| {
         b.iter(|| {
             let mut k = 0u64;

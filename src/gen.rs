@@ -124,3 +124,67 @@ pub fn physical_case(rng: &mut ChaCha8Rng, regime: Regime) -> Case {
     let tri: Triangle = cam.triangle(q, r);
     Case { triangle: tri, lens: Some(cam) }
 }
+
+/// Samples for a case: half uniform over the triangle's screen region, half drawn near
+/// its edges (a point on an edge of the sheared triangle at a random (u, v, t), pushed
+/// off by 2^-e pixels, e uniform in [0, 40]). Rounded to f32 as hardware samples are.
+pub fn samples_for(case: &Case, rng: &mut ChaCha8Rng, n: usize) -> Vec<[f64; 5]> {
+    let tri = &case.triangle;
+    let dims = tri.dims();
+    let (lens, time) = (dims.has_lens(), dims.has_time());
+    // Screen region: projected vertices over both shutter ends and lens corners.
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for tt in [0.0f32, 1.0] {
+        for (uu, vv) in [(-1.0f32, -1.0f32), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)] {
+            for i in 0..3 {
+                let p = tri.at(i, tt);
+                let c = tri.coc(i, tt);
+                if p[3] > 0.0 {
+                    let px = ((p[0] + uu * c) / p[3]) as f64;
+                    let py = ((p[1] + tri.k * vv * c) / p[3]) as f64;
+                    x0 = x0.min(px);
+                    x1 = x1.max(px);
+                    y0 = y0.min(py);
+                    y1 = y1.max(py);
+                }
+            }
+        }
+    }
+    if !(x0.is_finite() && x1.is_finite() && y0.is_finite() && y1.is_finite()) || x1 - x0 > 1e5 || y1 - y0 > 1e5 {
+        (x0, x1, y0, y1) = (-2000.0, 2000.0, -2000.0, 2000.0);
+    }
+    let pad = 0.1 * (x1 - x0).max(y1 - y0) + 1.0;
+    let mut out = Vec::with_capacity(n);
+    while out.len() < n {
+        let u = if lens { rng.gen_range(-1.0f32..=1.0) } else { 0.0 };
+        let v = if lens { rng.gen_range(-1.0f32..=1.0) } else { 0.0 };
+        let t = if time { rng.gen_range(0.0f32..=1.0) } else { 0.0 };
+        let (x, y) = if out.len() % 2 == 0 {
+            (rng.gen_range(x0 - pad..=x1 + pad), rng.gen_range(y0 - pad..=y1 + pad))
+        } else {
+            let i = rng.gen_range(0..3);
+            let j = (i + 1) % 3;
+            let proj = |k: usize| {
+                let p = tri.at(k, t);
+                let c = tri.coc(k, t);
+                ((p[0] + u * c) as f64 / p[3] as f64, (p[1] + tri.k * v * c) as f64 / p[3] as f64, p[3])
+            };
+            let (ax, ay, aw) = proj(i);
+            let (bx, by, bw) = proj(j);
+            if !(aw > 0.0 && bw > 0.0) {
+                continue;
+            }
+            let f: f64 = rng.gen_range(0.0..=1.0);
+            let off = 2f64.powf(-rng.gen_range(0.0..40.0)) * if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+            let (dx, dy) = (by - ay, -(bx - ax));
+            let len = (dx * dx + dy * dy).sqrt().max(1e-300);
+            (ax + f * (bx - ax) + off * dx / len, ay + f * (by - ay) + off * dy / len)
+        };
+        if !(x.is_finite() && y.is_finite()) {
+            continue;
+        }
+        out.push([x as f32 as f64, y as f32 as f64, u as f64, v as f64, t as f64]);
+    }
+    out
+}
+
