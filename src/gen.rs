@@ -187,4 +187,3 @@ pub fn samples_for(case: &Case, rng: &mut ChaCha8Rng, n: usize) -> Vec<[f64; 5]>
     }
     out
 }
-

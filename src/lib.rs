@@ -9,6 +9,7 @@
 
 pub mod agree;
 pub mod bounds;
+pub mod check;
 pub mod gen;
 pub mod model;
 

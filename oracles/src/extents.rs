@@ -787,6 +787,11 @@ impl<'a> TileSolver<'a> {
         o
     }
 
+    /// The result of objective `n` if it was already computed.
+    pub fn objective_if_known(&self, n: usize) -> Option<ObjectiveResult> {
+        self.results[n]
+    }
+
     /// The result of objective `n` (index into [`OBJECTIVES`]).
     pub fn objective(&mut self, n: usize) -> ObjectiveResult {
         if let Some(r) = self.results[n] {
@@ -800,8 +805,11 @@ impl<'a> TileSolver<'a> {
                     Occupancy::Covered(w) => {
                         let mut p = w;
                         p[index] = if max { self.full[index].hi } else { self.full[index].lo };
-                        let extreme = (classify(self.tri, p) == Coverage::Interior)
-                            .then_some(Extreme { lo: p[index], hi: p[index], witness: p });
+                        let extreme = (classify(self.tri, p) == Coverage::Interior).then_some(Extreme {
+                            lo: p[index],
+                            hi: p[index],
+                            witness: p,
+                        });
                         ObjectiveResult { extreme, undecided: 0, boxes: 0 }
                     }
                     Occupancy::Empty => ObjectiveResult { extreme: None, undecided: 0, boxes: 0 },

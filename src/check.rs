@@ -1,0 +1,436 @@
+//! `check`: the conservativeness gate.
+//!
+//! Every case is a physical (thin-lens) triangle of one regime and a screen tile placed
+//! on the boundary of its footprint. Each method's tile answer is judged against the
+//! ground truth of the `oracles` crate:
+//!
+//! - **Intervals** (u^, v^, t^, z^) and a culled tile: against certified tile extents
+//!   ([`oracles::extents::TileSolver`]), computed once per case and only for the sides a
+//!   method actually narrows. A side is violated when an interior sample (its witness,
+//!   confirmed in exact arithmetic) lies outside it; conservative when the certified
+//!   enclosure of the extreme lies inside; within the solver's resolution otherwise
+//!   (counted conservative), or undecided when the solver left boxes open there.
+//! - **Per-sample constraints**: sampled, not certified: uniform samples in the tile and
+//!   the extents' witnesses (rounded to f32), each judged exactly. A covered sample that
+//!   a constraint culls is a violation; a boundary sample culled is "boundary-only".
+//!
+//! Every violation witness of a physical case is also asked of Embree (a second
+//! opinion, reported, never the judge). The margin needed is the smallest padding of
+//! the violated bound that would admit every witness found.
+//!
+//! Results depend only on the seed and the case indices, never on the thread count:
+//! each case draws from its own stream, and the merge is in case order.
+
+use crate::agree::lens_tri;
+use crate::bounds::{Method, TileResult};
+use crate::gen::{physical_case, rng_for, samples_for, Regime};
+use crate::model::{Case, Sample, Tile};
+use indicatif::{ProgressBar, ProgressStyle};
+use oracles::extents::{ExtentsConfig, Occupancy, TileSolver};
+use oracles::{classify, Coverage, DepthCheck};
+use rand::seq::SliceRandom;
+use rand::Rng;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// What `corpus/expectations.json` may say of a method in a regime.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Expected {
+    Conservative,
+    Violation,
+    Unknown,
+}
+
+/// One expectation: a bare status, or a status with the reason for it.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Entry {
+    Plain(Expected),
+    Explained { expect: Expected, why: String },
+}
+
+impl Entry {
+    pub fn expected(&self) -> Expected {
+        match self {
+            Entry::Plain(e) | Entry::Explained { expect: e, .. } => *e,
+        }
+    }
+}
+
+/// `{ "method id": { "*": "conservative", "regime": {"expect": "violation", "why": "..."} } }`;
+/// a method or regime not listed is expected conservative (published bounds claim to be).
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct Expectations(pub BTreeMap<String, BTreeMap<String, Entry>>);
+
+impl Expectations {
+    /// Load from a file; an error names the file and what is wrong.
+    pub fn load(path: &Path) -> anyhow::Result<Self> {
+        let text =
+            std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("{}: cannot read: {e}", path.display()))?;
+        let ex: Expectations = serde_json::from_str(&text)
+            .map_err(|e| anyhow::anyhow!("{}: not an expectations file: {e}", path.display()))?;
+        for (m, regimes) in &ex.0 {
+            if crate::bounds::by_id(m).is_none() {
+                anyhow::bail!("{}: method `{m}` is not a known method id (see `cullproof methods`)", path.display());
+            }
+            for r in regimes.keys() {
+                if r != "*" && !Regime::ALL.iter().any(|x| x.name() == r) {
+                    anyhow::bail!("{}: method `{m}`: regime `{r}` is not a known regime", path.display());
+                }
+            }
+        }
+        Ok(ex)
+    }
+    pub fn get(&self, method: &str, regime: &str) -> Expected {
+        let Some(m) = self.0.get(method) else { return Expected::Conservative };
+        m.get(regime).or_else(|| m.get("*")).map(Entry::expected).unwrap_or(Expected::Conservative)
+    }
+}
+
+/// Settings of a run.
+#[derive(Clone)]
+pub struct CheckConfig {
+    pub methods: Vec<&'static dyn Method>,
+    pub regimes: Vec<Regime>,
+    pub cases: u64,
+    pub seed: u64,
+    /// Fixed tile size in pixels; None draws from 1, 2, 4, 8, 16.
+    pub tile: Option<f32>,
+    /// This shard `(k, n)`: cases whose index is k modulo n.
+    pub shard: (u64, u64),
+    /// Uniform samples per case for the per-sample constraints.
+    pub samples: usize,
+    pub extents: ExtentsConfig,
+}
+
+impl CheckConfig {
+    /// The balanced default: every method and regime, about a minute on 2 cores.
+    pub fn default_with(methods: Vec<&'static dyn Method>) -> Self {
+        CheckConfig {
+            methods,
+            regimes: Regime::ALL.to_vec(),
+            cases: 280,
+            seed: 1,
+            tile: None,
+            shard: (0, 1),
+            samples: 512,
+            extents: ExtentsConfig { resolution: 1e-3, max_boxes: 20_000, min_fraction: 1e-7 },
+        }
+    }
+}
+
+/// A violation, with what is needed to replay it.
+#[derive(Clone, Debug, Serialize)]
+pub struct Witness {
+    pub case_index: u64,
+    pub case: Case,
+    pub tile: Tile,
+    /// The interior sample the method culls (exactly confirmed).
+    pub sample: [f64; 5],
+    /// Which bound culls it: "tile culled", "u min", "t max", "z min", or a constraint's name.
+    pub bound: String,
+    /// Padding of that bound that would admit the witness.
+    pub margin: f64,
+    /// Embree's verdict on the witness ray (None: not a physical case).
+    pub embree_hit: Option<bool>,
+}
+
+/// One method on one case.
+#[derive(Clone, Debug, Default)]
+struct Judgement {
+    violation: Option<Witness>,
+    boundary_only: bool,
+    undecided: bool,
+}
+
+/// The row of the verdict table.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Row {
+    pub method: String,
+    pub regime: String,
+    pub cases: u64,
+    pub violations: u64,
+    pub boundary_only: u64,
+    pub undecided: u64,
+    /// Largest margin needed over the violations (0 when none).
+    pub margin_needed: f64,
+    pub expected: Option<Expected>,
+    /// "ok", "known violation", "UNEXPECTED VIOLATION", "expected violation not seen".
+    pub status: String,
+    /// The violation with the largest margin.
+    pub worst: Option<Witness>,
+}
+
+/// The result of a run.
+#[derive(Clone, Debug, Serialize)]
+pub struct CheckReport {
+    pub seed: u64,
+    pub cases: u64,
+    pub shard: String,
+    pub rows: Vec<Row>,
+    /// Boxes the extents solver examined in all.
+    pub solver_boxes: u64,
+    pub seconds: f64,
+}
+
+impl CheckReport {
+    /// True when some method violates where it is expected to be conservative.
+    pub fn failed(&self) -> bool {
+        self.rows.iter().any(|r| r.status == "UNEXPECTED VIOLATION")
+    }
+}
+
+/// The case with index `i`: its regime, the triangle and a tile on the footprint's
+/// boundary (a tile containing a sample drawn near an edge).
+pub fn make_case(cfg: &CheckConfig, i: u64) -> (Regime, Case, Tile) {
+    let regime = cfg.regimes[(i % cfg.regimes.len() as u64) as usize];
+    let mut rng = rng_for(cfg.seed, i);
+    let case = physical_case(&mut rng, regime);
+    let size = cfg.tile.unwrap_or_else(|| *[1.0f32, 2.0, 4.0, 8.0, 16.0].choose(&mut rng).unwrap());
+    let pts = samples_for(&case, &mut rng, 16);
+    // odd indices are the edge-biased samples
+    let p = pts[1 + 2 * rng.gen_range(0..8)];
+    let (x0, y0) = ((p[0] as f32 / size).floor() * size, (p[1] as f32 / size).floor() * size);
+    (regime, case, Tile::square(x0, y0, size))
+}
+
+fn f32_sample(p: [f64; 5]) -> Sample {
+    Sample::new(p[0] as f32, p[1] as f32, p[2] as f32, p[3] as f32, p[4] as f32)
+}
+
+/// Judge every method on one case.
+fn judge_case(cfg: &CheckConfig, i: u64) -> (Regime, Vec<Judgement>, u64) {
+    let (regime, case, tile) = make_case(cfg, i);
+    let tri = case.triangle.to_oracle();
+    let tb = [tile.x0 as f64, tile.x1 as f64, tile.y0 as f64, tile.y1 as f64];
+    let mut solver = TileSolver::new(&tri, tb, [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg.extents);
+    let embree = lens_tri(&case).and_then(|l| oracles::embree::EmbreeOracle::new(&l).ok());
+    let mut rng = rng_for(cfg.seed ^ 0x5eed_5a3b_1e5, i);
+    let uniform: Vec<Sample> = (0..cfg.samples)
+        .map(|_| {
+            Sample::new(
+                rng.gen_range(tile.x0..=tile.x1),
+                rng.gen_range(tile.y0..=tile.y1),
+                rng.gen_range(-1.0..=1.0),
+                rng.gen_range(-1.0..=1.0),
+                rng.gen_range(0.0..=1.0),
+            )
+        })
+        .collect();
+    let witness = |sample: [f64; 5], bound: String, margin: f64| Witness {
+        case_index: i,
+        case,
+        tile,
+        sample,
+        bound,
+        margin,
+        embree_hit: embree.as_ref().map(|o| o.hit(sample)),
+    };
+    let mut out = Vec::with_capacity(cfg.methods.len());
+    for m in &cfg.methods {
+        let mut j = Judgement::default();
+        let consider = |j: &mut Judgement, w: Witness| {
+            if j.violation.as_ref().is_none_or(|v| w.margin > v.margin) {
+                j.violation = Some(w);
+            }
+        };
+        match m.setup(&case.triangle).tile(&tile) {
+            TileResult::Empty => match solver.occupancy() {
+                Occupancy::Covered(w) => consider(&mut j, witness(w, "tile culled".into(), f64::INFINITY)),
+                Occupancy::Unknown => j.undecided = true,
+                Occupancy::Empty => {}
+            },
+            TileResult::Bounds(b) => {
+                // Interval sides, certified.
+                let sides = [(b.u, 0usize, -1.0f32, 1.0f32, "u"), (b.v, 2, -1.0, 1.0, "v"), (b.t, 4, 0.0, 1.0, "t")];
+                let mut checks: Vec<(usize, f64, bool, String)> = Vec::new();
+                for (r, n, lo, hi, name) in sides {
+                    if r[0] > lo {
+                        checks.push((n, r[0] as f64, false, format!("{name} min")));
+                    }
+                    if r[1] < hi {
+                        checks.push((n + 1, r[1] as f64, true, format!("{name} max")));
+                    }
+                }
+                if let Some(z) = b.z {
+                    checks.push((6, z[0] as f64, false, "z min".into()));
+                    checks.push((7, z[1] as f64, true, "z max".into()));
+                }
+                for (n, bound, is_max, name) in checks {
+                    let r = solver.objective(n);
+                    match r.extreme {
+                        Some(e) => {
+                            // For a minimum the witness sits at e.hi, for a maximum at e.lo.
+                            let (beyond, margin, inside) = if is_max {
+                                (e.lo > bound, e.lo - bound, e.hi <= bound)
+                            } else {
+                                (e.hi < bound, bound - e.hi, e.lo >= bound)
+                            };
+                            let depth_confirmed = n < 6 || {
+                                let want = if is_max { DepthCheck::Above } else { DepthCheck::Below };
+                                let (z0, z1) = b.z.map(|z| (z[0] as f64, z[1] as f64)).unwrap_or((f64::MIN, f64::MAX));
+                                oracles::classify_depth(&tri, e.witness, z0, z1) == want
+                            };
+                            if beyond && depth_confirmed {
+                                consider(&mut j, witness(e.witness, name, margin));
+                            } else if !inside && r.undecided > 0 {
+                                j.undecided = true;
+                            }
+                        }
+                        None => {
+                            if r.undecided > 0 {
+                                j.undecided = true;
+                            }
+                        }
+                    }
+                }
+                // Per-sample constraints (and the intervals again), sampled.
+                if !b.constraints.is_empty() {
+                    let extra: Vec<Sample> = (0..8)
+                        .filter_map(|n| solver.objective_if_known(n))
+                        .filter_map(|r| r.extreme.map(|e| f32_sample(e.witness)))
+                        .collect();
+                    for s in uniform.iter().chain(&extra) {
+                        if b.admits(s) {
+                            continue;
+                        }
+                        match classify(&tri, s.to_oracle()) {
+                            Coverage::Interior => {
+                                let (name, deficit) = b
+                                    .constraints
+                                    .iter()
+                                    .map(|c| (c.name(), -(c.eval(s) as f64)))
+                                    .filter(|(_, d)| *d > 0.0)
+                                    .fold((String::from("interval"), 0.0), |a, c| if c.1 > a.1 { c } else { a });
+                                consider(&mut j, witness(s.to_oracle(), name, deficit));
+                            }
+                            Coverage::Boundary => j.boundary_only = true,
+                            Coverage::Outside => {}
+                        }
+                    }
+                }
+            }
+        }
+        if j.violation.is_some() {
+            j.boundary_only = false;
+        }
+        out.push(j);
+    }
+    (regime, out, solver.boxes)
+}
+
+/// Run the gate.
+pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport {
+    let start = std::time::Instant::now();
+    let (k, n) = cfg.shard;
+    let ids: Vec<u64> = (0..cfg.cases).filter(|i| i % n == k).collect();
+    let pb = if progress { ProgressBar::new(ids.len() as u64) } else { ProgressBar::hidden() };
+    pb.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} cases {elapsed_precise} eta {eta}").unwrap());
+    let results: Vec<_> = ids
+        .par_iter()
+        .map(|&i| {
+            let r = judge_case(cfg, i);
+            pb.inc(1);
+            r
+        })
+        .collect();
+    pb.finish_and_clear();
+    let mut rows: BTreeMap<(usize, usize), Row> = BTreeMap::new();
+    let mut boxes = 0;
+    for (regime, js, b) in results {
+        boxes += b;
+        let ri = cfg.regimes.iter().position(|r| *r == regime).unwrap();
+        for (mi, j) in js.into_iter().enumerate() {
+            let m = cfg.methods[mi].info().id;
+            let row = rows.entry((mi, ri)).or_insert_with(|| Row {
+                method: m.into(),
+                regime: regime.name().into(),
+                expected: Some(ex.get(m, regime.name())),
+                ..Default::default()
+            });
+            row.cases += 1;
+            row.boundary_only += j.boundary_only as u64;
+            row.undecided += j.undecided as u64;
+            if let Some(w) = j.violation {
+                row.violations += 1;
+                if w.margin >= row.margin_needed {
+                    row.margin_needed = w.margin;
+                    row.worst = Some(w);
+                }
+            }
+        }
+    }
+    let mut rows: Vec<Row> = rows.into_values().collect();
+    for r in &mut rows {
+        r.status = match (r.expected.unwrap_or(Expected::Conservative), r.violations > 0) {
+            (Expected::Conservative, true) => "UNEXPECTED VIOLATION",
+            (Expected::Violation, true) => "known violation",
+            (Expected::Violation, false) => "expected violation not seen",
+            (_, false) => "ok",
+            (Expected::Unknown, true) => "violation",
+        }
+        .into();
+    }
+    CheckReport {
+        seed: cfg.seed,
+        cases: ids.len() as u64,
+        shard: format!("{k}/{n}"),
+        rows,
+        solver_boxes: boxes,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// The verdict table.
+pub fn render(r: &CheckReport) -> String {
+    let mut s = format!(
+        "cullproof check, seed {}, {} cases (shard {}), {:.1} s\n\n{:<24} {:<15} {:>6} {:>10} {:>9} {:>9} {:>11}  status\n",
+        r.seed, r.cases, r.shard, r.seconds, "method", "regime", "cases", "violations", "boundary", "undecided", "margin"
+    );
+    let mut last = "";
+    for row in &r.rows {
+        let m = if row.method == last { "" } else { row.method.as_str() };
+        last = &row.method;
+        let margin = if row.violations == 0 { "-".to_string() } else { format!("{:.3e}", row.margin_needed) };
+        s += &format!(
+            "{:<24} {:<15} {:>6} {:>10} {:>9} {:>9} {:>11}  {}\n",
+            m, row.regime, row.cases, row.violations, row.boundary_only, row.undecided, margin, row.status
+        );
+    }
+    let unexpected: Vec<_> = r.rows.iter().filter(|x| x.status == "UNEXPECTED VIOLATION").collect();
+    s += "\nmargin: the padding of the violated bound that would admit every witness found (inf: a covered tile was culled).\n";
+    if unexpected.is_empty() {
+        s += "verdict: PASS — no method violates where corpus/expectations.json expects it to be conservative\n";
+    } else {
+        s += &format!(
+            "verdict: FAIL — {} method x regime rows show unexpected violations; witnesses:\n",
+            unexpected.len()
+        );
+        for row in unexpected {
+            if let Some(w) = &row.worst {
+                s += &format!(
+                    "  {} / {}: case {} tile [{}, {}]x[{}, {}] sample {:?} culled by {} (margin {:.3e}, Embree {})\n",
+                    row.method,
+                    row.regime,
+                    w.case_index,
+                    w.tile.x0,
+                    w.tile.x1,
+                    w.tile.y0,
+                    w.tile.y1,
+                    w.sample,
+                    w.bound,
+                    w.margin,
+                    match w.embree_hit {
+                        Some(true) => "hits too",
+                        Some(false) => "misses",
+                        None => "n/a",
+                    }
+                );
+            }
+        }
+    }
+    s
+}
