@@ -22,11 +22,12 @@
 //! each case draws from its own stream, and the merge is in case order.
 
 use crate::agree::lens_tri;
-use crate::bounds::{Method, TileResult};
+use crate::bounds::{Method, TileBounds, TileResult};
+use crate::csearch::{self, ConstraintVerdict};
 use crate::gen::{physical_case, rng_for, samples_for, Regime};
 use crate::model::{Case, Sample, Tile};
 use indicatif::{ProgressBar, ProgressStyle};
-use oracles::extents::{ExtentsConfig, Occupancy, TileSolver};
+use oracles::extents::{ExtentsConfig, Occupancy, Side, TileSolver};
 use oracles::{classify, Coverage, DepthCheck};
 use rand::seq::SliceRandom;
 use rand::Rng;
@@ -49,7 +50,14 @@ pub enum Expected {
 #[serde(untagged)]
 pub enum Entry {
     Plain(Expected),
-    Explained { expect: Expected, why: String },
+    Explained {
+        expect: Expected,
+        why: String,
+        /// For an expected violation: the largest margin needed that is expected (a
+        /// larger one is unexpected, e.g. f32 rounding known, a gross error not).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        max_margin: Option<f64>,
+    },
 }
 
 impl Entry {
@@ -84,6 +92,14 @@ impl Expectations {
         }
         Ok(ex)
     }
+    /// The largest expected margin for a method in a regime, if the entry sets one.
+    pub fn max_margin(&self, method: &str, regime: &str) -> Option<f64> {
+        let m = self.0.get(method)?;
+        match m.get(regime).or_else(|| m.get("*"))? {
+            Entry::Explained { max_margin, .. } => *max_margin,
+            Entry::Plain(_) => None,
+        }
+    }
     pub fn get(&self, method: &str, regime: &str) -> Expected {
         let Some(m) = self.0.get(method) else { return Expected::Conservative };
         m.get(regime).or_else(|| m.get("*")).map(Entry::expected).unwrap_or(Expected::Conservative)
@@ -96,6 +112,8 @@ pub struct CheckConfig {
     pub methods: Vec<&'static dyn Method>,
     pub regimes: Vec<Regime>,
     pub cases: u64,
+    /// Run whole batches of cases for about this many seconds instead of `cases`.
+    pub time: Option<f64>,
     pub seed: u64,
     /// Fixed tile size in pixels; None draws from 1, 2, 4, 8, 16.
     pub tile: Option<f32>,
@@ -103,7 +121,15 @@ pub struct CheckConfig {
     pub shard: (u64, u64),
     /// Uniform samples per case for the per-sample constraints.
     pub samples: usize,
+    /// The solver's settings; `extents.resolution` is the gap below which an interval
+    /// side counts as conservative.
     pub extents: ExtentsConfig,
+    /// How close to a claimed bound the search refines (finds f32-sized violations).
+    pub band: f64,
+    /// Boxes per interval side.
+    pub side_budget: usize,
+    /// Boxes per constraint search.
+    pub constraint_budget: usize,
 }
 
 impl CheckConfig {
@@ -113,11 +139,15 @@ impl CheckConfig {
             methods,
             regimes: Regime::ALL.to_vec(),
             cases: 280,
+            time: None,
             seed: 1,
             tile: None,
             shard: (0, 1),
             samples: 512,
             extents: ExtentsConfig { resolution: 1e-3, max_boxes: 20_000, min_fraction: 1e-7 },
+            band: 1e-9,
+            side_budget: 2000,
+            constraint_budget: 2000,
         }
     }
 }
@@ -140,10 +170,13 @@ pub struct Witness {
 
 /// One method on one case.
 #[derive(Clone, Debug, Default)]
-struct Judgement {
-    violation: Option<Witness>,
-    boundary_only: bool,
-    undecided: bool,
+pub struct Judgement {
+    /// The violation with the largest margin found.
+    pub violation: Option<Witness>,
+    /// Only boundary samples were culled.
+    pub boundary_only: bool,
+    /// Some claim could be neither confirmed nor refuted within the budgets.
+    pub undecided: bool,
 }
 
 /// The row of the verdict table.
@@ -158,6 +191,8 @@ pub struct Row {
     /// Largest margin needed over the violations (0 when none).
     pub margin_needed: f64,
     pub expected: Option<Expected>,
+    /// The largest margin the expectation allows (None: any).
+    pub expected_max_margin: Option<f64>,
     /// "ok", "known violation", "UNEXPECTED VIOLATION", "expected violation not seen".
     pub status: String,
     /// The violation with the largest margin.
@@ -201,9 +236,44 @@ fn f32_sample(p: [f64; 5]) -> Sample {
     Sample::new(p[0] as f32, p[1] as f32, p[2] as f32, p[3] as f32, p[4] as f32)
 }
 
+/// Which bound culls an admitted-looking sample, and by how much: the interval it
+/// leaves (distance outside) or the constraint with the most negative value.
+fn culled_by(b: &TileBounds, s: &Sample) -> (String, f64) {
+    let mut worst = (String::from("interval"), 0.0f64);
+    for (name, r, x) in [("u", b.u, s.u), ("v", b.v, s.v), ("t", b.t, s.t)] {
+        if x < r[0] && (r[0] - x) as f64 > worst.1 {
+            worst = (format!("{name} min"), (r[0] as f64 - x as f64));
+        }
+        if x > r[1] && (x - r[1]) as f64 > worst.1 {
+            worst = (format!("{name} max"), (x as f64 - r[1] as f64));
+        }
+    }
+    for c in &b.constraints {
+        let d = -(c.eval(s) as f64);
+        if d > worst.1 {
+            worst = (c.name(), d);
+        }
+    }
+    worst
+}
+
 /// Judge every method on one case.
 fn judge_case(cfg: &CheckConfig, i: u64) -> (Regime, Vec<Judgement>, u64) {
     let (regime, case, tile) = make_case(cfg, i);
+    let (js, boxes) = judge(cfg, &cfg.methods, &case, &tile, i);
+    (regime, js, boxes)
+}
+
+/// Judge `methods` on one case and tile; `i` seeds the uniform samples (and is
+/// recorded in witnesses). Returns the judgements and the solver's box count.
+pub fn judge(
+    cfg: &CheckConfig,
+    methods: &[&'static dyn Method],
+    case: &Case,
+    tile: &Tile,
+    i: u64,
+) -> (Vec<Judgement>, u64) {
+    let (case, tile) = (*case, *tile);
     let tri = case.triangle.to_oracle();
     let tb = [tile.x0 as f64, tile.x1 as f64, tile.y0 as f64, tile.y1 as f64];
     let mut solver = TileSolver::new(&tri, tb, [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg.extents);
@@ -229,8 +299,8 @@ fn judge_case(cfg: &CheckConfig, i: u64) -> (Regime, Vec<Judgement>, u64) {
         margin,
         embree_hit: embree.as_ref().map(|o| o.hit(sample)),
     };
-    let mut out = Vec::with_capacity(cfg.methods.len());
-    for m in &cfg.methods {
+    let mut out = Vec::with_capacity(methods.len());
+    for m in methods {
         let mut j = Judgement::default();
         let consider = |j: &mut Judgement, w: Witness| {
             if j.violation.as_ref().is_none_or(|v| w.margin > v.margin) {
@@ -259,52 +329,47 @@ fn judge_case(cfg: &CheckConfig, i: u64) -> (Regime, Vec<Judgement>, u64) {
                     checks.push((6, z[0] as f64, false, "z min".into()));
                     checks.push((7, z[1] as f64, true, "z max".into()));
                 }
+                let mut found: Vec<Sample> = Vec::new();
                 for (n, bound, is_max, name) in checks {
-                    let r = solver.objective(n);
-                    match r.extreme {
-                        Some(e) => {
-                            // For a minimum the witness sits at e.hi, for a maximum at e.lo.
-                            let (beyond, margin, inside) = if is_max {
-                                (e.lo > bound, e.lo - bound, e.hi <= bound)
-                            } else {
-                                (e.hi < bound, bound - e.hi, e.lo >= bound)
-                            };
-                            let depth_confirmed = n < 6 || {
+                    match solver.side(n, bound, cfg.band, cfg.side_budget) {
+                        Side::Beyond { witness: w, value, .. } => {
+                            // A depth witness is re-judged exactly against the bound.
+                            let confirmed = n < 6 || {
                                 let want = if is_max { DepthCheck::Above } else { DepthCheck::Below };
                                 let (z0, z1) = b.z.map(|z| (z[0] as f64, z[1] as f64)).unwrap_or((f64::MIN, f64::MAX));
-                                oracles::classify_depth(&tri, e.witness, z0, z1) == want
+                                oracles::classify_depth(&tri, w, z0, z1) == want
                             };
-                            if beyond && depth_confirmed {
-                                consider(&mut j, witness(e.witness, name, margin));
-                            } else if !inside && r.undecided > 0 {
+                            if confirmed {
+                                consider(&mut j, witness(w, name, (value - bound).abs()));
+                                found.push(f32_sample(w));
+                            } else {
                                 j.undecided = true;
                             }
                         }
-                        None => {
-                            if r.undecided > 0 {
+                        Side::Within { gap, .. } => {
+                            if gap > cfg.extents.resolution {
                                 j.undecided = true;
                             }
                         }
                     }
                 }
-                // Per-sample constraints (and the intervals again), sampled.
+                // Per-sample constraints: the certified search, then the sampled
+                // cross-check (uniform samples and the witnesses found).
                 if !b.constraints.is_empty() {
-                    let extra: Vec<Sample> = (0..8)
-                        .filter_map(|n| solver.objective_if_known(n))
-                        .filter_map(|r| r.extreme.map(|e| f32_sample(e.witness)))
-                        .collect();
-                    for s in uniform.iter().chain(&extra) {
+                    match csearch::search(&tri, &tile, &b, cfg.constraint_budget, cfg.band).verdict {
+                        ConstraintVerdict::Violation(s) => found.push(s),
+                        ConstraintVerdict::Undecided => j.undecided = true,
+                        ConstraintVerdict::Proved | ConstraintVerdict::WithinResolution => {}
+                    }
+                }
+                if !b.constraints.is_empty() || !found.is_empty() {
+                    for s in uniform.iter().chain(&found) {
                         if b.admits(s) {
                             continue;
                         }
                         match classify(&tri, s.to_oracle()) {
                             Coverage::Interior => {
-                                let (name, deficit) = b
-                                    .constraints
-                                    .iter()
-                                    .map(|c| (c.name(), -(c.eval(s) as f64)))
-                                    .filter(|(_, d)| *d > 0.0)
-                                    .fold((String::from("interval"), 0.0), |a, c| if c.1 > a.1 { c } else { a });
+                                let (name, deficit) = culled_by(&b, s);
                                 consider(&mut j, witness(s.to_oracle(), name, deficit));
                             }
                             Coverage::Boundary => j.boundary_only = true,
@@ -319,25 +384,52 @@ fn judge_case(cfg: &CheckConfig, i: u64) -> (Regime, Vec<Judgement>, u64) {
         }
         out.push(j);
     }
-    (regime, out, solver.boxes)
+    (out, solver.boxes)
 }
 
 /// Run the gate.
 pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport {
     let start = std::time::Instant::now();
     let (k, n) = cfg.shard;
-    let ids: Vec<u64> = (0..cfg.cases).filter(|i| i % n == k).collect();
-    let pb = if progress { ProgressBar::new(ids.len() as u64) } else { ProgressBar::hidden() };
-    pb.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} cases {elapsed_precise} eta {eta}").unwrap());
-    let results: Vec<_> = ids
-        .par_iter()
-        .map(|&i| {
-            let r = judge_case(cfg, i);
-            pb.inc(1);
-            r
-        })
-        .collect();
-    pb.finish_and_clear();
+    let mut results = Vec::new();
+    let mut cases = cfg.cases;
+    match cfg.time {
+        None => {
+            let ids: Vec<u64> = (0..cfg.cases).filter(|i| i % n == k).collect();
+            let pb = if progress { ProgressBar::new(ids.len() as u64) } else { ProgressBar::hidden() };
+            pb.set_style(
+                ProgressStyle::with_template("{bar:40} {pos}/{len} cases {elapsed_precise} eta {eta}").unwrap(),
+            );
+            results = ids
+                .par_iter()
+                .map(|&i| {
+                    let r = judge_case(cfg, i);
+                    pb.inc(1);
+                    r
+                })
+                .collect();
+            pb.finish_and_clear();
+        }
+        Some(secs) => {
+            // Whole batches of case indices until the time is up: the cases judged are
+            // 0..N for the N reported, so `--cases N` repeats the run exactly.
+            let pb = if progress { ProgressBar::new((secs * 1000.0) as u64) } else { ProgressBar::hidden() };
+            pb.set_style(ProgressStyle::with_template("{bar:40} {msg} {elapsed_precise}").unwrap());
+            let batch = 256 * n;
+            let mut next = 0u64;
+            while start.elapsed().as_secs_f64() < secs {
+                let ids: Vec<u64> = (next..next + batch).filter(|i| i % n == k).collect();
+                results.par_extend(ids.par_iter().map(|&i| judge_case(cfg, i)));
+                next += batch;
+                pb.set_position((start.elapsed().as_secs_f64() * 1000.0) as u64);
+                pb.set_message(format!("{next} cases"));
+            }
+            pb.finish_and_clear();
+            cases = next;
+        }
+    }
+    let judged = results.len() as u64;
+    let _ = cases;
     let mut rows: BTreeMap<(usize, usize), Row> = BTreeMap::new();
     let mut boxes = 0;
     for (regime, js, b) in results {
@@ -349,6 +441,7 @@ pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport 
                 method: m.into(),
                 regime: regime.name().into(),
                 expected: Some(ex.get(m, regime.name())),
+                expected_max_margin: ex.max_margin(m, regime.name()),
                 ..Default::default()
             });
             row.cases += 1;
@@ -365,8 +458,10 @@ pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport 
     }
     let mut rows: Vec<Row> = rows.into_values().collect();
     for r in &mut rows {
+        let above = r.expected_max_margin.is_some_and(|m| r.margin_needed > m);
         r.status = match (r.expected.unwrap_or(Expected::Conservative), r.violations > 0) {
             (Expected::Conservative, true) => "UNEXPECTED VIOLATION",
+            (Expected::Violation, true) if above => "UNEXPECTED VIOLATION",
             (Expected::Violation, true) => "known violation",
             (Expected::Violation, false) => "expected violation not seen",
             (_, false) => "ok",
@@ -376,7 +471,7 @@ pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport 
     }
     CheckReport {
         seed: cfg.seed,
-        cases: ids.len() as u64,
+        cases: judged,
         shard: format!("{k}/{n}"),
         rows,
         solver_boxes: boxes,

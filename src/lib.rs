@@ -10,6 +10,9 @@
 pub mod agree;
 pub mod bounds;
 pub mod check;
+pub mod corpus;
+pub mod csearch;
+pub mod explain;
 pub mod gen;
 pub mod model;
 

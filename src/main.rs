@@ -45,8 +45,12 @@ enum Cmd {
         #[arg(long, default_value = "all")]
         regime: String,
         /// Number of cases (spread over the regimes in turn).
-        #[arg(long, default_value_t = 280)]
+        #[arg(long, default_value_t = 280, conflicts_with = "time")]
         cases: u64,
+        /// Run for about this many seconds instead (whole batches of cases; the report
+        /// says how many, and `--cases N` repeats the run exactly).
+        #[arg(long)]
+        time: Option<f64>,
         /// Seed of the case streams.
         #[arg(long, default_value_t = 1)]
         seed: u64,
@@ -66,6 +70,65 @@ enum Cmd {
         #[arg(long, default_value = "corpus/expectations.json")]
         expectations: PathBuf,
     },
+    /// Randomized counterexample search for one method: random cases of every regime
+    /// (or one), each judged like `check`; every violation is shrunk (freeze the motion,
+    /// zero the CoC, snap coordinates to fewer mantissa bits, aspect 1, smaller tiles)
+    /// while it stays a violation, then written to corpus/cases/<method>/<hash>.json
+    /// (an existing file is never overwritten). One file per regime and bound.
+    Search {
+        /// The method id (see `cullproof methods`), or a deliberately broken variant:
+        /// broken/shrink/ID (intervals pulled in by 1e-3), broken/no-coc-pad/ID (the
+        /// circles of confusion dropped).
+        #[arg(long)]
+        method: String,
+        /// Search for about this many seconds.
+        #[arg(long, default_value_t = 30.0)]
+        time: f64,
+        /// Stop after this many violations.
+        #[arg(long, default_value_t = 8)]
+        max: usize,
+        /// Seed of the case streams.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Only this regime.
+        #[arg(long, default_value = "all")]
+        regime: String,
+        /// Tile size in pixels (default: drawn from 1, 2, 4, 8, 16 per case).
+        #[arg(long)]
+        tile: Option<f32>,
+        /// Where to write the shrunk cases.
+        #[arg(long, default_value = "corpus/cases")]
+        out: PathBuf,
+        /// Do not write case files (report only).
+        #[arg(long)]
+        dry_run: bool,
+        /// Write the JSON report to this file ("-" for standard output).
+        #[arg(long)]
+        json: Option<PathBuf>,
+        #[arg(long)]
+        jobs: Option<usize>,
+    },
+    /// Re-judge case files (default: every file under corpus/cases). The stored witness
+    /// is re-decided exactly and the method judged afresh; exit 1 when a file no longer
+    /// shows what it expects. A file that does not parse is an error naming the file
+    /// and the field.
+    Replay {
+        /// Case files or directories.
+        paths: Vec<PathBuf>,
+        /// Write the JSON report to this file ("-" for standard output).
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
+    /// Explain one case file: what the method answered, the exact extents of the
+    /// covered set over the tile, the witness decided exactly (and by Embree); with
+    /// --svg, a picture of the sample space sliced through the witness.
+    Explain {
+        /// The case file.
+        case: PathBuf,
+        /// Write the picture here (refuses to overwrite an existing file).
+        #[arg(long)]
+        svg: Option<PathBuf>,
+    },
     /// List the culling methods under test: id, source, reconstruction flag, dimensions, outputs.
     Methods {
         /// Print JSON instead of a table.
@@ -79,6 +142,13 @@ fn set_jobs(jobs: Option<usize>) -> Result<()> {
         rayon::ThreadPoolBuilder::new().num_threads(j.max(1)).build_global().context("setting the thread count")?;
     }
     Ok(())
+}
+
+fn parse_regime(name: &str) -> Result<cullproof::gen::Regime> {
+    cullproof::gen::Regime::ALL.into_iter().find(|r| r.name() == name).with_context(|| {
+        let all: Vec<_> = cullproof::gen::Regime::ALL.iter().map(|r| r.name()).collect();
+        format!("--regime {name}: no such regime (one of: {}, all)", all.join(", "))
+    })
 }
 
 fn write_json(path: &PathBuf, text: &str) -> Result<()> {
@@ -104,7 +174,7 @@ fn main() -> Result<()> {
                 std::process::exit(1);
             }
         }
-        Cmd::Check { method, regime, cases, seed, tile, jobs, shard, json, expectations } => {
+        Cmd::Check { method, regime, cases, time, seed, tile, jobs, shard, json, expectations } => {
             set_jobs(jobs)?;
             let methods: Vec<_> = if method == "all" {
                 cullproof::bounds::registry()
@@ -114,11 +184,7 @@ fn main() -> Result<()> {
             };
             let mut cfg = cullproof::check::CheckConfig::default_with(methods);
             if regime != "all" {
-                let r = cullproof::gen::Regime::ALL
-                    .into_iter()
-                    .find(|r| r.name() == regime)
-                    .with_context(|| format!("--regime {regime}: no such regime"))?;
-                cfg.regimes = vec![r];
+                cfg.regimes = vec![parse_regime(&regime)?];
             }
             if let Some(t) = tile {
                 anyhow::ensure!(
@@ -132,6 +198,7 @@ fn main() -> Result<()> {
                 .filter(|(k, n)| *n > 0 && k < n)
                 .with_context(|| format!("--shard {shard}: expected K/N with 0 <= K < N"))?;
             cfg.cases = cases;
+            cfg.time = time;
             cfg.seed = seed;
             cfg.tile = tile;
             cfg.shard = (k, n);
@@ -148,6 +215,101 @@ fn main() -> Result<()> {
             }
             if r.failed() {
                 std::process::exit(1);
+            }
+        }
+        Cmd::Search { method, time, max, seed, regime, tile, out, dry_run, json, jobs } => {
+            set_jobs(jobs)?;
+            let m = cullproof::bounds::by_id(&method).or_else(|| cullproof::bounds::broken::parse(&method)).with_context(|| {
+                format!("--method {method}: no such method (see `cullproof methods`; or broken/shrink/ID, broken/no-coc-pad/ID)")
+            })?;
+            let mut cfg = cullproof::check::CheckConfig::default_with(vec![m]);
+            if regime != "all" {
+                cfg.regimes = vec![parse_regime(&regime)?];
+            }
+            cfg.seed = seed;
+            cfg.tile = tile;
+            let r = cullproof::corpus::search(&cfg, m, time, max, (!dry_run).then_some(out.as_path()), true)?;
+            println!(
+                "search {}: seed {}, {} cases in {:.1} s, {} violation(s)",
+                r.method,
+                r.seed,
+                r.cases,
+                r.seconds,
+                r.found.len()
+            );
+            for f in &r.found {
+                println!(
+                    "  {:<15} case {:>6} after {:>6.2} s: {} by {:.3e}; shrunk: {}; {}",
+                    f.regime,
+                    f.case_index,
+                    f.seconds_to_first,
+                    f.bound,
+                    f.margin,
+                    if f.shrink_steps.is_empty() { "-".to_string() } else { f.shrink_steps.join(", ") },
+                    f.file
+                        .as_deref()
+                        .map_or("not written (already in the corpus or --dry-run)".to_string(), |p| format!(
+                            "wrote {p}"
+                        ))
+                );
+            }
+            if let Some(p) = &json {
+                write_json(p, &serde_json::to_string_pretty(&r)?)?;
+            }
+        }
+        Cmd::Replay { paths, json } => {
+            let paths = if paths.is_empty() { vec![PathBuf::from("corpus/cases")] } else { paths };
+            let files = cullproof::corpus::case_files(&paths)?;
+            let cfg = cullproof::check::CheckConfig::default_with(cullproof::bounds::registry());
+            let mut out = Vec::new();
+            for f in &files {
+                out.push(cullproof::corpus::replay(f, &cfg)?);
+            }
+            let bad = out.iter().filter(|r| !r.ok).count();
+            for r in &out {
+                let w = match &r.witness {
+                    Some(Ok((b, m))) => format!("witness holds ({b}, margin {m:.3e})"),
+                    Some(Err(e)) => format!("witness FAILS: {e}"),
+                    None => "no witness".into(),
+                };
+                println!(
+                    "{} {:<22} expected {:<12} judged {:<13} {}  {}",
+                    if r.ok { "ok  " } else { "FAIL" },
+                    r.method,
+                    format!("{:?}", r.expected).to_lowercase(),
+                    r.judged,
+                    w,
+                    r.path
+                );
+            }
+            println!("{} file(s), {} as expected, {} not", out.len(), out.len() - bad, bad);
+            if let Some(p) = &json {
+                write_json(p, &serde_json::to_string_pretty(&out)?)?;
+            }
+            if bad > 0 {
+                std::process::exit(1);
+            }
+        }
+        Cmd::Explain { case, svg } => {
+            let cf = cullproof::corpus::CaseFile::load(&case)?;
+            print!("{}", cullproof::corpus::describe(&cf));
+            if let Some(out) = &svg {
+                let m = cullproof::bounds::by_id(&cf.method).expect("checked at load");
+                let w = cf.witness.as_ref().map(|w| w.sample).unwrap_or_else(|| {
+                    let (x, y) = cf.tile.center();
+                    [x as f64, y as f64, 0.0, 0.0, 0.5]
+                });
+                let caption = match &cf.witness {
+                    Some(w) => format!("{} culls the witness by {:.3e}", w.bound, w.margin),
+                    None => "no witness".into(),
+                };
+                let text = cullproof::explain::svg(&cf.case, &cf.tile, m, w, &caption)?;
+                let mut f = std::fs::OpenOptions::new().write(true).create_new(true).open(out).with_context(|| {
+                    format!("--svg {}: cannot create (an existing file is never overwritten)", out.display())
+                })?;
+                std::io::Write::write_all(&mut f, text.as_bytes())
+                    .with_context(|| format!("writing {}", out.display()))?;
+                println!("wrote {}", out.display());
             }
         }
         Cmd::Methods { json } => {

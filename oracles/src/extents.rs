@@ -173,6 +173,12 @@ pub struct BoxValues {
     pub smear: [[f64; 5]; 4],
     /// The same for the hit depth N / D (zero where D's sign is open).
     pub depth_smear: [f64; 5],
+    /// Every w_i > 0 over the box: for each (u, v, t) the covered (x, y) are the
+    /// interior of the projected triangle.
+    pub in_front: bool,
+    /// In front, and for every (u, v, t) of the box all three projected vertices lie
+    /// on the far side of one side of the box's (x, y) rectangle: nothing is covered.
+    pub separated: bool,
 }
 
 impl BoxValues {
@@ -340,18 +346,39 @@ pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
             }
         }
     }
+    // Separation by a side of the (x, y) rectangle: P_i.x at x = x_lo is
+    // x'_i - x_lo w_i, negative iff vertex i projects left of x_lo (w_i > 0).
+    let in_front = wb.iter().all(|w| w.range(h).lo > 0.0);
+    let separated = in_front && {
+        let side = |p: &[[TPoly; 3]; 2], n: usize, beyond_hi: bool| {
+            (0..3).all(|i| {
+                (0..n).all(|k| {
+                    let r = p[k][i].range(h);
+                    if beyond_hi {
+                        r.lo >= 0.0
+                    } else {
+                        r.hi <= 0.0
+                    }
+                })
+            })
+        };
+        side(&px[0], nu, false) || side(&px[nx - 1], nu, true) || side(&py[0], nv, false) || side(&py[ny - 1], nv, true)
+    };
     let d = d.unwrap();
     // The per-corner quotients bound the depth only if D has one sign over the box.
     let depth = if depth_ok && (d.lo > 0.0 || d.hi < 0.0) { depth } else { None };
     if depth.is_none() || depth_smear.iter().any(|v| !v.is_finite()) {
         depth_smear = [0.0; 5];
     }
-    BoxValues { e: e.map(|v| v.unwrap()), d, nz: nz.unwrap(), depth, smear, depth_smear }
+    BoxValues { e: e.map(|v| v.unwrap()), d, nz: nz.unwrap(), depth, smear, depth_smear, in_front, separated }
 }
 
 /// Empty / full / undecided from the enclosures.
 pub fn classify_values(bv: &BoxValues) -> BoxClass {
     let vals = [bv.e[0], bv.e[1], bv.e[2], bv.d];
+    if bv.separated {
+        return BoxClass::Empty;
+    }
     if vals.iter().any(|v| v.lo.is_nan() || v.hi.is_nan()) {
         return BoxClass::Undecided;
     }
@@ -414,6 +441,22 @@ pub struct ObjectiveResult {
     pub undecided: u64,
     /// Boxes examined.
     pub boxes: u64,
+    /// The most extreme value no box rules out (the lowest for a minimum, the highest
+    /// for a maximum; +inf / -inf when every box was decided): no interior sample
+    /// goes beyond it except the witness's side of the enclosure.
+    pub open: f64,
+}
+
+impl ObjectiveResult {
+    /// The answer for a certified empty set.
+    pub fn nothing(max: bool) -> Self {
+        ObjectiveResult {
+            extreme: None,
+            undecided: 0,
+            boxes: 0,
+            open: if max { f64::NEG_INFINITY } else { f64::INFINITY },
+        }
+    }
 }
 
 /// Extents of the interior-covered set over a tile and a (u, v, t) sub-box.
@@ -512,9 +555,25 @@ fn value_at(tri: &Tri, obj: Objective, s: [f64; 5]) -> Interval {
 /// from a generator seeded by the box itself (so runs are reproducible). Near an
 /// extreme the covered set is often a thin wedge through a box corner that its centre
 /// misses; scattered points find it.
-fn candidate_points(obj: Objective, b: &Box5) -> Vec<[f64; 5]> {
+fn candidate_points(tri: &Tri, obj: Objective, b: &Box5) -> Vec<[f64; 5]> {
     let centre = b.map(|i| i.mid());
-    let mut pts = Vec::with_capacity(7);
+    let mut pts = Vec::with_capacity(9);
+    // The centroid of the projected triangle (at the box's centre in u, v, t) clipped to
+    // the box's (x, y) rectangle, when that is not empty: near an extreme the triangle
+    // only grazes the tile and scattered points miss it.
+    if let Some((cx, cy)) = clipped_centroid(tri, centre, b) {
+        let mut p = centre;
+        (p[0], p[1]) = (cx, cy);
+        if let Objective::Coord { index, max } = obj {
+            let mut near = p;
+            near[index] = if max { b[index].hi } else { b[index].lo };
+            if let Some((nx, ny)) = clipped_centroid(tri, near, b) {
+                (near[0], near[1]) = (nx, ny);
+                pts.push(near);
+            }
+        }
+        pts.push(p);
+    }
     if let Objective::Coord { index, max } = obj {
         let mut near = centre;
         near[index] = if max { b[index].hi } else { b[index].lo };
@@ -541,6 +600,57 @@ fn candidate_points(obj: Objective, b: &Box5) -> Vec<[f64; 5]> {
         pts.push(p);
     }
     pts
+}
+
+/// The centroid of the triangle projected at (u, v, t) = `s[2..5]`, clipped to the
+/// box's (x, y) rectangle (plain f64: it only proposes points, which are then judged
+/// exactly). None when a vertex is not in front or the clipped polygon is empty.
+fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
+    let (u, v, t) = (s[2], s[3], s[4]);
+    let mut poly: Vec<(f64, f64)> = Vec::with_capacity(8);
+    for i in 0..3 {
+        let at = |j: usize| (1.0 - t) * tri.q[i][j] + t * tri.r[i][j];
+        let c = (1.0 - t) * tri.c0[i] + t * tri.c1[i];
+        let w = at(3);
+        if w.is_nan() || w <= 0.0 {
+            return None;
+        }
+        poly.push(((at(0) + u * c) / w, (at(1) + tri.k * v * c) / w));
+    }
+    // Sutherland-Hodgman against the four sides.
+    let sides: [(usize, f64, bool); 4] =
+        [(0, b[0].lo, true), (0, b[0].hi, false), (1, b[1].lo, true), (1, b[1].hi, false)];
+    for (axis, lim, keep_above) in sides {
+        let inside = |p: &(f64, f64)| {
+            let c = if axis == 0 { p.0 } else { p.1 };
+            if keep_above {
+                c >= lim
+            } else {
+                c <= lim
+            }
+        };
+        let mut out = Vec::with_capacity(poly.len() + 2);
+        for k in 0..poly.len() {
+            let (a, bb) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (ia, ib) = (inside(&a), inside(&bb));
+            if ia {
+                out.push(a);
+            }
+            if ia != ib {
+                let (ca, cb) = if axis == 0 { (a.0, bb.0) } else { (a.1, bb.1) };
+                let f = (lim - ca) / (cb - ca);
+                out.push((a.0 + f * (bb.0 - a.0), a.1 + f * (bb.1 - a.1)));
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            return None;
+        }
+    }
+    let n = poly.len() as f64;
+    let (sx, sy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+    let (cx, cy) = (sx / n, sy / n);
+    (cx.is_finite() && cy.is_finite()).then_some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
 }
 
 /// From an interior point, move the objective coordinate towards the box's bound by
@@ -571,6 +681,30 @@ fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box5) -> [f64;
 
 /// Run one objective over the initial box.
 pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfig) -> ObjectiveResult {
+    search(tri, init, obj, cfg, Search::default())
+}
+
+/// What a search may skip.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Search {
+    /// Only values of the objective beyond this bound matter (below it for a minimum,
+    /// above it for a maximum): a box whose objective enclosure lies on the bound's
+    /// side, or within the resolution of it, is tried for witnesses and then dropped
+    /// rather than refined. With a witness found, the result encloses the extreme;
+    /// without one and nothing undecided, no interior sample lies beyond
+    /// `bound -/+ resolution`.
+    pub bound: Option<f64>,
+    /// Stop at the first interior sample (for "is anything covered?").
+    pub first_witness: bool,
+}
+
+/// True while some active lens or time coordinate of the box can still be split.
+fn uvt_open(b: &Box5, init: &Box5, min_w: &[f64; 5], active: &[bool; 5]) -> bool {
+    (2..5).any(|i| active[i] && init[i].width() > 0.0 && b[i].width() > min_w[i])
+}
+
+/// Run one objective with the shortcuts of `opts`.
+pub fn search(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfig, opts: Search) -> ObjectiveResult {
     let active = active_dims(tri);
     let min_w: [f64; 5] = std::array::from_fn(|i| init[i].width() * cfg.min_fraction);
     // Key of the best witness (minimised orientation) and the witness itself.
@@ -588,6 +722,10 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
         }
     };
     let sg = sign(obj);
+    // The bound in the minimised orientation; boxes with keys at or above `drop_at` are
+    // only tried for witnesses.
+    let drop_at = opts.bound.map_or(f64::INFINITY, |b| sg * b - cfg.resolution);
+    let mut dropped_lo = f64::INFINITY;
     let bv = box_values(tri, &init);
     heap.push(Node { key: key_of(obj, &init, &bv), depth: 0, b: init, bv });
     let mut final_lo = f64::INFINITY;
@@ -614,7 +752,7 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
         }
         // Witnesses, while one could still improve on the best.
         if best.is_none_or(|(w, _)| w - key > cfg.resolution) {
-            for p in candidate_points(obj, &b) {
+            for p in candidate_points(tri, obj, &b) {
                 if classify(tri, p) == Coverage::Interior {
                     let p = push_towards_bound(tri, obj, p, &b);
                     let val = value_at(tri, obj, p);
@@ -624,6 +762,15 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
                     }
                 }
             }
+        }
+        if opts.first_witness && best.is_some() {
+            heap.clear();
+            final_lo = f64::NEG_INFINITY;
+            break;
+        }
+        if key >= drop_at {
+            dropped_lo = dropped_lo.min(key);
+            continue;
         }
         // Split where the values move most (the smear), among the dimensions still
         // wider than the minimum; the objective's own coordinate is split at least
@@ -651,6 +798,11 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
                 if dmax == 0.0 && max_smear == 0.0 {
                     score = b[i].width() / init[i].width();
                 }
+            }
+            if i < 2 && bv.in_front && matches!(obj, Objective::Coord { .. }) && uvt_open(&b, &init, &min_w, &active) {
+                // In front of the lens the side test decides (x, y) for a point of
+                // (u, v, t): refine (u, v, t) first.
+                continue;
             }
             if matches!(obj, Objective::Coord { index, .. } if i == index) && b[i].width() > cfg.resolution * 0.5 {
                 score = score.max(0.5 * max_smear);
@@ -686,6 +838,7 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
     if final_lo == f64::INFINITY {
         final_lo = stuck_lo;
     }
+    final_lo = final_lo.min(dropped_lo);
     // Undecided boxes are the ones that keep the enclosure wider than the resolution.
     let undecided = match best {
         Some((w, _)) => stuck.iter().filter(|&&k| w - k > cfg.resolution).count() as u64,
@@ -699,7 +852,8 @@ pub fn solve_objective(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfi
             Extreme { lo: -w, hi: -lo, witness: p }
         }
     });
-    ObjectiveResult { extreme, undecided, boxes }
+    let open = sg * final_lo;
+    ObjectiveResult { extreme, undecided, boxes, open }
 }
 
 /// The eight objectives, in the order of [`TileExtents::extremes`].
@@ -723,6 +877,17 @@ pub enum Occupancy {
     Covered([f64; 5]),
     /// The search ended with undecided boxes and no witness.
     Unknown,
+}
+
+/// The judgement of one side of a claimed interval.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Side {
+    /// An interior sample (confirmed exactly) lies beyond the bound: its objective value
+    /// (the enclosure end nearest the bound) and the enclosure of the extreme found.
+    Beyond { witness: [f64; 5], value: f64, extreme: Extreme },
+    /// No interior sample lies beyond the bound by more than `gap` (certified; 0 when the
+    /// whole region beyond was ruled out; infinite when the search learnt nothing).
+    Within { gap: f64, boxes: u64 },
 }
 
 /// Extents of one tile, computed objective by objective on demand and kept: a caller
@@ -771,20 +936,93 @@ impl<'a> TileSolver<'a> {
             self.occupancy = Some(Occupancy::Covered(w));
             return Occupancy::Covered(w);
         }
-        // A search on the first coordinate (a point if inactive: then it only looks for
-        // a witness) settles it.
-        let r = solve_objective(self.tri, self.init, OBJECTIVES[0], &self.cfg);
+        // A search that stops at the first interior sample settles it.
+        let opts = Search { bound: None, first_witness: true };
+        let r = search(self.tri, self.init, OBJECTIVES[0], &self.cfg, opts);
         self.boxes += r.boxes;
         let o = match r.extreme {
             Some(e) => Occupancy::Covered(e.witness),
             None if r.undecided == 0 => Occupancy::Empty,
             None => Occupancy::Unknown,
         };
-        if self.active[2] {
-            self.results[0] = Some(r);
-        }
         self.occupancy = Some(o);
         o
+    }
+
+    /// Judge the claim "objective `n` stays within `bound`" (at or above it for a
+    /// minimum, at or below for a maximum) with at most `budget` boxes, refining down to
+    /// `band` next to the bound. See [`Side`].
+    pub fn side(&mut self, n: usize, bound: f64, band: f64, budget: usize) -> Side {
+        let obj = OBJECTIVES[n];
+        let max = matches!(obj, Objective::Coord { max: true, .. } | Objective::Depth { max: true });
+        let beyond = |v: f64| if max { v > bound } else { v < bound };
+        let saved = self.cfg;
+        self.cfg.resolution = band;
+        self.cfg.max_boxes = budget;
+        let r = self.beyond(n, bound);
+        self.cfg = saved;
+        match r.extreme {
+            Some(e) if beyond(if max { e.lo } else { e.hi }) => {
+                Side::Beyond { witness: e.witness, value: if max { e.lo } else { e.hi }, extreme: e }
+            }
+            _ => {
+                let open = if r.open.is_nan() {
+                    if max {
+                        f64::INFINITY
+                    } else {
+                        f64::NEG_INFINITY
+                    }
+                } else {
+                    r.open
+                };
+                let gap = if max { open - bound } else { bound - open };
+                Side::Within { gap: gap.max(0.0), boxes: r.boxes }
+            }
+        }
+    }
+
+    /// Does objective `n` reach beyond `bound` (below it for a minimum, above it for a
+    /// maximum)? A search that only looks there: `extreme` is Some (an enclosure of the
+    /// extreme, with its witness) when an interior sample lies beyond the bound or
+    /// within the resolution of it; None with nothing undecided certifies that none
+    /// lies beyond `bound -/+ resolution`. Not cached; a known full result answers
+    /// at once.
+    pub fn beyond(&mut self, n: usize, bound: f64) -> ObjectiveResult {
+        let obj = OBJECTIVES[n];
+        let max = matches!(obj, Objective::Coord { max: true, .. } | Objective::Depth { max: true });
+        let none = ObjectiveResult::nothing(max);
+        let reaches = |e: &Extreme| if max { e.hi > bound } else { e.lo < bound };
+        if let Some(r) = self.results[n] {
+            return match r.extreme {
+                Some(e) if reaches(&e) => r,
+                Some(_) => none,
+                None => r,
+            };
+        }
+        if self.occupancy == Some(Occupancy::Empty) {
+            return none;
+        }
+        match obj {
+            Objective::Coord { index, .. } if !self.active[index] => self.objective(n),
+            Objective::Coord { index, max } => {
+                let mut init = self.init;
+                let d = init[index];
+                let cut = if max { Interval::new(d.lo.max(bound), d.hi) } else { Interval::new(d.lo, d.hi.min(bound)) };
+                if cut.lo > cut.hi {
+                    return none;
+                }
+                init[index] = cut;
+                let r = search(self.tri, init, obj, &self.cfg, Search { bound: Some(bound), first_witness: false });
+                self.boxes += r.boxes;
+                r
+            }
+            Objective::Depth { .. } => {
+                let r =
+                    search(self.tri, self.init, obj, &self.cfg, Search { bound: Some(bound), first_witness: false });
+                self.boxes += r.boxes;
+                r
+            }
+        }
     }
 
     /// The result of objective `n` if it was already computed.
@@ -810,15 +1048,18 @@ impl<'a> TileSolver<'a> {
                             hi: p[index],
                             witness: p,
                         });
-                        ObjectiveResult { extreme, undecided: 0, boxes: 0 }
+                        ObjectiveResult { extreme, undecided: 0, boxes: 0, open: f64::NAN }
                     }
-                    Occupancy::Empty => ObjectiveResult { extreme: None, undecided: 0, boxes: 0 },
-                    Occupancy::Unknown => ObjectiveResult { extreme: None, undecided: 1, boxes: 0 },
+                    Occupancy::Empty => ObjectiveResult::nothing(max),
+                    Occupancy::Unknown => ObjectiveResult { extreme: None, undecided: 1, boxes: 0, open: f64::NAN },
                 }
             }
             obj => {
                 if self.occupancy() == Occupancy::Empty {
-                    ObjectiveResult { extreme: None, undecided: 0, boxes: 0 }
+                    ObjectiveResult::nothing(matches!(
+                        obj,
+                        Objective::Coord { max: true, .. } | Objective::Depth { max: true }
+                    ))
                 } else {
                     let r = solve_objective(self.tri, self.init, obj, &self.cfg);
                     self.boxes += r.boxes;

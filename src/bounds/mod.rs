@@ -16,6 +16,7 @@ use crate::Interval;
 use serde::Serialize;
 
 pub mod bbox;
+pub mod broken;
 pub mod gdam2010;
 pub mod la2011;
 pub mod lb2011;

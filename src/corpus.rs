@@ -1,0 +1,700 @@
+//! The corpus: case files anyone can replay, the randomized counterexample search and
+//! its shrinker.
+//!
+//! A case file (`corpus/cases/<method>/<short-hash>.json`) holds one method, one
+//! triangle (with its thin lens when it has one) and one tile as plain numbers, the
+//! witness sample with the bound that culls it and the margin needed, the expected
+//! verdict and where it came from. [`replay`] re-judges it: the stored witness is
+//! re-decided exactly (it must still be interior and still culled), and the method is
+//! judged afresh on the case.
+
+use crate::bounds::{by_id, Method, TileResult};
+use crate::check::{judge, make_case, CheckConfig, Judgement};
+use crate::gen::Regime;
+use crate::model::{Case, Sample, Tile};
+use anyhow::{anyhow, bail, Context, Result};
+use oracles::{classify, Coverage};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// The format tag of a case file.
+pub const FORMAT: &str = "cullproof-case/1";
+
+/// The expected verdict of a case.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    Violation,
+    Conservative,
+}
+
+/// The sample a method culls although it is covered.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WitnessRecord {
+    /// (x, y, u, v, t).
+    pub sample: [f64; 5],
+    /// The bound that culls it ("tile culled", "u min", a constraint's name).
+    pub bound: String,
+    /// The padding of that bound that would admit it ("inf" when the tile was culled).
+    #[serde(with = "num_or_inf")]
+    pub margin: f64,
+    /// Embree's verdict on the witness ray when the case is physical.
+    #[serde(default)]
+    pub embree_hit: Option<bool>,
+}
+
+/// An f64 written as a JSON number, or as the string "inf" when it is +infinity (JSON
+/// has no infinity).
+mod num_or_inf {
+    use serde::{Deserialize, Deserializer, Serializer};
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if *v == f64::INFINITY {
+            s.serialize_str("inf")
+        } else {
+            s.serialize_f64(*v)
+        }
+    }
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum NumOrStr {
+        Num(f64),
+        Str(String),
+    }
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        match NumOrStr::deserialize(d)? {
+            NumOrStr::Num(v) => Ok(v),
+            NumOrStr::Str(s) if s == "inf" => Ok(f64::INFINITY),
+            NumOrStr::Str(s) => Err(serde::de::Error::custom(format!("expected a number or \"inf\", found {s:?}"))),
+        }
+    }
+}
+
+/// Where a case came from.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Provenance {
+    /// "check", "search" or "hand".
+    pub found_by: String,
+    pub seed: u64,
+    pub case_index: u64,
+    pub regime: String,
+    pub tool_version: String,
+    /// Shrinking steps that were kept.
+    #[serde(default)]
+    pub shrink_steps: Vec<String>,
+}
+
+/// One case file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    pub format: String,
+    pub method: String,
+    pub case: Case,
+    pub tile: Tile,
+    pub expected: Verdict,
+    #[serde(default)]
+    pub witness: Option<WitnessRecord>,
+    pub provenance: Provenance,
+    /// Free text: what the case shows.
+    #[serde(default)]
+    pub note: String,
+}
+
+impl CaseFile {
+    /// Read and check a case file; errors name the file and the field.
+    pub fn load(path: &Path) -> Result<CaseFile> {
+        let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        let de = &mut serde_json::Deserializer::from_str(&text);
+        let cf: CaseFile = serde_path_to_error::deserialize(de).map_err(|e| {
+            let field = e.path().to_string();
+            anyhow!(
+                "{}: field `{}`: {}",
+                path.display(),
+                if field == "." { "(top level)".into() } else { field },
+                e.inner()
+            )
+        })?;
+        if cf.format != FORMAT {
+            bail!("{}: field `format` = {:?}: expected {FORMAT:?}", path.display(), cf.format);
+        }
+        if by_id(&cf.method).is_none() {
+            bail!(
+                "{}: field `method` = {:?} is not a known method id (see `cullproof methods`)",
+                path.display(),
+                cf.method
+            );
+        }
+        cf.case.validate().map_err(|e| anyhow!("{}: in `case`: {e}", path.display()))?;
+        cf.tile.validate().map_err(|e| anyhow!("{}: {e}", path.display()))?;
+        if let Some(w) = &cf.witness {
+            if let Some(k) = w.sample.iter().position(|v| !v.is_finite()) {
+                bail!("{}: field `witness.sample[{k}]` = {} is not finite", path.display(), w.sample[k]);
+            }
+        }
+        Ok(cf)
+    }
+
+    /// A short content hash (16 hex digits, FNV-1a over the method, case and tile).
+    pub fn short_hash(&self) -> String {
+        let key = serde_json::to_string(&(&self.method, &self.case, &self.tile)).unwrap_or_default();
+        let h = key.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ b as u64).wrapping_mul(0x100_0000_01b3));
+        format!("{h:016x}")
+    }
+
+    /// Write under `dir/<method>/<hash>.json`. Never overwrites: an existing file is
+    /// left as it is and reported as `Ok(None)`.
+    pub fn write_new(&self, dir: &Path) -> Result<Option<PathBuf>> {
+        let d = dir.join(&self.method);
+        std::fs::create_dir_all(&d).with_context(|| format!("creating {}", d.display()))?;
+        let path = d.join(format!("{}.json", self.short_hash()));
+        let text = serde_json::to_string_pretty(self)? + "\n";
+        match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
+            Ok(mut f) => {
+                use std::io::Write;
+                f.write_all(text.as_bytes()).with_context(|| format!("writing {}", path.display()))?;
+                Ok(Some(path))
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(None),
+            Err(e) => Err(anyhow!("{}: cannot create: {e}", path.display())),
+        }
+    }
+}
+
+/// Is this sample (rounded or not) interior and culled by the method on this tile?
+/// Returns the bound that culls it and by how much, or why not.
+pub fn witness_holds(
+    m: &dyn Method,
+    case: &Case,
+    tile: &Tile,
+    s: [f64; 5],
+) -> std::result::Result<(String, f64), String> {
+    let tri = case.triangle.to_oracle();
+    let inside = |v: f64, lo: f32, hi: f32| lo as f64 <= v && v <= hi as f64;
+    if !(inside(s[0], tile.x0, tile.x1) && inside(s[1], tile.y0, tile.y1)) {
+        return Err("the witness is not in the tile".into());
+    }
+    match classify(&tri, s) {
+        Coverage::Interior => {}
+        c => return Err(format!("the witness is not interior ({c:?})")),
+    }
+    match m.setup(&case.triangle).tile(tile) {
+        TileResult::Empty => Ok(("tile culled".into(), f64::INFINITY)),
+        TileResult::Bounds(b) => {
+            let mut worst: Option<(String, f64)> = None;
+            let mut note = |name: String, d: f64| {
+                if d > 0.0 && worst.as_ref().is_none_or(|w| d > w.1) {
+                    worst = Some((name, d));
+                }
+            };
+            for (name, r, k) in [("u", b.u, 2), ("v", b.v, 3), ("t", b.t, 4)] {
+                note(format!("{name} min"), r[0] as f64 - s[k]);
+                note(format!("{name} max"), s[k] - r[1] as f64);
+            }
+            if let Some(z) = b.z {
+                use oracles::DepthCheck;
+                match oracles::classify_depth(&tri, s, z[0] as f64, z[1] as f64) {
+                    DepthCheck::Below => {
+                        let d =
+                            oracles::coverage::depth_enclosure(&tri, s).map_or(f64::INFINITY, |e| z[0] as f64 - e.hi);
+                        note("z min".into(), d.max(f64::MIN_POSITIVE));
+                    }
+                    DepthCheck::Above => {
+                        let d =
+                            oracles::coverage::depth_enclosure(&tri, s).map_or(f64::INFINITY, |e| e.lo - z[1] as f64);
+                        note("z max".into(), d.max(f64::MIN_POSITIVE));
+                    }
+                    _ => {}
+                }
+            }
+            let f = Sample::new(s[0] as f32, s[1] as f32, s[2] as f32, s[3] as f32, s[4] as f32);
+            if f.to_oracle() == s {
+                for c in &b.constraints {
+                    note(c.name(), -(c.eval(&f) as f64));
+                }
+            }
+            worst.ok_or_else(|| "the method admits the witness".into())
+        }
+    }
+}
+
+/// The outcome of replaying one file.
+#[derive(Clone, Debug, Serialize)]
+pub struct Replay {
+    pub path: String,
+    pub method: String,
+    pub expected: Verdict,
+    /// The stored witness, re-decided: Ok((bound, margin)) or why it no longer holds.
+    pub witness: Option<std::result::Result<(String, f64), String>>,
+    /// A fresh judgement: "violation", "conservative", "boundary-only", "undecided".
+    pub judged: String,
+    pub margin: Option<f64>,
+    pub ok: bool,
+}
+
+fn judged_word(j: &Judgement) -> &'static str {
+    if j.violation.is_some() {
+        "violation"
+    } else if j.undecided {
+        "undecided"
+    } else if j.boundary_only {
+        "boundary-only"
+    } else {
+        "conservative"
+    }
+}
+
+/// Re-judge one case file.
+pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
+    let cf = CaseFile::load(path)?;
+    let m = by_id(&cf.method).expect("checked at load");
+    let witness = cf.witness.as_ref().map(|w| witness_holds(m, &cf.case, &cf.tile, w.sample));
+    let (js, _) = judge(cfg, &[m], &cf.case, &cf.tile, cf.provenance.case_index);
+    let j = &js[0];
+    let judged = judged_word(j).to_string();
+    let ok = match cf.expected {
+        // The stored witness still holds (the fresh search may find a worse one).
+        Verdict::Violation => matches!(witness, Some(Ok(_))) || j.violation.is_some(),
+        Verdict::Conservative => j.violation.is_none() && !matches!(witness, Some(Ok(_))),
+    };
+    Ok(Replay {
+        path: path.display().to_string(),
+        method: cf.method,
+        expected: cf.expected,
+        witness,
+        judged,
+        margin: j.violation.as_ref().map(|w| w.margin),
+        ok,
+    })
+}
+
+/// Every `*.json` file under the paths (files are taken as given, directories walked).
+pub fn case_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    fn walk(p: &Path, out: &mut Vec<PathBuf>) -> Result<()> {
+        let mut entries: Vec<_> = std::fs::read_dir(p)
+            .with_context(|| format!("{}: cannot list", p.display()))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .collect();
+        entries.sort();
+        for e in entries {
+            if e.is_dir() {
+                walk(&e, out)?;
+            } else if e.extension().is_some_and(|x| x == "json") {
+                out.push(e);
+            }
+        }
+        Ok(())
+    }
+    for p in paths {
+        if p.is_dir() {
+            walk(p, &mut out)?;
+        } else if p.exists() {
+            out.push(p.clone());
+        } else {
+            bail!("{}: no such file or directory", p.display());
+        }
+    }
+    Ok(out)
+}
+
+/// One shrinking step: a simpler case and tile to try.
+type Step = (&'static str, Case, Tile);
+
+/// Drop the lens when an edit leaves the triangle no longer matching it (the case
+/// becomes a per-vertex CoC case, judged by the exact oracle alone).
+fn keep_lens_if_matching(mut c: Case) -> Case {
+    if let Some(l) = &c.lens {
+        if l.check_matches(&c.triangle).is_err() {
+            c.lens = None;
+        }
+    }
+    c
+}
+
+fn round_bits(v: f32, bits: u32) -> f32 {
+    if v == 0.0 || !v.is_finite() {
+        return v;
+    }
+    let drop = 24 - bits;
+    let b = v.to_bits();
+    let half = 1u32 << (drop - 1);
+    f32::from_bits(((b + half) >> drop) << drop)
+}
+
+/// Candidate simplifications, simplest first.
+fn steps(case: &Case, tile: &Tile, witness: [f64; 5]) -> Vec<Step> {
+    let mut out: Vec<Step> = Vec::new();
+    let t = case.triangle;
+    if t.q != t.r || t.c0 != t.c1 {
+        // Freeze the motion at the witness's time.
+        let s = witness[4] as f32;
+        let mut c = *case;
+        for i in 0..3 {
+            for j in 0..4 {
+                let v = (1.0 - s) * t.q[i][j] + s * t.r[i][j];
+                c.triangle.q[i][j] = v;
+                c.triangle.r[i][j] = v;
+            }
+            let cc = (1.0 - s) * t.c0[i] + s * t.c1[i];
+            c.triangle.c0[i] = cc;
+            c.triangle.c1[i] = cc;
+        }
+        out.push(("freeze motion", keep_lens_if_matching(c), *tile));
+    }
+    if t.c0.iter().chain(&t.c1).any(|&c| c != 0.0) {
+        let mut c = *case;
+        c.triangle.c0 = [0.0; 3];
+        c.triangle.c1 = [0.0; 3];
+        out.push(("zero the CoC", keep_lens_if_matching(c), *tile));
+    }
+    for bits in [4u32, 8, 12, 16, 20] {
+        let mut c = *case;
+        let r = |v: &mut f32| *v = round_bits(*v, bits);
+        c.triangle.q.iter_mut().flatten().for_each(r);
+        c.triangle.r.iter_mut().flatten().for_each(r);
+        c.triangle.c0.iter_mut().for_each(r);
+        c.triangle.c1.iter_mut().for_each(r);
+        if c != *case {
+            out.push(("snap to fewer mantissa bits", keep_lens_if_matching(c), *tile));
+        }
+    }
+    if t.k != 1.0 {
+        let mut c = *case;
+        c.triangle.k = 1.0;
+        out.push(("aspect k = 1", keep_lens_if_matching(c), *tile));
+    }
+    // Shrink the tile around the witness to the next smaller power-of-two tile.
+    let size = (tile.x1 - tile.x0).min(tile.y1 - tile.y0);
+    if size > 1.0 {
+        let half = size / 2.0;
+        let x0 = tile.x0 + if witness[0] as f32 >= tile.x0 + half { half } else { 0.0 };
+        let y0 = tile.y0 + if witness[1] as f32 >= tile.y0 + half { half } else { 0.0 };
+        out.push(("shrink the tile", *case, Tile::square(x0, y0, half)));
+    }
+    out
+}
+
+/// Shrink a violation: repeatedly take the first simplification under which the
+/// method still shows a violation. Returns the last case, tile and judgement, and the
+/// steps kept.
+pub fn shrink(
+    cfg: &CheckConfig,
+    m: &'static dyn Method,
+    case: Case,
+    tile: Tile,
+    first: Judgement,
+    index: u64,
+) -> (Case, Tile, Judgement, Vec<String>) {
+    let (mut case, mut tile, mut j) = (case, tile, first);
+    let mut kept = Vec::new();
+    'outer: for _ in 0..64 {
+        let w = j.violation.as_ref().expect("a violation").sample;
+        for (name, c, t) in steps(&case, &tile, w) {
+            if c.validate().is_err() {
+                continue;
+            }
+            let (js, _) = judge(cfg, &[m], &c, &t, index);
+            if js[0].violation.is_some() {
+                (case, tile, j) = (c, t, js[0].clone());
+                kept.push(name.to_string());
+                continue 'outer;
+            }
+        }
+        break;
+    }
+    (case, tile, j, kept)
+}
+
+/// What a search found.
+#[derive(Clone, Debug, Serialize)]
+pub struct Found {
+    pub method: String,
+    pub regime: String,
+    pub case_index: u64,
+    pub seconds_to_first: f64,
+    pub margin: f64,
+    pub bound: String,
+    pub shrink_steps: Vec<String>,
+    /// Where it was written (None: the same case was already in the corpus).
+    pub file: Option<String>,
+}
+
+/// The result of a search.
+#[derive(Clone, Debug, Serialize)]
+pub struct SearchReport {
+    pub method: String,
+    pub seed: u64,
+    pub cases: u64,
+    pub seconds: f64,
+    pub found: Vec<Found>,
+}
+
+/// Randomized search for violations of one method: cases of the regimes in turn, in
+/// parallel batches (the order of cases, hence the result, does not depend on the
+/// thread count), for `seconds` or until `max_found` violations; each violation is
+/// shrunk and written to `out` (never overwriting).
+pub fn search(
+    cfg: &CheckConfig,
+    m: &'static dyn Method,
+    seconds: f64,
+    max_found: usize,
+    out: Option<&Path>,
+    progress: bool,
+) -> Result<SearchReport> {
+    use rayon::prelude::*;
+    let start = std::time::Instant::now();
+    let pb = if progress { indicatif::ProgressBar::new_spinner() } else { indicatif::ProgressBar::hidden() };
+    let mut found = Vec::new();
+    let mut next = 0u64;
+    let batch = 8 * rayon::current_num_threads() as u64;
+    let mut regimes_seen = std::collections::BTreeSet::new();
+    while start.elapsed().as_secs_f64() < seconds && found.len() < max_found {
+        let ids: Vec<u64> = (next..next + batch).collect();
+        next += batch;
+        let results: Vec<(u64, Regime, Case, Tile, Judgement)> = ids
+            .par_iter()
+            .map(|&i| {
+                let (regime, case, tile) = make_case(cfg, i);
+                let (js, _) = judge(cfg, &[m], &case, &tile, i);
+                (i, regime, case, tile, js.into_iter().next().unwrap())
+            })
+            .collect();
+        pb.set_message(format!("{} cases, {} found", next, found.len()));
+        for (i, regime, case, tile, j) in results {
+            if j.violation.is_none() || found.len() >= max_found {
+                continue;
+            }
+            let t_first = start.elapsed().as_secs_f64();
+            // One file per regime and bound is enough for a run.
+            let key = (regime, j.violation.as_ref().unwrap().bound.clone());
+            if !regimes_seen.insert(key) {
+                continue;
+            }
+            let (c, t, j, steps) = shrink(cfg, m, case, tile, j, i);
+            let w = j.violation.clone().unwrap();
+            let cf = CaseFile {
+                format: FORMAT.into(),
+                method: m.info().id.into(),
+                case: c,
+                tile: t,
+                expected: Verdict::Violation,
+                witness: Some(WitnessRecord {
+                    sample: w.sample,
+                    bound: w.bound.clone(),
+                    margin: w.margin,
+                    embree_hit: w.embree_hit,
+                }),
+                provenance: Provenance {
+                    found_by: "search".into(),
+                    seed: cfg.seed,
+                    case_index: i,
+                    regime: regime.name().into(),
+                    tool_version: env!("CARGO_PKG_VERSION").into(),
+                    shrink_steps: steps.clone(),
+                },
+                note: String::new(),
+            };
+            let file = match out {
+                Some(dir) => cf.write_new(dir)?.map(|p| p.display().to_string()),
+                None => None,
+            };
+            found.push(Found {
+                method: m.info().id.into(),
+                regime: regime.name().into(),
+                case_index: i,
+                seconds_to_first: t_first,
+                margin: w.margin,
+                bound: w.bound,
+                shrink_steps: steps,
+                file,
+            });
+        }
+    }
+    pb.finish_and_clear();
+    Ok(SearchReport {
+        method: m.info().id.into(),
+        seed: cfg.seed,
+        cases: next,
+        seconds: start.elapsed().as_secs_f64(),
+        found,
+    })
+}
+
+/// The case in words: the method's answer, the exact extents of the covered set over
+/// the tile, and the witness decided exactly (and by Embree when physical).
+pub fn describe(cf: &CaseFile) -> String {
+    use oracles::extents::{ExtentsConfig, Occupancy, TileSolver};
+    let m = by_id(&cf.method).expect("checked at load");
+    let info = m.info();
+    let tri = cf.case.triangle.to_oracle();
+    let mut s =
+        format!("{} ({}{})\n", info.id, info.source, if info.reconstruction { "; a reconstruction" } else { "" });
+    s += &format!(
+        "case: {} triangle ({}), found by {} (seed {}, case {}, regime {}){}\n",
+        cf.case.triangle.dims().name(),
+        if cf.case.lens.is_some() { "thin lens" } else { "no physical lens: exact oracle only" },
+        cf.provenance.found_by,
+        cf.provenance.seed,
+        cf.provenance.case_index,
+        cf.provenance.regime,
+        if cf.provenance.shrink_steps.is_empty() {
+            String::new()
+        } else {
+            format!(", shrunk: {}", cf.provenance.shrink_steps.join(", "))
+        }
+    );
+    if !cf.note.is_empty() {
+        s += &format!("note: {}\n", cf.note);
+    }
+    let t = &cf.tile;
+    s += &format!("tile: [{}, {}] x [{}, {}]\n", t.x0, t.x1, t.y0, t.y1);
+    let prep = m.setup(&cf.case.triangle);
+    if let Some(why) = prep.disabled() {
+        s += &format!("the method is disabled for this triangle: {why}\n");
+    }
+    match prep.tile(t) {
+        TileResult::Empty => s += "the method says: tile empty (culled)\n",
+        TileResult::Bounds(b) => {
+            s += &format!(
+                "the method says: u in [{}, {}], v in [{}, {}], t in [{}, {}]",
+                b.u[0], b.u[1], b.v[0], b.v[1], b.t[0], b.t[1]
+            );
+            if let Some(z) = b.z {
+                s += &format!(", depth in [{}, {}]", z[0], z[1]);
+            }
+            if !b.constraints.is_empty() {
+                let names: Vec<_> = b.constraints.iter().map(|c| c.name()).collect();
+                s += &format!(", and per sample: {}", names.join("; "));
+            }
+            s += "\n";
+        }
+    }
+    let cfg = ExtentsConfig { resolution: 1e-4, max_boxes: 20_000, min_fraction: 1e-7 };
+    let tb = [t.x0 as f64, t.x1 as f64, t.y0 as f64, t.y1 as f64];
+    let mut solver = TileSolver::new(&tri, tb, [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg);
+    match solver.occupancy() {
+        Occupancy::Empty => s += "exact: nothing in the tile is covered (certified)\n",
+        Occupancy::Unknown => s += "exact: the solver could not decide whether anything in the tile is covered\n",
+        Occupancy::Covered(_) => {
+            s += "exact extents of the covered samples over the tile (certified enclosures of each extreme):\n";
+            for (n, name) in
+                ["u min", "u max", "v min", "v max", "t min", "t max", "depth min", "depth max"].iter().enumerate()
+            {
+                let r = solver.objective(n);
+                match r.extreme {
+                    Some(e) => {
+                        s += &format!(
+                            "  {name:<9} in [{:.9}, {:.9}]{}\n",
+                            e.lo,
+                            e.hi,
+                            if r.undecided > 0 { format!(" ({} boxes undecided)", r.undecided) } else { String::new() }
+                        )
+                    }
+                    None => s += &format!("  {name:<9} unknown ({} boxes undecided)\n", r.undecided),
+                }
+            }
+        }
+    }
+    match &cf.witness {
+        None => s += "no witness stored\n",
+        Some(w) => {
+            let p = w.sample;
+            s += &format!("witness (x, y, u, v, t) = ({}, {}, {}, {}, {})\n", p[0], p[1], p[2], p[3], p[4]);
+            s += &format!("  exact coverage: {:?}\n", classify(&tri, p));
+            match witness_holds(m, &cf.case, &cf.tile, p) {
+                Ok((b, d)) => s += &format!("  culled by {b}, {d:.6e} beyond it: a VIOLATION\n"),
+                Err(e) => s += &format!("  not a violation: {e}\n"),
+            }
+            if let Some(l) = crate::agree::lens_tri(&cf.case) {
+                if let Ok(o) = oracles::embree::EmbreeOracle::new(&l) {
+                    s += &format!("  Embree (f32, second opinion): {}\n", if o.hit(p) { "hit" } else { "miss" });
+                }
+            }
+            s += &format!("  stored: culled by {}, margin needed {:.6e}\n", w.bound, w.margin);
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_bits_keeps_the_leading_bits() {
+        assert_eq!(round_bits(1.0, 4), 1.0);
+        assert_eq!(round_bits(1.1, 4), 1.125);
+        assert_eq!(round_bits(-3.3, 8), -3.296875);
+    }
+
+    #[test]
+    fn a_bad_field_is_named_with_the_file() {
+        let dir = std::env::temp_dir().join(format!("cullproof-corpus-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("bad.json");
+        let (_, case, tile) = make_case(&CheckConfig::default_with(crate::bounds::registry()), 3);
+        let mut v = serde_json::to_value(CaseFile {
+            format: FORMAT.into(),
+            method: "bbox".into(),
+            case,
+            tile,
+            expected: Verdict::Conservative,
+            witness: None,
+            provenance: Provenance {
+                found_by: "hand".into(),
+                seed: 1,
+                case_index: 3,
+                regime: "defocus".into(),
+                tool_version: "0".into(),
+                shrink_steps: vec![],
+            },
+            note: String::new(),
+        })
+        .unwrap();
+        v["case"]["triangle"]["q"][1][2] = serde_json::json!("oops");
+        std::fs::write(&p, serde_json::to_string(&v).unwrap()).unwrap();
+        let e = CaseFile::load(&p).unwrap_err().to_string();
+        assert!(e.contains("bad.json") && e.contains("case.triangle.q[1][2]"), "{e}");
+        v["case"]["triangle"]["q"][1][2] = serde_json::json!(1.0);
+        v["tile"]["x1"] = v["tile"]["x0"].clone();
+        std::fs::write(&p, serde_json::to_string(&v).unwrap()).unwrap();
+        let e = CaseFile::load(&p).unwrap_err().to_string();
+        assert!(e.contains("bad.json") && e.contains("tile.x1"), "{e}");
+        v["method"] = serde_json::json!("nope");
+        std::fs::write(&p, serde_json::to_string(&v).unwrap()).unwrap();
+        let e = CaseFile::load(&p).unwrap_err().to_string();
+        assert!(e.contains("method") && e.contains("nope"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn writing_never_overwrites() {
+        let dir = std::env::temp_dir().join(format!("cullproof-corpus-write-{}", std::process::id()));
+        let (_, case, tile) = make_case(&CheckConfig::default_with(crate::bounds::registry()), 5);
+        let mut cf = CaseFile {
+            format: FORMAT.into(),
+            method: "bbox".into(),
+            case,
+            tile,
+            expected: Verdict::Conservative,
+            witness: None,
+            provenance: Provenance {
+                found_by: "hand".into(),
+                seed: 1,
+                case_index: 5,
+                regime: "x".into(),
+                tool_version: "0".into(),
+                shrink_steps: vec![],
+            },
+            note: "first".into(),
+        };
+        let p = cf.write_new(&dir).unwrap().expect("written");
+        cf.note = "second".into();
+        assert_eq!(cf.write_new(&dir).unwrap(), None);
+        assert!(std::fs::read_to_string(&p).unwrap().contains("first"));
+        assert_eq!(CaseFile::load(&p).unwrap().note, "first");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
