@@ -694,7 +694,9 @@ pub struct Search {
     /// without one and nothing undecided, no interior sample lies beyond
     /// `bound -/+ resolution`.
     pub bound: Option<f64>,
-    /// Stop at the first interior sample (for "is anything covered?").
+    /// Stop at the first interior sample (for "is anything covered?"). With `bound`
+    /// set and a witness beyond it, the extreme is refined only until the margin (its
+    /// distance from the bound) is known to 1 %.
     pub first_witness: bool,
 }
 
@@ -733,7 +735,13 @@ pub fn search(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfig, opts: 
     while let Some(Node { key, depth, b, bv }) = heap.pop() {
         let lower = key.min(stuck_lo);
         if let Some((w, _)) = best {
-            if w - lower <= cfg.resolution {
+            // Beyond a claimed bound, the margin (bound - extreme) is wanted to 1 %,
+            // not to the band that finds it.
+            let enough = match opts.bound {
+                Some(bd) => cfg.resolution.max(0.01 * (sg * bd - w)),
+                None => cfg.resolution,
+            };
+            if w - lower <= enough {
                 final_lo = lower;
                 heap.clear();
                 break;
