@@ -4,6 +4,7 @@
 //! - [`model`]: the one model of `shared/notes/model.md` (triangle, camera, tile, sample).
 //! - [`bounds`]: the culling tests under test, one file per published method.
 //! - [`agree`]: the agreement run of the exact oracle against Embree.
+//! - [`tightness`]: sample test efficiency (STE) per method, tile size and scene.
 //!
 //! The ground truth lives in the separate `oracles` crate, which never imports this one.
 
@@ -15,6 +16,7 @@ pub mod csearch;
 pub mod explain;
 pub mod gen;
 pub mod model;
+pub mod tightness;
 
 /// Outward-rounded interval arithmetic (the same small type the oracles use: it is
 /// plain arithmetic, not a coverage decision, so sharing it puts no verdict on both

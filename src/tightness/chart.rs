@@ -1,0 +1,259 @@
+//! The STE-against-cost chart (`ste_vs_cost.svg`): one panel per setting; x = relative
+//! time of the timing pass (log axis), y = STE (%) at the timing pass's tile size; one
+//! colour per method; published methods as filled circles, reconstructions
+//! (`MethodInfo::reconstruction`) as hollow triangles; a method that culled covered
+//! samples gets a red cross over its marker and is left out of the Pareto front; the
+//! front (no other conservative method is both faster and tighter) is joined by a black
+//! line and ringed. The legend is a column of its own at the right, drawn in pixel
+//! coordinates (plotters' series legend would sit over the points).
+//!
+//! Drawn with `plotters` and only its SVG backend: without a font feature plotters
+//! measures text with its built-in estimate and the SVG backend writes the labels as
+//! SVG `<text>` elements (the viewer picks the font), so no system font is needed.
+
+use super::raster::TimingRow;
+use super::scene::Setting;
+use super::MethodRow;
+use plotters::prelude::*;
+
+/// One method on one panel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Point {
+    pub method: String,
+    pub reconstruction: bool,
+    /// Covered samples the method culled.
+    pub missed: u64,
+    /// Relative time (x).
+    pub cost: f64,
+    /// STE in percent (y).
+    pub ste: f64,
+}
+
+/// The points of each setting: STE at `tile` and the timing pass's relative cost.
+pub fn points(rows: &[MethodRow], timing: &[TimingRow], tile: u32) -> Vec<(Setting, Vec<Point>)> {
+    let mut out: Vec<(Setting, Vec<Point>)> = Vec::new();
+    for t in timing {
+        let Some(r) = rows.iter().find(|r| r.method == t.method && r.setting == t.setting && r.tile == tile) else {
+            continue;
+        };
+        let (Some(ste), true) = (r.ste, t.relative.is_finite() && t.relative > 0.0) else { continue };
+        let p = Point {
+            method: r.method.clone(),
+            reconstruction: r.reconstruction,
+            missed: r.counts.missed,
+            cost: t.relative,
+            ste: 100.0 * ste,
+        };
+        match out.iter_mut().find(|(s, _)| *s == t.setting) {
+            Some((_, v)) => v.push(p),
+            None => out.push((t.setting, vec![p])),
+        }
+    }
+    out
+}
+
+/// Indices of the Pareto front (lower cost, higher STE) among the points that missed
+/// no covered sample, in order of cost.
+pub fn pareto(pts: &[Point]) -> Vec<usize> {
+    let mut idx: Vec<usize> = (0..pts.len()).filter(|&i| pts[i].missed == 0).collect();
+    idx.sort_by(|&a, &b| pts[a].cost.total_cmp(&pts[b].cost).then(pts[b].ste.total_cmp(&pts[a].ste)));
+    let mut front = Vec::new();
+    let mut best = f64::NEG_INFINITY;
+    for i in idx {
+        if pts[i].ste > best {
+            best = pts[i].ste;
+            front.push(i);
+        }
+    }
+    front
+}
+
+/// Tick values for a log axis over [lo, hi]: the densest of the 1-1.5-2-3-5-7, 1-2-5
+/// and 1 sequences (times powers of ten) that gives at most 6 ticks.
+pub fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
+    if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+        return vec![];
+    }
+    let seqs: [&[f64]; 3] = [&[1.0, 1.5, 2.0, 3.0, 5.0, 7.0], &[1.0, 2.0, 5.0], &[1.0]];
+    let (e0, e1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let mut best = Vec::new();
+    for seq in seqs {
+        let mut v = Vec::new();
+        for e in e0..=e1 {
+            for m in seq {
+                // Round to a short decimal so the labels print cleanly.
+                let x = format!("{:.6e}", m * 10f64.powi(e)).parse::<f64>().unwrap_or(0.0);
+                if (lo..=hi).contains(&x) {
+                    v.push(x);
+                }
+            }
+        }
+        best = v;
+        if best.len() <= 6 {
+            break;
+        }
+    }
+    best
+}
+
+fn colour(i: usize) -> RGBColor {
+    const C: [(u8, u8, u8); 12] = [
+        (31, 119, 180),
+        (255, 127, 14),
+        (44, 160, 44),
+        (214, 39, 40),
+        (148, 103, 189),
+        (140, 86, 75),
+        (227, 119, 194),
+        (127, 127, 127),
+        (188, 189, 34),
+        (23, 190, 207),
+        (0, 0, 128),
+        (128, 128, 0),
+    ];
+    let (r, g, b) = C[i % C.len()];
+    RGBColor(r, g, b)
+}
+
+/// The SVG text of the chart. `methods` fixes the colour order; `title` heads it.
+pub fn svg(panels: &[(Setting, Vec<Point>)], methods: &[String], title: &str) -> anyhow::Result<String> {
+    let err = |e: &dyn std::fmt::Display| anyhow::anyhow!("chart: {e}");
+    let n = panels.len().max(1);
+    let legend_w = 240u32;
+    let (w, h) = (420 * n as u32 + legend_w, 500u32);
+    let tri = |r: i32| vec![(0, -r), (r, r * 3 / 4), (-r, r * 3 / 4), (0, -r)];
+    let recon_of =
+        |m: &str| panels.iter().flat_map(|(_, v)| v.iter()).find(|p| p.method == m).map(|p| p.reconstruction);
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        let root = root.titled(title, ("sans-serif", 18)).map_err(|e| err(&e))?;
+        let (body, legend) = root.split_horizontally(w - legend_w);
+        // The legend, drawn by hand in pixel coordinates.
+        let text = ("sans-serif", 12).into_font();
+        let mut y = 40;
+        for (i, m) in methods.iter().enumerate() {
+            let c = colour(i);
+            if recon_of(m) == Some(true) {
+                legend
+                    .draw(&(EmptyElement::at((16, y)) + PathElement::new(tri(5), c.stroke_width(2))))
+                    .map_err(|e| err(&e))?;
+            } else {
+                legend.draw(&(EmptyElement::at((16, y)) + Circle::new((0, 0), 4, c.filled()))).map_err(|e| err(&e))?;
+            }
+            legend.draw(&Text::new(m.clone(), (30, y - 7), text.clone())).map_err(|e| err(&e))?;
+            y += 20;
+        }
+        y += 10;
+        let notes: [(&str, u8); 4] = [
+            ("filled circle: published method", 0),
+            ("hollow triangle: reconstruction", 1),
+            ("ring + black line: Pareto front", 2),
+            ("red cross: culled covered samples", 3),
+        ];
+        for (t, kind) in notes {
+            let at = EmptyElement::at((16, y));
+            match kind {
+                0 => legend.draw(&(at + Circle::new((0, 0), 4, BLACK.filled()))),
+                1 => legend.draw(&(at + PathElement::new(tri(5), BLACK.stroke_width(2)))),
+                2 => legend.draw(&(at + Circle::new((0, 0), 8, BLACK.stroke_width(1)))),
+                _ => legend.draw(&(at + Cross::new((0, 0), 5, RED.stroke_width(2)))),
+            }
+            .map_err(|e| err(&e))?;
+            legend.draw(&Text::new(t, (30, y - 7), text.clone())).map_err(|e| err(&e))?;
+            y += 20;
+        }
+        legend
+            .draw(&Text::new("(a method with a cross is left", (30, y - 7), text.clone()))
+            .and_then(|_| legend.draw(&Text::new(" out of the Pareto front)", (30, y + 9), text.clone())))
+            .map_err(|e| err(&e))?;
+        let areas = body.split_evenly((1, n));
+        for (area, (setting, pts)) in areas.iter().zip(panels) {
+            let xmin = pts.iter().map(|p| p.cost).fold(f64::INFINITY, f64::min);
+            let xmax = pts.iter().map(|p| p.cost).fold(f64::NEG_INFINITY, f64::max);
+            let (xmin, xmax) = if xmin.is_finite() { (xmin / 1.3, xmax * 1.3) } else { (0.1, 10.0) };
+            let ymax = pts.iter().map(|p| p.ste).fold(1.0, f64::max) * 1.1;
+            let mut chart = ChartBuilder::on(area)
+                .caption(setting.name(), ("sans-serif", 16))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(50)
+                .build_cartesian_2d((xmin..xmax).log_scale().with_key_points(log_ticks(xmin, xmax)), 0.0..ymax)
+                .map_err(|e| err(&e))?;
+            chart
+                .configure_mesh()
+                .x_desc("time relative to the reference (log)")
+                .y_desc("STE (%)")
+                .x_label_formatter(&|x| format!("{x}"))
+                .y_label_formatter(&|y| format!("{y:.0}"))
+                .draw()
+                .map_err(|e| err(&e))?;
+            let front = pareto(pts);
+            chart
+                .draw_series(LineSeries::new(front.iter().map(|&i| (pts[i].cost, pts[i].ste)), BLACK.stroke_width(1)))
+                .map_err(|e| err(&e))?;
+            for &i in &front {
+                chart
+                    .draw_series(std::iter::once(Circle::new((pts[i].cost, pts[i].ste), 9, BLACK.stroke_width(1))))
+                    .map_err(|e| err(&e))?;
+            }
+            for p in pts {
+                let c = colour(methods.iter().position(|m| *m == p.method).unwrap_or(0));
+                let xy = (p.cost, p.ste);
+                if p.reconstruction {
+                    chart.draw_series(std::iter::once(
+                        EmptyElement::at(xy) + PathElement::new(tri(6), c.stroke_width(2)),
+                    ))
+                } else {
+                    chart.draw_series(std::iter::once(EmptyElement::at(xy) + Circle::new((0, 0), 5, c.filled())))
+                }
+                .map_err(|e| err(&e))?;
+                if p.missed > 0 {
+                    chart.draw_series(std::iter::once(Cross::new(xy, 6, RED.stroke_width(2)))).map_err(|e| err(&e))?;
+                }
+            }
+        }
+        root.present().map_err(|e| err(&e))?;
+    }
+    Ok(buf)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(m: &str, cost: f64, ste: f64, missed: u64) -> Point {
+        Point { method: m.into(), reconstruction: m.starts_with('r'), missed, cost, ste }
+    }
+
+    #[test]
+    fn pareto_keeps_only_undominated_conservative_points() {
+        let pts = vec![
+            p("a", 1.0, 5.0, 0),
+            p("b", 2.0, 4.0, 0),
+            p("c", 3.0, 9.0, 0),
+            p("d", 0.5, 50.0, 3),
+            p("e", 1.0, 6.0, 0),
+        ];
+        assert_eq!(pareto(&pts), vec![4, 2]);
+    }
+
+    #[test]
+    fn log_ticks_are_few_and_inside() {
+        assert_eq!(log_ticks(0.7, 1.6), vec![0.7, 1.0, 1.5]);
+        assert_eq!(log_ticks(0.6, 14.0), vec![1.0, 2.0, 5.0, 10.0]);
+        let t = log_ticks(0.001, 1e6);
+        assert!(t.len() <= 10 && t.iter().all(|&x| (0.001..=1e6).contains(&x)), "{t:?}");
+    }
+
+    #[test]
+    fn svg_has_the_labels_as_text() {
+        let pts = vec![p("bbox", 1.0, 5.0, 0), p("recon", 2.0, 9.0, 0), p("bad", 1.5, 20.0, 7)];
+        let s = svg(&[(Setting::Blur, pts)], &["bbox".into(), "recon".into(), "bad".into()], "test chart").unwrap();
+        assert!(s.starts_with("<svg") && s.contains("</svg>"));
+        for t in ["test chart", "blur", "bbox", "recon", "STE (%)"] {
+            assert!(s.contains(t), "missing {t}");
+        }
+    }
+}

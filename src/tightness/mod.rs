@@ -1,0 +1,669 @@
+//! `tightness`: how many samples each culling method lets through, against how many the
+//! triangle really covers — the **sample test efficiency** (STE, Fatahalian et al.
+//! 2009; Munkberg & Akenine-Möller 2012 Table 1, Wu 2013 Table 4.1) per method, tile
+//! size and blur setting of a scene.
+//!
+//! # The measurement ([`measure`])
+//! For every triangle of a scene (see [`scene`]) and every method:
+//! 1. **Setup** once per triangle ([`Method::setup`]).
+//! 2. **Traversal**: the tiles of the tile grid (size S px, aligned to multiples of S)
+//!    that overlap the triangle's screen footprint — the screen AABB of its vertices over
+//!    the four lens corners and both shutter ends, computed in f64 from the f32 vertices
+//!    with a relative margin of 1e-9, clipped to the screen ([`footprint`]). Every
+//!    interior-covered sample lies strictly inside that box (a covered pixel is a strict
+//!    convex combination of the projected sheared vertices when every w > 0; the box
+//!    extremes sit at lens corners and shutter ends: `bounds/bbox.rs` derives both), so
+//!    the traversal itself culls no covered sample. A triangle with a vertex at w <= 0 at
+//!    either shutter end has an unbounded projection: **it falls back to the whole
+//!    screen** (every tile is traversed and tested), and is counted (`whole_screen`). A
+//!    footprint entirely off the screen is skipped and counted (`off_screen`).
+//! 3. **Tile test** per tile, then for each sample of the pattern (see [`pattern`]) in
+//!    the tile: *tested* if the tile was not culled and [`TileBounds::admits`] (intervals
+//!    u^, v^, t^ and every per-sample constraint; a depth interval z^ is an occlusion
+//!    test, not a coverage test, and is not applied).
+//! 4. **Coverage** of each (triangle, sample) by the exact oracle
+//!    (`oracles::classify == Interior`; boundary samples count as not covered), computed
+//!    once and reused for every method and tile size (it does not depend on either).
+//!
+//! Per (method, tile size, setting): `tested` = samples let through, `hits` = tested and
+//! covered, `missed` = covered but culled (by the tile test or a per-sample test; a
+//! conservative method has 0; some published methods do not, and the count is always
+//! shown), `STE = hits / tested`. `hits + missed` = the covered samples of the setting,
+//! the same for every method and tile size.
+//!
+//! # The ceiling
+//! The tightest interval-only tile test lets through, per tile, the samples inside the
+//! box of the exact (u, v, t) extents of the covered set over the tile. Certified
+//! extents are too slow for every tile, so two figures are reported:
+//! - the **sample ceiling**: per tile, the box of the (u, v, t) of the covered *pattern
+//!   samples* themselves (the whole range in a coordinate the triangle's coverage does
+//!   not depend on: u, v without defocus, t without motion), and the pattern samples
+//!   inside it. That box lies inside the exact one, so it lets through no more samples:
+//!   its STE is an **upper bound** on the true ceiling (for the same pattern). A method with per-sample constraints can beat
+//!   it (those are not interval tests); an interval-only method that misses nothing
+//!   cannot.
+//! - optionally, a **certified ceiling** on a seeded random subset of the traversed
+//!   tiles: certified enclosures of the six extents (`oracles::extents::TileSolver`,
+//!   resolution and box budget of [`Config::certified`]), each side taken at its outer
+//!   end, so the box contains the exact one and its STE is a **lower bound** on the true
+//!   ceiling over those tiles; the sample ceiling of the same tiles is shown beside it.
+//!   A tile where the solver left boxes open (over budget) is counted `undecided`; its
+//!   outer enclosure still holds (an unknown side is the whole range).
+//!
+//! Results are integer counts summed in triangle order: identical at any thread count.
+
+pub mod chart;
+mod cli;
+pub mod obj;
+pub mod pattern;
+pub mod raster;
+pub mod scene;
+
+pub use cli::{run_cli, TightnessArgs};
+
+use crate::bounds::{Method, Prepared, TileBounds, TileResult};
+use crate::model::{Dims, Sample, Tile, Triangle};
+use indicatif::ProgressBar;
+use oracles::extents::{ExtentsConfig, Occupancy, TileSolver};
+use oracles::Coverage;
+use pattern::Pattern;
+use rand::SeedableRng;
+use rayon::prelude::*;
+use scene::{Scene, Setting};
+use serde::Serialize;
+
+/// An inclusive rectangle of pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct PixelRect {
+    pub x0: u32,
+    pub y0: u32,
+    pub x1: u32,
+    pub y1: u32,
+}
+
+impl PixelRect {
+    pub fn pixels(&self) -> u64 {
+        (self.x1 - self.x0 + 1) as u64 * (self.y1 - self.y0 + 1) as u64
+    }
+}
+
+/// Where a triangle's samples can be covered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Footprint {
+    /// Every covered sample lies in these pixels.
+    Region(PixelRect),
+    /// A vertex at w <= 0 (or a non-finite projection): the whole screen is traversed.
+    WholeScreen,
+    /// The footprint misses the screen: nothing to do.
+    OffScreen,
+}
+
+/// The pixels holding every interior-covered sample of the triangle: its screen AABB
+/// over the lens corners (u, v = ±1) and shutter ends (t = 0, 1), in f64 with a margin
+/// of 1e-9 relative, clipped to the `width x height` screen (pixel p holds x in [p, p+1)).
+pub fn footprint(tri: &Triangle, width: u32, height: u32) -> Footprint {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for (p, c) in [(&tri.q, &tri.c0), (&tri.r, &tri.c1)] {
+        for i in 0..3 {
+            let w = p[i][3] as f64;
+            if w.is_nan() || w <= 0.0 {
+                return Footprint::WholeScreen;
+            }
+            for s in [-1.0, 1.0] {
+                let cx = s * c[i] as f64;
+                let cy = s * tri.k as f64 * c[i] as f64;
+                let (x, y) = ((p[i][0] as f64 + cx) / w, (p[i][1] as f64 + cy) / w);
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+                y0 = y0.min(y);
+                y1 = y1.max(y);
+            }
+        }
+    }
+    if ![x0, x1, y0, y1].iter().all(|v| v.is_finite()) {
+        return Footprint::WholeScreen;
+    }
+    let m = |v: f64| 1e-9 * (v.abs() + 1.0);
+    let (x0, x1, y0, y1) = (x0 - m(x0), x1 + m(x1), y0 - m(y0), y1 + m(y1));
+    let (w, h) = (width as f64, height as f64);
+    if x1 < 0.0 || y1 < 0.0 || x0 >= w || y0 >= h {
+        return Footprint::OffScreen;
+    }
+    let clamp = |v: f64, n: f64| v.floor().clamp(0.0, n - 1.0) as u32;
+    Footprint::Region(PixelRect { x0: clamp(x0, w), y0: clamp(y0, h), x1: clamp(x1, w), y1: clamp(y1, h) })
+}
+
+/// The tiles of size `s` overlapping `r`: inclusive tile index ranges (tx0, ty0, tx1, ty1).
+pub fn tile_range(r: &PixelRect, s: u32) -> (u32, u32, u32, u32) {
+    (r.x0 / s, r.y0 / s, r.x1 / s, r.y1 / s)
+}
+
+/// The pixels of tile (tx, ty) of size s, clipped to the screen (inclusive).
+pub fn tile_pixels(tx: u32, ty: u32, s: u32, width: u32, height: u32) -> PixelRect {
+    PixelRect { x0: tx * s, y0: ty * s, x1: ((tx + 1) * s).min(width) - 1, y1: ((ty + 1) * s).min(height) - 1 }
+}
+
+/// The tile rectangle a method is asked about (continuous pixel coordinates).
+pub fn tile_of(p: &PixelRect) -> Tile {
+    Tile { x0: p.x0 as f32, y0: p.y0 as f32, x1: (p.x1 + 1) as f32, y1: (p.y1 + 1) as f32 }
+}
+
+/// Settings of a measurement.
+#[derive(Clone, Debug)]
+pub struct Config {
+    /// Tile sizes in pixels.
+    pub tiles: Vec<u32>,
+    pub pattern: Pattern,
+    /// Tiles per (setting, tile size) given a certified ceiling (0: none).
+    pub certified_tiles: usize,
+    /// Solver settings of the certified ceiling.
+    pub certified: ExtentsConfig,
+    /// Seed of the certified subset.
+    pub seed: u64,
+}
+
+impl Config {
+    pub fn new(tiles: Vec<u32>, pattern: Pattern) -> Self {
+        Config {
+            tiles,
+            pattern,
+            certified_tiles: 0,
+            certified: ExtentsConfig { resolution: 1e-2, max_boxes: 2000, min_fraction: 1e-7 },
+            seed: pattern.seed,
+        }
+    }
+}
+
+/// Samples let through and covered.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Counts {
+    /// Samples the method lets through (tile not culled, every per-sample test passed).
+    pub tested: u64,
+    /// Tested samples that are interior-covered.
+    pub hits: u64,
+    /// Interior-covered samples the method culls (0 for a conservative method).
+    pub missed: u64,
+}
+
+impl Counts {
+    fn add(&mut self, o: &Counts) {
+        self.tested += o.tested;
+        self.hits += o.hits;
+        self.missed += o.missed;
+    }
+}
+
+/// `a / b`, None when b = 0.
+fn ratio(a: u64, b: u64) -> Option<f64> {
+    (b > 0).then(|| a as f64 / b as f64)
+}
+
+/// One method at one tile size and setting.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MethodRow {
+    pub method: String,
+    /// Built from `reconstructions.md`, not from the paper itself.
+    pub reconstruction: bool,
+    /// The method has per-sample constraints (it is not an interval-only test).
+    pub per_sample: bool,
+    pub setting: Setting,
+    pub tile: u32,
+    #[serde(flatten)]
+    pub counts: Counts,
+    /// hits / tested (None when nothing was tested).
+    pub ste: Option<f64>,
+    /// Triangles for which the method reported itself disabled (full bounds).
+    pub disabled_triangles: u64,
+}
+
+/// The sample ceiling at one tile size and setting (an upper bound on the STE of the
+/// tightest interval-only test).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CeilingRow {
+    pub setting: Setting,
+    pub tile: u32,
+    /// Pattern samples inside each tile's box of covered-sample (u, v, t) extents.
+    pub tested: u64,
+    /// Interior-covered samples (all lie in those boxes).
+    pub covered: u64,
+    pub ste: Option<f64>,
+}
+
+/// The certified ceiling on a random subset of tiles.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct CertifiedRow {
+    pub setting: Setting,
+    pub tile: u32,
+    /// (triangle, tile) pairs solved.
+    pub tiles: u64,
+    /// Of those, tiles where the solver left boxes open (enclosures wider than the
+    /// resolution, or occupancy unknown).
+    pub undecided_tiles: u64,
+    /// Interior-covered pattern samples in those tiles.
+    pub covered: u64,
+    /// Pattern samples inside the outer certified extents box (contains the exact box).
+    pub tested_certified: u64,
+    /// Pattern samples inside the covered-sample box (inside the exact box).
+    pub tested_sample_box: u64,
+    /// covered / tested_certified: a lower bound on the true ceiling over these tiles.
+    pub ste_lower: Option<f64>,
+    /// covered / tested_sample_box: an upper bound on it.
+    pub ste_upper: Option<f64>,
+    /// Boxes the solver examined.
+    pub boxes: u64,
+}
+
+/// What happened to the triangles of one setting.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct SettingSummary {
+    pub setting: Setting,
+    pub triangles: u64,
+    /// Triangles with a vertex at w <= 0: traversed over the whole screen.
+    pub whole_screen: u64,
+    /// Triangles whose footprint misses the screen: skipped.
+    pub off_screen: u64,
+    /// Samples classified by the exact oracle.
+    pub samples_classified: u64,
+    /// Interior-covered samples (the numerator of every method's STE when it misses none).
+    pub covered: u64,
+    /// Samples on an edge (not covered by the interior rule).
+    pub boundary: u64,
+    /// Samples the oracle's fast path could not settle (decided exactly).
+    pub exact_fallbacks: u64,
+}
+
+/// The result of [`measure`].
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Measurement {
+    pub settings: Vec<SettingSummary>,
+    pub rows: Vec<MethodRow>,
+    pub ceiling: Vec<CeilingRow>,
+    pub certified: Vec<CertifiedRow>,
+}
+
+/// One triangle's contribution.
+#[derive(Default)]
+struct TriCounts {
+    whole_screen: bool,
+    off_screen: bool,
+    classified: u64,
+    covered: u64,
+    boundary: u64,
+    exact: u64,
+    /// [tile index][method index]
+    counts: Vec<Vec<Counts>>,
+    /// [tile index]: (tested, covered)
+    ceiling: Vec<(u64, u64)>,
+    certified: Vec<CertifiedRow>,
+    disabled: Vec<bool>,
+}
+
+/// The samples of a region, their coverage, and how to find a pixel's samples.
+struct Local {
+    rect: PixelRect,
+    spp: usize,
+    samples: Vec<Sample>,
+    covered: Vec<bool>,
+}
+
+impl Local {
+    fn range(&self, px: u32, py: u32) -> std::ops::Range<usize> {
+        let w = (self.rect.x1 - self.rect.x0 + 1) as usize;
+        let i = ((py - self.rect.y0) as usize * w + (px - self.rect.x0) as usize) * self.spp;
+        i..i + self.spp
+    }
+    /// Indices of the samples of the pixels in `p`.
+    fn indices(&self, p: &PixelRect) -> impl Iterator<Item = usize> + '_ {
+        let p = *p;
+        (p.y0..=p.y1).flat_map(move |py| (p.x0..=p.x1).flat_map(move |px| self.range(px, py)))
+    }
+}
+
+fn uvt(s: &Sample) -> [f32; 3] {
+    [s.u, s.v, s.t]
+}
+
+/// Per tile: the box of the covered samples' (u, v, t), widened to the whole range in
+/// each of u, v (lens) and t (time) that the triangle's coverage does not depend on
+/// (there the exact extents are the whole range as soon as one sample is covered);
+/// None if no sample is covered.
+fn covered_box(local: &Local, p: &PixelRect, dims: Dims) -> Option<[[f32; 2]; 3]> {
+    let mut b: Option<[[f32; 2]; 3]> = None;
+    for i in local.indices(p) {
+        if local.covered[i] {
+            let c = uvt(&local.samples[i]);
+            let bb = b.get_or_insert([[c[0], c[0]], [c[1], c[1]], [c[2], c[2]]]);
+            for k in 0..3 {
+                bb[k][0] = bb[k][0].min(c[k]);
+                bb[k][1] = bb[k][1].max(c[k]);
+            }
+        }
+    }
+    if let Some(bb) = &mut b {
+        if !dims.has_lens() {
+            bb[0] = [-1.0, 1.0];
+            bb[1] = [-1.0, 1.0];
+        }
+        if !dims.has_time() {
+            bb[2] = [0.0, 1.0];
+        }
+    }
+    b
+}
+
+fn in_box(b: &[[f32; 2]; 3], s: &Sample) -> bool {
+    let c = uvt(s);
+    (0..3).all(|k| b[k][0] <= c[k] && c[k] <= b[k][1])
+}
+
+/// The certified ceiling of one tile.
+fn certify(
+    tri: &oracles::Tri,
+    dims: Dims,
+    local: &Local,
+    p: &PixelRect,
+    cfg: &ExtentsConfig,
+    setting: Setting,
+    s: u32,
+) -> CertifiedRow {
+    let t = tile_of(p);
+    let mut solver = TileSolver::new(
+        tri,
+        [t.x0 as f64, t.x1 as f64, t.y0 as f64, t.y1 as f64],
+        [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]],
+        cfg,
+    );
+    let covered = local.indices(p).filter(|&i| local.covered[i]).count() as u64;
+    let mut row = CertifiedRow { setting, tile: s, tiles: 1, covered, ..Default::default() };
+    let outer: Option<[[f64; 2]; 3]> = match solver.occupancy() {
+        Occupancy::Empty => None,
+        occ => {
+            let mut undecided = occ == Occupancy::Unknown;
+            let full = [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]];
+            let mut b = full;
+            for n in 0..6 {
+                let r = solver.objective(n);
+                undecided |= r.undecided > 0;
+                let (k, max) = (n / 2, n % 2 == 1);
+                if let Some(e) = r.extreme {
+                    b[k][max as usize] = if max { e.hi } else { e.lo };
+                }
+            }
+            row.undecided_tiles = undecided as u64;
+            Some(b)
+        }
+    };
+    if outer.is_none() && covered > 0 {
+        // Cannot happen (the occupancy search is certified); counted as undecided.
+        row.undecided_tiles = 1;
+    }
+    row.boxes = solver.boxes;
+    let sample_box = covered_box(local, p, dims);
+    for i in local.indices(p) {
+        let smp = &local.samples[i];
+        let c = uvt(smp);
+        if let Some(b) = &outer {
+            row.tested_certified += (0..3).all(|k| b[k][0] <= c[k] as f64 && c[k] as f64 <= b[k][1]) as u64;
+        } else if local.covered[i] {
+            row.tested_certified += 1;
+        }
+        if let Some(b) = &sample_box {
+            row.tested_sample_box += in_box(b, smp) as u64;
+        }
+    }
+    row
+}
+
+/// What every triangle of one setting shares.
+struct Ctx<'a> {
+    methods: &'a [&'static dyn Method],
+    cfg: &'a Config,
+    width: u32,
+    height: u32,
+    setting: Setting,
+}
+
+fn measure_triangle(ctx: &Ctx, tri: &Triangle, fp: Footprint, chosen: &[(usize, u64)]) -> TriCounts {
+    let Ctx { methods, cfg, width, height, setting } = *ctx;
+    let nt = cfg.tiles.len();
+    let mut out = TriCounts {
+        counts: vec![vec![Counts::default(); methods.len()]; nt],
+        ceiling: vec![(0, 0); nt],
+        disabled: vec![false; methods.len()],
+        ..Default::default()
+    };
+    let r = match fp {
+        Footprint::OffScreen => {
+            out.off_screen = true;
+            return out;
+        }
+        Footprint::WholeScreen => {
+            out.whole_screen = true;
+            PixelRect { x0: 0, y0: 0, x1: width - 1, y1: height - 1 }
+        }
+        Footprint::Region(r) => r,
+    };
+    // The union of the tiles of every size over r (tiles clipped to the screen).
+    let mut u = r;
+    for &s in &cfg.tiles {
+        let (tx0, ty0, tx1, ty1) = tile_range(&r, s);
+        u.x0 = u.x0.min(tx0 * s);
+        u.y0 = u.y0.min(ty0 * s);
+        u.x1 = u.x1.max(((tx1 + 1) * s).min(width) - 1);
+        u.y1 = u.y1.max(((ty1 + 1) * s).min(height) - 1);
+    }
+    let mut samples = Vec::new();
+    cfg.pattern.region(u.x0, u.y0, u.x1, u.y1, &mut samples);
+    let mut local = Local { rect: u, spp: cfg.pattern.spp as usize, covered: vec![false; samples.len()], samples };
+    let otri = tri.to_oracle();
+    for py in r.y0..=r.y1 {
+        for px in r.x0..=r.x1 {
+            for i in local.range(px, py) {
+                let (c, exact) = oracles::coverage::classify_traced(&otri, local.samples[i].to_oracle());
+                out.classified += 1;
+                out.exact += exact as u64;
+                match c {
+                    Coverage::Interior => {
+                        local.covered[i] = true;
+                        out.covered += 1;
+                    }
+                    Coverage::Boundary => out.boundary += 1,
+                    Coverage::Outside => {}
+                }
+            }
+        }
+    }
+    let dims = tri.dims();
+    let preps: Vec<Box<dyn Prepared>> = methods.iter().map(|m| m.setup(tri)).collect();
+    for (d, p) in out.disabled.iter_mut().zip(&preps) {
+        *d = p.disabled().is_some();
+    }
+    for (ti, &s) in cfg.tiles.iter().enumerate() {
+        let (tx0, ty0, tx1, ty1) = tile_range(&r, s);
+        let ntx = (tx1 - tx0 + 1) as u64;
+        for ty in ty0..=ty1 {
+            for tx in tx0..=tx1 {
+                let p = tile_pixels(tx, ty, s, width, height);
+                let tile = tile_of(&p);
+                let cov_here = local.indices(&p).filter(|&i| local.covered[i]).count() as u64;
+                if let Some(b) = covered_box(&local, &p, dims) {
+                    let tested = local.indices(&p).filter(|&i| in_box(&b, &local.samples[i])).count() as u64;
+                    out.ceiling[ti].0 += tested;
+                    out.ceiling[ti].1 += cov_here;
+                }
+                for (mi, prep) in preps.iter().enumerate() {
+                    let c = &mut out.counts[ti][mi];
+                    match prep.tile(&tile) {
+                        TileResult::Empty => c.missed += cov_here,
+                        TileResult::Bounds(b) => count_admitted(&b, &local, &p, c),
+                    }
+                }
+                let l = (ty - ty0) as u64 * ntx + (tx - tx0) as u64;
+                if chosen.contains(&(ti, l)) {
+                    out.certified.push(certify(&otri, dims, &local, &p, &cfg.certified, setting, s));
+                }
+            }
+        }
+    }
+    out
+}
+
+fn count_admitted(b: &TileBounds, local: &Local, p: &PixelRect, c: &mut Counts) {
+    for i in local.indices(p) {
+        let cov = local.covered[i];
+        if b.admits(&local.samples[i]) {
+            c.tested += 1;
+            c.hits += cov as u64;
+        } else {
+            c.missed += cov as u64;
+        }
+    }
+}
+
+/// The number of tiles of each size traversed for a footprint.
+fn tiles_traversed(fp: Footprint, tiles: &[u32], width: u32, height: u32) -> Vec<u64> {
+    let r = match fp {
+        Footprint::OffScreen => return vec![0; tiles.len()],
+        Footprint::WholeScreen => PixelRect { x0: 0, y0: 0, x1: width - 1, y1: height - 1 },
+        Footprint::Region(r) => r,
+    };
+    tiles
+        .iter()
+        .map(|&s| {
+            let (a, b, c, d) = tile_range(&r, s);
+            (c - a + 1) as u64 * (d - b + 1) as u64
+        })
+        .collect()
+}
+
+/// The certified subset: per triangle, (tile index, local tile number) pairs; for each
+/// tile size `n` pairs drawn uniformly without replacement from all traversed ones.
+fn choose_certified(
+    fps: &[Footprint],
+    cfg: &Config,
+    setting: Setting,
+    width: u32,
+    height: u32,
+) -> Vec<Vec<(usize, u64)>> {
+    let mut chosen = vec![Vec::new(); fps.len()];
+    if cfg.certified_tiles == 0 {
+        return chosen;
+    }
+    let counts: Vec<Vec<u64>> = fps.iter().map(|&f| tiles_traversed(f, &cfg.tiles, width, height)).collect();
+    for (ti, &s) in cfg.tiles.iter().enumerate() {
+        let mut prefix = Vec::with_capacity(fps.len() + 1);
+        prefix.push(0u64);
+        for c in &counts {
+            prefix.push(prefix.last().unwrap() + c[ti]);
+        }
+        let total = *prefix.last().unwrap();
+        if total == 0 {
+            continue;
+        }
+        let mut rng =
+            rand_chacha::ChaCha8Rng::seed_from_u64(pattern::hash(&[cfg.seed, 0xce47, setting as u64, s as u64]));
+        let n = cfg.certified_tiles.min(total as usize);
+        let mut picks: Vec<u64> =
+            rand::seq::index::sample(&mut rng, total as usize, n).into_iter().map(|x| x as u64).collect();
+        picks.sort_unstable();
+        for g in picks {
+            let tri = prefix.partition_point(|&p| p <= g) - 1;
+            chosen[tri].push((ti, g - prefix[tri]));
+        }
+    }
+    chosen
+}
+
+/// Measure the STE of `methods` on `scene` for each setting (see the module
+/// documentation). `pb` advances by one per triangle and setting.
+pub fn measure(
+    scene: &Scene,
+    methods: &[&'static dyn Method],
+    settings: &[Setting],
+    cfg: &Config,
+    pb: &ProgressBar,
+) -> Measurement {
+    let (w, h) = (scene.width, scene.height);
+    let mut m = Measurement::default();
+    for &setting in settings {
+        let tris = scene.triangles(setting);
+        let fps: Vec<Footprint> = tris.iter().map(|t| footprint(t, w, h)).collect();
+        let chosen = choose_certified(&fps, cfg, setting, w, h);
+        let ctx = Ctx { methods, cfg, width: w, height: h, setting };
+        let per: Vec<TriCounts> = tris
+            .par_iter()
+            .zip(fps.par_iter())
+            .zip(chosen.par_iter())
+            .map(|((t, &fp), ch)| {
+                let r = measure_triangle(&ctx, t, fp, ch);
+                pb.inc(1);
+                r
+            })
+            .collect();
+        // Merge in triangle order.
+        let nt = cfg.tiles.len();
+        let mut counts = vec![vec![Counts::default(); methods.len()]; nt];
+        let mut ceiling = vec![(0u64, 0u64); nt];
+        let mut disabled = vec![0u64; methods.len()];
+        let mut certified: Vec<CertifiedRow> =
+            cfg.tiles.iter().map(|&s| CertifiedRow { setting, tile: s, ..Default::default() }).collect();
+        let mut sum = SettingSummary { setting, triangles: tris.len() as u64, ..Default::default() };
+        for r in &per {
+            sum.whole_screen += r.whole_screen as u64;
+            sum.off_screen += r.off_screen as u64;
+            sum.samples_classified += r.classified;
+            sum.covered += r.covered;
+            sum.boundary += r.boundary;
+            sum.exact_fallbacks += r.exact;
+            for ti in 0..nt {
+                for (acc, x) in counts[ti].iter_mut().zip(&r.counts[ti]) {
+                    acc.add(x);
+                }
+                ceiling[ti].0 += r.ceiling[ti].0;
+                ceiling[ti].1 += r.ceiling[ti].1;
+            }
+            for (d, &x) in disabled.iter_mut().zip(&r.disabled) {
+                *d += x as u64;
+            }
+            for c in &r.certified {
+                let ti = cfg.tiles.iter().position(|&s| s == c.tile).unwrap();
+                let acc = &mut certified[ti];
+                acc.tiles += c.tiles;
+                acc.undecided_tiles += c.undecided_tiles;
+                acc.covered += c.covered;
+                acc.tested_certified += c.tested_certified;
+                acc.tested_sample_box += c.tested_sample_box;
+                acc.boxes += c.boxes;
+            }
+        }
+        for (ti, &s) in cfg.tiles.iter().enumerate() {
+            for (mi, meth) in methods.iter().enumerate() {
+                let info = meth.info();
+                let c = counts[ti][mi];
+                m.rows.push(MethodRow {
+                    method: info.id.to_string(),
+                    reconstruction: info.reconstruction,
+                    per_sample: info.outputs.per_sample,
+                    setting,
+                    tile: s,
+                    counts: c,
+                    ste: ratio(c.hits, c.tested),
+                    disabled_triangles: disabled[mi],
+                });
+            }
+            let (tested, covered) = ceiling[ti];
+            m.ceiling.push(CeilingRow { setting, tile: s, tested, covered, ste: ratio(covered, tested) });
+            if cfg.certified_tiles > 0 {
+                let mut c = certified[ti].clone();
+                c.ste_lower = ratio(c.covered, c.tested_certified);
+                c.ste_upper = ratio(c.covered, c.tested_sample_box);
+                m.certified.push(c);
+            }
+        }
+        m.settings.push(sum);
+    }
+    m
+}
+
+#[cfg(test)]
+mod tests;
