@@ -24,7 +24,7 @@
 use crate::agree::lens_tri;
 use crate::bounds::{Method, TileBounds, TileResult};
 use crate::csearch::{self, ConstraintVerdict};
-use crate::gen::{physical_case, rng_for, samples_for, Regime};
+use crate::gen::{physical_case, rng_for, samples_for, tile_sample, Regime};
 use crate::model::{Case, Sample, Tile};
 use indicatif::{ProgressBar, ProgressStyle};
 use oracles::extents::{ExtentsConfig, Occupancy, Side, TileSolver};
@@ -162,7 +162,9 @@ pub struct Witness {
     pub sample: [f64; 5],
     /// Which bound culls it: "tile culled", "u min", "t max", "z min", or a constraint's name.
     pub bound: String,
-    /// Padding of that bound that would admit the witness.
+    /// Padding of that bound that would admit the witness ("inf" in JSON when a
+    /// covered tile was culled).
+    #[serde(serialize_with = "crate::corpus::num_or_inf::serialize")]
     pub margin: f64,
     /// Embree's verdict on the witness ray (None: not a physical case).
     pub embree_hit: Option<bool>,
@@ -188,7 +190,9 @@ pub struct Row {
     pub violations: u64,
     pub boundary_only: u64,
     pub undecided: u64,
-    /// Largest margin needed over the violations (0 when none).
+    /// Largest margin needed over the violations (0 when none; "inf" in JSON when a
+    /// covered tile was culled).
+    #[serde(serialize_with = "crate::corpus::num_or_inf::serialize")]
     pub margin_needed: f64,
     pub expected: Option<Expected>,
     /// The largest margin the expectation allows (None: any).
@@ -236,22 +240,25 @@ fn f32_sample(p: [f64; 5]) -> Sample {
     Sample::new(p[0] as f32, p[1] as f32, p[2] as f32, p[3] as f32, p[4] as f32)
 }
 
-/// Which bound culls an admitted-looking sample, and by how much: the interval it
-/// leaves (distance outside) or the constraint with the most negative value.
-fn culled_by(b: &TileBounds, s: &Sample) -> (String, f64) {
-    let mut worst = (String::from("interval"), 0.0f64);
-    for (name, r, x) in [("u", b.u, s.u), ("v", b.v, s.v), ("t", b.t, s.t)] {
-        if x < r[0] && (r[0] - x) as f64 > worst.1 {
-            worst = (format!("{name} min"), (r[0] as f64 - x as f64));
+/// Which of the method's answers culls the point, and by how much: an interval it lies
+/// outside (distance in f64) or the constraint with the most negative value (evaluated
+/// only when the point is an f32 sample, as hardware would see it). None when the
+/// intervals and constraints admit it (depth aside).
+pub fn culled_by(b: &TileBounds, p: [f64; 5]) -> Option<(String, f64)> {
+    let mut worst: Option<(String, f64)> = None;
+    let mut note = |name: String, d: f64| {
+        if d > 0.0 && worst.as_ref().is_none_or(|w| d > w.1) {
+            worst = Some((name, d));
         }
-        if x > r[1] && (x - r[1]) as f64 > worst.1 {
-            worst = (format!("{name} max"), (x as f64 - r[1] as f64));
-        }
+    };
+    for (name, r, k) in [("u", b.u, 2), ("v", b.v, 3), ("t", b.t, 4)] {
+        note(format!("{name} min"), r[0] as f64 - p[k]);
+        note(format!("{name} max"), p[k] - r[1] as f64);
     }
-    for c in &b.constraints {
-        let d = -(c.eval(s) as f64);
-        if d > worst.1 {
-            worst = (c.name(), d);
+    let s = f32_sample(p);
+    if s.to_oracle() == p {
+        for c in &b.constraints {
+            note(c.name(), -(c.eval(&s) as f64));
         }
     }
     worst
@@ -279,17 +286,7 @@ pub fn judge(
     let mut solver = TileSolver::new(&tri, tb, [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg.extents);
     let embree = lens_tri(&case).and_then(|l| oracles::embree::EmbreeOracle::new(&l).ok());
     let mut rng = rng_for(cfg.seed ^ 0x05ee_d5a3_b1e5, i);
-    let uniform: Vec<Sample> = (0..cfg.samples)
-        .map(|_| {
-            Sample::new(
-                rng.gen_range(tile.x0..=tile.x1),
-                rng.gen_range(tile.y0..=tile.y1),
-                rng.gen_range(-1.0..=1.0),
-                rng.gen_range(-1.0..=1.0),
-                rng.gen_range(0.0..=1.0),
-            )
-        })
-        .collect();
+    let uniform: Vec<Sample> = (0..cfg.samples).map(|_| tile_sample(&mut rng, &tile)).collect();
     let witness = |sample: [f64; 5], bound: String, margin: f64| Witness {
         case_index: i,
         case,
@@ -369,7 +366,7 @@ pub fn judge(
                         }
                         match classify(&tri, s.to_oracle()) {
                             Coverage::Interior => {
-                                let (name, deficit) = culled_by(&b, s);
+                                let (name, deficit) = culled_by(&b, s.to_oracle()).expect("not admitted");
                                 consider(&mut j, witness(s.to_oracle(), name, deficit));
                             }
                             Coverage::Boundary => j.boundary_only = true,
@@ -392,7 +389,6 @@ pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport 
     let start = std::time::Instant::now();
     let (k, n) = cfg.shard;
     let mut results = Vec::new();
-    let mut cases = cfg.cases;
     match cfg.time {
         None => {
             let ids: Vec<u64> = (0..cfg.cases).filter(|i| i % n == k).collect();
@@ -425,11 +421,9 @@ pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport 
                 pb.set_message(format!("{next} cases"));
             }
             pb.finish_and_clear();
-            cases = next;
         }
     }
     let judged = results.len() as u64;
-    let _ = cases;
     let mut rows: BTreeMap<(usize, usize), Row> = BTreeMap::new();
     let mut boxes = 0;
     for (regime, js, b) in results {

@@ -9,9 +9,9 @@
 //! judged afresh on the case.
 
 use crate::bounds::{by_id, Method, TileResult};
-use crate::check::{judge, make_case, CheckConfig, Judgement};
+use crate::check::{culled_by, judge, make_case, CheckConfig, Judgement};
 use crate::gen::Regime;
-use crate::model::{Case, Sample, Tile};
+use crate::model::{Case, Tile};
 use anyhow::{anyhow, bail, Context, Result};
 use oracles::{classify, Coverage};
 use serde::{Deserialize, Serialize};
@@ -46,7 +46,7 @@ pub struct WitnessRecord {
 
 /// An f64 written as a JSON number, or as the string "inf" when it is +infinity (JSON
 /// has no infinity).
-mod num_or_inf {
+pub(crate) mod num_or_inf {
     use serde::{Deserialize, Deserializer, Serializer};
     pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
         if *v == f64::INFINITY {
@@ -182,36 +182,21 @@ pub fn witness_holds(
     match m.setup(&case.triangle).tile(tile) {
         TileResult::Empty => Ok(("tile culled".into(), f64::INFINITY)),
         TileResult::Bounds(b) => {
-            let mut worst: Option<(String, f64)> = None;
-            let mut note = |name: String, d: f64| {
-                if d > 0.0 && worst.as_ref().is_none_or(|w| d > w.1) {
-                    worst = Some((name, d));
-                }
-            };
-            for (name, r, k) in [("u", b.u, 2), ("v", b.v, 3), ("t", b.t, 4)] {
-                note(format!("{name} min"), r[0] as f64 - s[k]);
-                note(format!("{name} max"), s[k] - r[1] as f64);
-            }
+            let mut worst = culled_by(&b, s);
             if let Some(z) = b.z {
                 use oracles::DepthCheck;
-                match oracles::classify_depth(&tri, s, z[0] as f64, z[1] as f64) {
-                    DepthCheck::Below => {
-                        let d =
-                            oracles::coverage::depth_enclosure(&tri, s).map_or(f64::INFINITY, |e| z[0] as f64 - e.hi);
-                        note("z min".into(), d.max(f64::MIN_POSITIVE));
+                let depth = oracles::coverage::depth_enclosure(&tri, s);
+                let beyond = match oracles::classify_depth(&tri, s, z[0] as f64, z[1] as f64) {
+                    DepthCheck::Below => Some(("z min", depth.map_or(f64::INFINITY, |e| z[0] as f64 - e.hi))),
+                    DepthCheck::Above => Some(("z max", depth.map_or(f64::INFINITY, |e| e.lo - z[1] as f64))),
+                    _ => None,
+                };
+                if let Some((name, d)) = beyond {
+                    // Decided exactly; the enclosure only sizes it.
+                    let d = d.max(f64::MIN_POSITIVE);
+                    if worst.as_ref().is_none_or(|w| d > w.1) {
+                        worst = Some((name.into(), d));
                     }
-                    DepthCheck::Above => {
-                        let d =
-                            oracles::coverage::depth_enclosure(&tri, s).map_or(f64::INFINITY, |e| e.lo - z[1] as f64);
-                        note("z max".into(), d.max(f64::MIN_POSITIVE));
-                    }
-                    _ => {}
-                }
-            }
-            let f = Sample::new(s[0] as f32, s[1] as f32, s[2] as f32, s[3] as f32, s[4] as f32);
-            if f.to_oracle() == s {
-                for c in &b.constraints {
-                    note(c.name(), -(c.eval(&f) as f64));
                 }
             }
             worst.ok_or_else(|| "the method admits the witness".into())
@@ -254,8 +239,8 @@ pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
     let j = &js[0];
     let judged = judged_word(j).to_string();
     let ok = match cf.expected {
-        // The stored witness still holds (the fresh search may find a worse one).
-        Verdict::Violation => matches!(witness, Some(Ok(_))) || j.violation.is_some(),
+        // The stored witness must still hold (the fresh search may find a worse one).
+        Verdict::Violation => matches!(witness, Some(Ok(_))),
         Verdict::Conservative => j.violation.is_none() && !matches!(witness, Some(Ok(_))),
     };
     Ok(Replay {
@@ -449,7 +434,7 @@ pub fn search(
     let mut found = Vec::new();
     let mut next = 0u64;
     let batch = 8 * rayon::current_num_threads() as u64;
-    let mut regimes_seen = std::collections::BTreeSet::new();
+    let mut seen = std::collections::BTreeSet::new();
     while start.elapsed().as_secs_f64() < seconds && found.len() < max_found {
         let ids: Vec<u64> = (next..next + batch).collect();
         next += batch;
@@ -467,9 +452,9 @@ pub fn search(
                 continue;
             }
             let t_first = start.elapsed().as_secs_f64();
-            // One file per regime and bound is enough for a run.
+            // One file per (regime, bound) is enough for a run.
             let key = (regime, j.violation.as_ref().unwrap().bound.clone());
-            if !regimes_seen.insert(key) {
+            if !seen.insert(key) {
                 continue;
             }
             let (c, t, j, steps) = shrink(cfg, m, case, tile, j, i);
@@ -622,6 +607,28 @@ pub fn describe(cf: &CaseFile) -> String {
 mod tests {
     use super::*;
 
+    /// A conservative bbox case file built from generated case `index`.
+    fn fixture(index: u64) -> CaseFile {
+        let (regime, case, tile) = make_case(&CheckConfig::default_with(crate::bounds::registry()), index);
+        CaseFile {
+            format: FORMAT.into(),
+            method: "bbox".into(),
+            case,
+            tile,
+            expected: Verdict::Conservative,
+            witness: None,
+            provenance: Provenance {
+                found_by: "hand".into(),
+                seed: 1,
+                case_index: index,
+                regime: regime.name().into(),
+                tool_version: "0".into(),
+                shrink_steps: vec![],
+            },
+            note: String::new(),
+        }
+    }
+
     #[test]
     fn round_bits_keeps_the_leading_bits() {
         assert_eq!(round_bits(1.0, 4), 1.0);
@@ -634,25 +641,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("cullproof-corpus-test-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let p = dir.join("bad.json");
-        let (_, case, tile) = make_case(&CheckConfig::default_with(crate::bounds::registry()), 3);
-        let mut v = serde_json::to_value(CaseFile {
-            format: FORMAT.into(),
-            method: "bbox".into(),
-            case,
-            tile,
-            expected: Verdict::Conservative,
-            witness: None,
-            provenance: Provenance {
-                found_by: "hand".into(),
-                seed: 1,
-                case_index: 3,
-                regime: "defocus".into(),
-                tool_version: "0".into(),
-                shrink_steps: vec![],
-            },
-            note: String::new(),
-        })
-        .unwrap();
+        let mut v = serde_json::to_value(fixture(3)).unwrap();
         v["case"]["triangle"]["q"][1][2] = serde_json::json!("oops");
         std::fs::write(&p, serde_json::to_string(&v).unwrap()).unwrap();
         let e = CaseFile::load(&p).unwrap_err().to_string();
@@ -672,24 +661,8 @@ mod tests {
     #[test]
     fn writing_never_overwrites() {
         let dir = std::env::temp_dir().join(format!("cullproof-corpus-write-{}", std::process::id()));
-        let (_, case, tile) = make_case(&CheckConfig::default_with(crate::bounds::registry()), 5);
-        let mut cf = CaseFile {
-            format: FORMAT.into(),
-            method: "bbox".into(),
-            case,
-            tile,
-            expected: Verdict::Conservative,
-            witness: None,
-            provenance: Provenance {
-                found_by: "hand".into(),
-                seed: 1,
-                case_index: 5,
-                regime: "x".into(),
-                tool_version: "0".into(),
-                shrink_steps: vec![],
-            },
-            note: "first".into(),
-        };
+        let mut cf = fixture(5);
+        cf.note = "first".into();
         let p = cf.write_new(&dir).unwrap().expect("written");
         cf.note = "second".into();
         assert_eq!(cf.write_new(&dir).unwrap(), None);

@@ -113,7 +113,7 @@ pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_wi
     let mut boxes = 0u64;
     let mut small = false;
     let mut seed = 0x2545_F491_4F6C_DD1Du64;
-    while let Some(Node { b, .. }) = heap.pop() {
+    while let Some(Node { key: k_here, b }) = heap.pop() {
         boxes += 1;
         if boxes as usize > budget {
             return ConstraintSearch { verdict: ConstraintVerdict::Undecided, boxes };
@@ -140,24 +140,23 @@ pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_wi
         }
         // Split the widest coordinate relative to the tile / the intervals, among those
         // that matter: coverage depends on it, or a constraint's enclosure does.
-        let k_here = key_of(&b);
-        let matters = |k: usize| {
-            cover_dims[k] || {
-                let mut c = b;
-                c[k] = Interval::point(b[k].mid());
-                key_of(&c) > k_here
-            }
-        };
-        let rel = |k: usize| {
+        let rel: [f64; 5] = std::array::from_fn(|k| {
             let w0 = init[k].width();
-            if w0 > 0.0 && b[k].width() > min_width && matters(k) {
+            let matters = || {
+                cover_dims[k] || {
+                    let mut c = b;
+                    c[k] = Interval::point(b[k].mid());
+                    key_of(&c) > k_here
+                }
+            };
+            if w0 > 0.0 && b[k].width() > min_width && matters() {
                 b[k].width() / w0
             } else {
                 0.0
             }
-        };
-        let dim = (0..5).max_by(|&a, &c| rel(a).partial_cmp(&rel(c)).unwrap_or(Ordering::Equal)).unwrap();
-        if rel(dim) == 0.0 {
+        });
+        let dim = (0..5).max_by(|&a, &c| rel[a].partial_cmp(&rel[c]).unwrap_or(Ordering::Equal)).unwrap();
+        if rel[dim] == 0.0 {
             small = true;
             continue;
         }

@@ -2,7 +2,7 @@
 //! bounds are stressed. Every draw comes from a `ChaCha8Rng` seeded from (seed, index),
 //! so a case is the same at any thread count.
 
-use crate::model::{Case, ThinLens, Triangle};
+use crate::model::{Case, Sample, ThinLens, Tile, Triangle};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
@@ -123,6 +123,17 @@ pub fn physical_case(rng: &mut ChaCha8Rng, regime: Regime) -> Case {
     }
     let tri: Triangle = cam.triangle(q, r);
     Case { triangle: tri, lens: Some(cam) }
+}
+
+/// A uniform sample with (x, y) in the tile, over the whole lens and shutter.
+pub fn tile_sample(rng: &mut ChaCha8Rng, tile: &Tile) -> Sample {
+    Sample::new(
+        rng.gen_range(tile.x0..=tile.x1),
+        rng.gen_range(tile.y0..=tile.y1),
+        rng.gen_range(-1.0..=1.0),
+        rng.gen_range(-1.0..=1.0),
+        rng.gen_range(0.0..=1.0),
+    )
 }
 
 /// Samples for a case: half uniform over the triangle's screen region, half drawn near

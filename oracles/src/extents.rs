@@ -692,11 +692,10 @@ pub struct Search {
     /// side, or within the resolution of it, is tried for witnesses and then dropped
     /// rather than refined. With a witness found, the result encloses the extreme;
     /// without one and nothing undecided, no interior sample lies beyond
-    /// `bound -/+ resolution`.
+    /// `bound -/+ resolution`. With a witness beyond the bound, the extreme is refined
+    /// only until the margin (its distance from the bound) is known to 1 %.
     pub bound: Option<f64>,
-    /// Stop at the first interior sample (for "is anything covered?"). With `bound`
-    /// set and a witness beyond it, the extreme is refined only until the margin (its
-    /// distance from the bound) is known to 1 %.
+    /// Stop at the first interior sample (for "is anything covered?").
     pub first_witness: bool,
 }
 
@@ -964,11 +963,8 @@ impl<'a> TileSolver<'a> {
         let obj = OBJECTIVES[n];
         let max = matches!(obj, Objective::Coord { max: true, .. } | Objective::Depth { max: true });
         let beyond = |v: f64| if max { v > bound } else { v < bound };
-        let saved = self.cfg;
-        self.cfg.resolution = band;
-        self.cfg.max_boxes = budget;
-        let r = self.beyond(n, bound);
-        self.cfg = saved;
+        let cfg = ExtentsConfig { resolution: band, max_boxes: budget, ..self.cfg };
+        let r = self.beyond(n, bound, &cfg);
         match r.extreme {
             Some(e) if beyond(if max { e.lo } else { e.hi }) => {
                 Side::Beyond { witness: e.witness, value: if max { e.lo } else { e.hi }, extreme: e }
@@ -993,9 +989,9 @@ impl<'a> TileSolver<'a> {
     /// maximum)? A search that only looks there: `extreme` is Some (an enclosure of the
     /// extreme, with its witness) when an interior sample lies beyond the bound or
     /// within the resolution of it; None with nothing undecided certifies that none
-    /// lies beyond `bound -/+ resolution`. Not cached; a known full result answers
-    /// at once.
-    pub fn beyond(&mut self, n: usize, bound: f64) -> ObjectiveResult {
+    /// lies beyond `bound -/+ cfg.resolution`. Not cached; a known full result
+    /// answers at once.
+    fn beyond(&mut self, n: usize, bound: f64, cfg: &ExtentsConfig) -> ObjectiveResult {
         let obj = OBJECTIVES[n];
         let max = matches!(obj, Objective::Coord { max: true, .. } | Objective::Depth { max: true });
         let none = ObjectiveResult::nothing(max);
@@ -1020,22 +1016,16 @@ impl<'a> TileSolver<'a> {
                     return none;
                 }
                 init[index] = cut;
-                let r = search(self.tri, init, obj, &self.cfg, Search { bound: Some(bound), first_witness: false });
+                let r = search(self.tri, init, obj, cfg, Search { bound: Some(bound), first_witness: false });
                 self.boxes += r.boxes;
                 r
             }
             Objective::Depth { .. } => {
-                let r =
-                    search(self.tri, self.init, obj, &self.cfg, Search { bound: Some(bound), first_witness: false });
+                let r = search(self.tri, self.init, obj, cfg, Search { bound: Some(bound), first_witness: false });
                 self.boxes += r.boxes;
                 r
             }
         }
-    }
-
-    /// The result of objective `n` if it was already computed.
-    pub fn objective_if_known(&self, n: usize) -> Option<ObjectiveResult> {
-        self.results[n]
     }
 
     /// The result of objective `n` (index into [`OBJECTIVES`]).

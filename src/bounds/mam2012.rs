@@ -676,24 +676,7 @@ mod tests {
         let p = METHOD.setup(&tri);
         let TileResult::Bounds(b) = p.tile(&Tile::square(0.0, 0.0, 1.0)) else { panic!("empty") };
         assert_eq!(b.constraints.len(), 4);
-        let mut rng = ChaCha8Rng::seed_from_u64(3);
-        for _ in 0..2000 {
-            let mut iv = |lo: f32, hi: f32| {
-                let (a, c) = (rng.gen_range(lo..=hi), rng.gen_range(lo..=hi));
-                Interval::new(a.min(c) as f64, a.max(c) as f64)
-            };
-            let bx =
-                SampleBox { x: iv(0.0, 1.0), y: iv(0.0, 1.0), u: iv(-1.0, 1.0), v: iv(-1.0, 1.0), t: iv(0.0, 1.0) };
-            for c in &b.constraints {
-                let e = c.eval_box(&bx);
-                for _ in 0..10 {
-                    let mut pick = |i: Interval| rng.gen_range(i.lo as f32..=i.hi as f32);
-                    let s = Sample::new(pick(bx.x), pick(bx.y), pick(bx.u), pick(bx.v), pick(bx.t));
-                    let g = c.eval(&s) as f64;
-                    assert!(e.contains(g), "{} {g} not in {e:?}", c.name());
-                }
-            }
-        }
+        super::super::testkit::assert_eval_box_encloses(&b, &Tile::square(0.0, 0.0, 1.0), 3);
     }
 
     #[test]

@@ -95,13 +95,15 @@ impl TileBounds {
     pub fn full() -> Self {
         TileBounds { u: [-1.0, 1.0], v: [-1.0, 1.0], t: [0.0, 1.0], z: None, constraints: Vec::new() }
     }
-    /// True if a sample passes the intervals and every constraint (depth aside).
+    /// True if a sample passes the intervals and every constraint (depth aside). As the
+    /// contract says, a constraint culls when `g(s) < 0`: a NaN value culls nothing
+    /// (the comparison hardware makes is false).
     pub fn admits(&self, s: &Sample) -> bool {
         let inside = |r: [f32; 2], x: f32| r[0] <= x && x <= r[1];
         inside(self.u, s.u)
             && inside(self.v, s.v)
             && inside(self.t, s.t)
-            && self.constraints.iter().all(|c| c.eval(s) >= 0.0)
+            && !self.constraints.iter().any(|c| c.eval(s) < 0.0)
     }
     /// Both tests at once: intervals intersected, constraints of both kept. Empty when
     /// an interval becomes empty.

@@ -12,16 +12,7 @@ pub(crate) fn covered(tri: &Triangle, s: &Sample) -> bool {
     oracles::classify(&tri.to_oracle(), s.to_oracle()) == oracles::Coverage::Interior
 }
 
-/// A uniform sample with (x, y) in the tile, over the whole lens and shutter.
-pub(crate) fn random_sample(rng: &mut ChaCha8Rng, tile: &Tile) -> Sample {
-    Sample::new(
-        rng.gen_range(tile.x0..=tile.x1),
-        rng.gen_range(tile.y0..=tile.y1),
-        rng.gen_range(-1.0..=1.0),
-        rng.gen_range(-1.0..=1.0),
-        rng.gen_range(0.0..=1.0),
-    )
-}
+pub(crate) use crate::gen::tile_sample as random_sample;
 
 /// The method's answer for one tile; None when the tile is culled.
 pub(crate) fn bounds_of(m: &dyn Method, tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
@@ -139,4 +130,34 @@ pub(crate) fn spot_check(p: &dyn Prepared, tri: &Triangle, tile: &Tile, n: usize
     };
     let r = spot(res.as_ref(), tri, tile, n, seed);
     (r.covered, r.culled)
+}
+
+/// Every value `eval` returns for f32 samples drawn in random sub-boxes of the tile
+/// (over the whole lens and shutter) lies in the constraint's `eval_box` enclosure.
+pub(crate) fn assert_eval_box_encloses(b: &TileBounds, tile: &Tile, seed: u64) {
+    use crate::bounds::SampleBox;
+    use crate::Interval;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    for _ in 0..2000 {
+        let mut iv = |lo: f32, hi: f32| {
+            let (a, c) = (rng.gen_range(lo..=hi), rng.gen_range(lo..=hi));
+            Interval::new(a.min(c) as f64, a.max(c) as f64)
+        };
+        let bx = SampleBox {
+            x: iv(tile.x0, tile.x1),
+            y: iv(tile.y0, tile.y1),
+            u: iv(-1.0, 1.0),
+            v: iv(-1.0, 1.0),
+            t: iv(0.0, 1.0),
+        };
+        for c in &b.constraints {
+            let e = c.eval_box(&bx);
+            for _ in 0..10 {
+                let mut pick = |i: Interval| rng.gen_range(i.lo as f32..=i.hi as f32);
+                let s = Sample::new(pick(bx.x), pick(bx.y), pick(bx.u), pick(bx.v), pick(bx.t));
+                let g = c.eval(&s) as f64;
+                assert!(e.contains(g), "{} {g} not in {e:?}", c.name());
+            }
+        }
+    }
 }
