@@ -31,6 +31,7 @@ use oracles::extents::{ExtentsConfig, Occupancy, Side, TileSolver};
 use oracles::{classify, Coverage, DepthCheck};
 use rand::seq::SliceRandom;
 use rand::Rng;
+use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -138,7 +139,7 @@ impl CheckConfig {
         CheckConfig {
             methods,
             regimes: Regime::ALL.to_vec(),
-            cases: 280,
+            cases: 480,
             time: None,
             seed: 1,
             tile: None,
@@ -229,11 +230,18 @@ pub fn make_case(cfg: &CheckConfig, i: u64) -> (Regime, Case, Tile) {
     let mut rng = rng_for(cfg.seed, i);
     let case = physical_case(&mut rng, regime);
     let size = cfg.tile.unwrap_or_else(|| *[1.0f32, 2.0, 4.0, 8.0, 16.0].choose(&mut rng).unwrap());
-    let pts = samples_for(&case, &mut rng, 16);
+    let tile = boundary_tile(&case, &mut rng, size);
+    (regime, case, tile)
+}
+
+/// A tile of `size` pixels (on the grid of that size) holding a sample drawn near an
+/// edge of the triangle: where its footprint's boundary is.
+pub fn boundary_tile(case: &Case, rng: &mut ChaCha8Rng, size: f32) -> Tile {
+    let pts = samples_for(case, rng, 16);
     // odd indices are the edge-biased samples
     let p = pts[1 + 2 * rng.gen_range(0..8)];
     let (x0, y0) = ((p[0] as f32 / size).floor() * size, (p[1] as f32 / size).floor() * size);
-    (regime, case, Tile::square(x0, y0, size))
+    Tile::square(x0, y0, size)
 }
 
 fn f32_sample(p: [f64; 5]) -> Sample {

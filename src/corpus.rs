@@ -362,8 +362,9 @@ fn steps(case: &Case, tile: &Tile, witness: [f64; 5]) -> Vec<Step> {
 }
 
 /// Shrink a violation: repeatedly take the first simplification under which the
-/// method still shows a violation. Returns the last case, tile and judgement, and the
-/// steps kept.
+/// method still shows a violation at least half as large (a culled covered tile, margin
+/// inf, must stay one): a gross failure is never traded for a rounding one. Returns the
+/// last case, tile and judgement, and the steps kept.
 pub fn shrink(
     cfg: &CheckConfig,
     m: &'static dyn Method,
@@ -373,6 +374,7 @@ pub fn shrink(
     index: u64,
 ) -> (Case, Tile, Judgement, Vec<String>) {
     let (mut case, mut tile, mut j) = (case, tile, first);
+    let floor = 0.5 * j.violation.as_ref().expect("a violation").margin;
     let mut kept = Vec::new();
     'outer: for _ in 0..64 {
         let w = j.violation.as_ref().expect("a violation").sample;
@@ -381,7 +383,7 @@ pub fn shrink(
                 continue;
             }
             let (js, _) = judge(cfg, &[m], &c, &t, index);
-            if js[0].violation.is_some() {
+            if js[0].violation.as_ref().is_some_and(|v| v.margin >= floor) {
                 (case, tile, j) = (c, t, js[0].clone());
                 kept.push(name.to_string());
                 continue 'outer;

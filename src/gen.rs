@@ -1,6 +1,8 @@
 //! Seeded generators of cases (thin-lens, physical) across the regimes where culling
-//! bounds are stressed. Every draw comes from a `ChaCha8Rng` seeded from (seed, index),
-//! so a case is the same at any thread count.
+//! bounds are stressed. Every draw comes from a [`Source`]: a `ChaCha8Rng` seeded from
+//! (seed, index), so a case is the same at any thread count, or a [`Tape`] of numbers in
+//! [0, 1) that proptest draws and shrinks (see [`strategy`]). One builder serves both, so
+//! a proptest case is a case of the same regime the gate checks.
 
 use crate::model::{Case, Sample, ThinLens, Tile, Triangle};
 use rand::{Rng, SeedableRng};
@@ -21,10 +23,32 @@ pub enum Regime {
     BehindLens,
     /// A needle-thin triangle.
     Sliver,
+    /// Smaller than a pixel on screen (1e-3 .. 1 px).
+    Tiny,
+    /// Far larger than the screen (1e2 .. 1e5 px), every vertex in front of the lens.
+    Huge,
+    /// Large perspective motion: every vertex's depth changes 2- to 8-fold over the shutter.
+    Perspective,
+    /// The triangle turns over during the shutter (mirrored at t = 1, so its winding
+    /// flips and it is degenerate in between).
+    FacingFlip,
+    /// Circles of confusion of 1e2 .. 3e3 pixels at the centre depth (far from focus,
+    /// lens radius up to 50).
+    HugeCoc,
+    /// Circles of confusion of 1e-4 .. 0.3 pixels at the centre depth.
+    TinyCoc,
+    /// The triangle 1e4 .. 1e6 px from the screen origin, where f32 keeps few fraction bits.
+    FarFromOrigin,
+    /// Zero area: two vertices equal, or all three, or collinear, at one or both ends of
+    /// the shutter.
+    Degenerate,
+    /// All three vertices at one depth (a wall facing the camera), moving, if at all, in
+    /// x and y only.
+    ScreenParallel,
 }
 
 impl Regime {
-    pub const ALL: [Regime; 7] = [
+    pub const ALL: [Regime; 16] = [
         Regime::Static,
         Regime::Motion,
         Regime::Defocus,
@@ -32,6 +56,15 @@ impl Regime {
         Regime::FocalCrossing,
         Regime::BehindLens,
         Regime::Sliver,
+        Regime::Tiny,
+        Regime::Huge,
+        Regime::Perspective,
+        Regime::FacingFlip,
+        Regime::HugeCoc,
+        Regime::TinyCoc,
+        Regime::FarFromOrigin,
+        Regime::Degenerate,
+        Regime::ScreenParallel,
     ];
     pub fn name(self) -> &'static str {
         match self {
@@ -42,6 +75,15 @@ impl Regime {
             Regime::FocalCrossing => "focal-crossing",
             Regime::BehindLens => "behind-lens",
             Regime::Sliver => "sliver",
+            Regime::Tiny => "tiny",
+            Regime::Huge => "huge",
+            Regime::Perspective => "perspective",
+            Regime::FacingFlip => "facing-flip",
+            Regime::HugeCoc => "huge-coc",
+            Regime::TinyCoc => "tiny-coc",
+            Regime::FarFromOrigin => "far-from-origin",
+            Regime::Degenerate => "degenerate",
+            Regime::ScreenParallel => "screen-parallel",
         }
     }
 }
@@ -53,76 +95,305 @@ pub fn rng_for(seed: u64, index: u64) -> ChaCha8Rng {
     r
 }
 
-fn log_uniform(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
-    (rng.gen_range(lo.ln()..hi.ln())).exp()
+/// Where a generator's numbers come from.
+pub trait Source {
+    /// Uniform in [lo, hi).
+    fn range(&mut self, lo: f32, hi: f32) -> f32;
+    /// True with probability p.
+    fn chance(&mut self, p: f64) -> bool;
+    /// Log-uniform in [lo, hi).
+    fn log_uniform(&mut self, lo: f32, hi: f32) -> f32 {
+        self.range(lo.ln(), hi.ln()).exp()
+    }
+    /// Uniform in [lo, hi), but an end of the range with probability 1/4 (each end 1/8):
+    /// the corners of a parameter's range are where bounds break.
+    fn cornered(&mut self, lo: f32, hi: f32) -> f32 {
+        let x = self.range(0.0, 1.0);
+        if x < 0.125 {
+            lo
+        } else if x >= 0.875 {
+            hi
+        } else {
+            lo + (hi - lo) * (x - 0.125) / 0.75
+        }
+    }
+    /// Log-uniform with the ends of the range favoured as in [`cornered`](Self::cornered).
+    fn log_cornered(&mut self, lo: f32, hi: f32) -> f32 {
+        self.cornered(lo.ln(), hi.ln()).exp().clamp(lo, hi)
+    }
+    /// +1 or -1.
+    fn sign(&mut self) -> f32 {
+        if self.chance(0.5) {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+}
+
+impl Source for ChaCha8Rng {
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        self.gen_range(lo..hi)
+    }
+    fn chance(&mut self, p: f64) -> bool {
+        self.gen_bool(p)
+    }
+}
+
+/// A fixed list of numbers in [0, 1) read in turn (0.5 once it runs out). A number
+/// shrunk towards 0 moves a range draw to its low end and makes a chance false, so
+/// proptest's shrinking walks towards plainer cases.
+#[derive(Clone, Debug)]
+pub struct Tape {
+    vals: Vec<f64>,
+    pos: usize,
+}
+
+impl Tape {
+    pub fn new(vals: Vec<f64>) -> Self {
+        Tape { vals, pos: 0 }
+    }
+    fn next(&mut self) -> f64 {
+        let x = self.vals.get(self.pos).copied().unwrap_or(0.5).clamp(0.0, 1.0);
+        self.pos += 1;
+        x
+    }
+}
+
+impl Source for Tape {
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        let x = lo + (hi - lo) * self.next() as f32;
+        if x < hi {
+            x.max(lo)
+        } else {
+            lo.max(hi - (hi - lo) * f32::EPSILON)
+        }
+    }
+    fn chance(&mut self, p: f64) -> bool {
+        self.next() >= 1.0 - p
+    }
+}
+
+/// proptest strategies over the same builder as the seeded generator.
+pub mod strategy {
+    use super::{physical_case, Regime, Tape};
+    use crate::model::Case;
+    use proptest::prelude::*;
+
+    /// Numbers a case of any regime needs, with room to spare.
+    pub const TAPE_LEN: usize = 64;
+
+    /// A case of the regime built from a tape of [0, 1) numbers (the tape shrinks).
+    pub fn case(regime: Regime) -> impl Strategy<Value = Case> {
+        proptest::collection::vec(0.0f64..1.0, TAPE_LEN).prop_map(move |v| physical_case(&mut Tape::new(v), regime))
+    }
+
+    /// A case of any regime.
+    pub fn any_case() -> impl Strategy<Value = (Regime, Case)> {
+        (0..Regime::ALL.len()).prop_flat_map(|k| {
+            let r = Regime::ALL[k];
+            case(r).prop_map(move |c| (r, c))
+        })
+    }
 }
 
 /// A random thin-lens camera; `lens` false gives a pinhole (R = 0).
-pub fn camera(rng: &mut ChaCha8Rng, lens: bool) -> ThinLens {
-    let fx = log_uniform(rng, 100.0, 2000.0);
-    let k = if rng.gen_bool(0.5) { 1.0 } else { 0.75 };
+pub fn camera(rng: &mut impl Source, lens: bool) -> ThinLens {
+    let fx = rng.log_uniform(100.0, 2000.0);
+    let k = if rng.chance(0.5) { 1.0 } else { 0.75 };
     ThinLens {
         fx,
         fy: fx * k,
-        cx: rng.gen_range(-50.0..50.0),
-        cy: rng.gen_range(-50.0..50.0),
-        radius: if lens { log_uniform(rng, 0.005, 0.2) } else { 0.0 },
-        focus: log_uniform(rng, 1.0, 20.0),
+        cx: rng.range(-50.0, 50.0),
+        cy: rng.range(-50.0, 50.0),
+        radius: if lens { rng.log_uniform(0.005, 0.2) } else { 0.0 },
+        focus: rng.log_uniform(1.0, 20.0),
         near: 0.1,
         far: 1000.0,
     }
 }
 
 /// A physical case of the regime.
-pub fn physical_case(rng: &mut ChaCha8Rng, regime: Regime) -> Case {
+pub fn physical_case(rng: &mut impl Source, regime: Regime) -> Case {
     use Regime::*;
+    if regime > Sliver {
+        return stress_case(rng, regime);
+    }
     let lens = matches!(regime, Defocus | Both | FocalCrossing | BehindLens | Sliver)
-        && !(regime == Sliver && rng.gen_bool(0.3));
+        && !(regime == Sliver && rng.chance(0.3));
     let cam = camera(rng, lens);
-    let moving = matches!(regime, Motion | Both | BehindLens) || (regime == Sliver && rng.gen_bool(0.5));
+    let moving = matches!(regime, Motion | Both | BehindLens) || (regime == Sliver && rng.chance(0.5));
     // Centre depth and size.
     let z = match regime {
-        FocalCrossing => cam.focus * rng.gen_range(0.7..1.3),
-        _ => log_uniform(rng, 0.5, 50.0),
+        FocalCrossing => cam.focus * rng.range(0.7, 1.3),
+        _ => rng.log_uniform(0.5, 50.0),
     };
-    let size = z * log_uniform(rng, 1e-3, 0.3);
-    let centre = [rng.gen_range(-0.3..0.3) * z, rng.gen_range(-0.3..0.3) * z, z];
+    let size = z * rng.log_uniform(1e-3, 0.3);
+    let centre = [rng.range(-0.3, 0.3) * z, rng.range(-0.3, 0.3) * z, z];
     let mut q = [[0.0f32; 3]; 3];
     for p in q.iter_mut() {
         for j in 0..3 {
-            p[j] = centre[j] + rng.gen_range(-1.0..1.0) * size;
+            p[j] = centre[j] + rng.range(-1.0, 1.0) * size;
         }
     }
     match regime {
         FocalCrossing => {
-            q[0][2] = cam.focus * rng.gen_range(0.5..0.95);
-            q[1][2] = cam.focus * rng.gen_range(1.05..2.0);
+            q[0][2] = cam.focus * rng.range(0.5, 0.95);
+            q[1][2] = cam.focus * rng.range(1.05, 2.0);
         }
         BehindLens => {
-            q[0][2] = -rng.gen_range(0.01..1.0) * z;
+            q[0][2] = -rng.range(0.01, 1.0) * z;
         }
         Sliver => {
-            let f = log_uniform(rng, 1e-5, 1e-2);
+            let f = rng.log_uniform(1e-5, 1e-2);
             let (a, b) = (q[0], q[1]);
             for (j, c) in q[2].iter_mut().enumerate() {
-                *c = a[j] + (b[j] - a[j]) * rng.gen_range(0.2..0.8) + f * size * rng.gen_range(-1.0..1.0);
+                *c = a[j] + (b[j] - a[j]) * rng.range(0.2, 0.8) + f * size * rng.range(-1.0, 1.0);
             }
         }
         _ => {}
     }
     let mut r = q;
     if moving {
-        let m = size * log_uniform(rng, 0.1, 10.0);
-        let d = [rng.gen_range(-1.0..1.0) * m, rng.gen_range(-1.0..1.0) * m, rng.gen_range(-0.5..0.5) * m];
-        for (i, p) in r.iter_mut().enumerate() {
-            let wobble = if rng.gen_bool(0.3) { rng.gen_range(-0.3..0.3) * m } else { 0.0 };
-            for j in 0..3 {
-                p[j] += d[j] + if j == i { wobble } else { 0.0 };
-            }
-        }
+        let m = size * rng.log_uniform(0.1, 10.0);
+        move_rigidly(rng, &mut r, m, f32::INFINITY);
     }
     let tri: Triangle = cam.triangle(q, r);
     Case { triangle: tri, lens: Some(cam) }
+}
+
+/// Translate by a random offset of size `m` (depth half as much, and at most
+/// `depth_cap`), each vertex wobbling apart with probability 0.3.
+fn move_rigidly(rng: &mut impl Source, r: &mut [[f32; 3]; 3], m: f32, depth_cap: f32) {
+    let cap = |x: f32, j: usize| if j == 2 { x.clamp(-depth_cap, depth_cap) } else { x };
+    let d = [rng.range(-1.0, 1.0) * m, rng.range(-1.0, 1.0) * m, cap(rng.range(-0.5, 0.5) * m, 2)];
+    for (i, p) in r.iter_mut().enumerate() {
+        let wobble = if rng.chance(0.3) { rng.range(-0.3, 0.3) * m } else { 0.0 };
+        for j in 0..3 {
+            p[j] += d[j] + if j == i { cap(wobble, j) } else { 0.0 };
+        }
+    }
+}
+
+/// The regimes after `Sliver`: each stresses one thing, with the lens and the motion on
+/// or off at random (so static, motion-only and defocus-only cases occur) and sizes,
+/// depths and ratios log-uniform with the ends of their ranges favoured.
+fn stress_case(rng: &mut impl Source, regime: Regime) -> Case {
+    use Regime::*;
+    let lens = match regime {
+        HugeCoc | TinyCoc => true,
+        _ => rng.chance(0.6),
+    };
+    let mut moving = match regime {
+        Perspective | FacingFlip => true,
+        _ => rng.chance(0.6),
+    };
+    let mut cam = camera(rng, lens);
+    if regime == FarFromOrigin {
+        cam.cx = rng.sign() * rng.log_cornered(1e4, 1e6);
+        cam.cy = rng.sign() * rng.log_cornered(1e4, 1e6);
+    }
+    let z = match regime {
+        HugeCoc if rng.chance(0.5) => cam.focus * rng.log_cornered(0.05, 0.4),
+        HugeCoc => (cam.focus * rng.log_cornered(3.0, 20.0)).min(500.0),
+        _ => rng.log_cornered(0.5, 50.0),
+    };
+    // The CoC of depth z in pixels is fx R |1/F - 1/z|: choose it, then the radius.
+    let coc_px = match regime {
+        HugeCoc => Some((rng.log_cornered(1e2, 3e3), 50.0)),
+        TinyCoc => Some((rng.log_cornered(1e-4, 0.3), 1.0)),
+        _ => None,
+    };
+    if let Some((px, cap)) = coc_px {
+        let per_radius = cam.fx * (1.0 / cam.focus - 1.0 / z).abs();
+        cam.radius = (px / per_radius).min(cap);
+    }
+    // Size in camera units from a projected size in pixels.
+    let px = match regime {
+        Tiny => rng.log_cornered(1e-3, 1.0),
+        Huge => rng.log_cornered(1e2, 1e5),
+        _ => rng.log_cornered(1.0, 300.0),
+    };
+    let size = z * px / cam.fx;
+    let centre = [rng.range(-0.3, 0.3) * z, rng.range(-0.3, 0.3) * z, z];
+    let depth = size.min(0.4 * z);
+    let mut q = [[0.0f32; 3]; 3];
+    for p in q.iter_mut() {
+        p[0] = centre[0] + rng.range(-1.0, 1.0) * size;
+        p[1] = centre[1] + rng.range(-1.0, 1.0) * size;
+        p[2] = centre[2] + rng.range(-1.0, 1.0) * depth;
+    }
+    if regime == ScreenParallel {
+        for p in q.iter_mut() {
+            p[2] = z;
+        }
+    }
+    if regime == Degenerate && rng.chance(0.5) {
+        degenerate(rng, &mut q);
+        moving = moving && rng.chance(0.5);
+    }
+    let mut r = q;
+    match regime {
+        Perspective => {
+            // every vertex's depth scaled 2..8-fold (towards or away), x and y moving too
+            let ratio = rng.log_cornered(2.0, 8.0);
+            let ratio = if rng.chance(0.5) { ratio } else { 1.0 / ratio };
+            let m = size * rng.log_uniform(0.1, 10.0);
+            let d = [rng.range(-1.0, 1.0) * m, rng.range(-1.0, 1.0) * m];
+            for p in r.iter_mut() {
+                p[0] = p[0] * ratio + d[0];
+                p[1] = p[1] * ratio + d[1];
+                p[2] *= ratio;
+            }
+        }
+        FacingFlip => {
+            // mirror the vertices' directions (x/z, y/z) about a line through their
+            // centroid, each at its own depth: the image is mirrored, its winding flips
+            let a = rng.range(0.0, std::f32::consts::PI);
+            let (c, s) = (a.cos(), a.sin());
+            let dir = q.map(|p| [p[0] / p[2], p[1] / p[2]]);
+            let g = [(dir[0][0] + dir[1][0] + dir[2][0]) / 3.0, (dir[0][1] + dir[1][1] + dir[2][1]) / 3.0];
+            for (p, d) in r.iter_mut().zip(dir) {
+                let (dx, dy) = (d[0] - g[0], d[1] - g[1]);
+                let along = dx * c + dy * s;
+                p[0] = (g[0] + 2.0 * along * c - dx) * p[2];
+                p[1] = (g[1] + 2.0 * along * s - dy) * p[2];
+            }
+            if rng.chance(0.5) {
+                let m = size * rng.log_uniform(0.1, 3.0);
+                move_rigidly(rng, &mut r, m, 0.25 * z);
+            }
+        }
+        _ if moving => {
+            let m = size * rng.log_cornered(0.1, 10.0);
+            let depth_cap = if regime == ScreenParallel { 0.0 } else { 0.25 * z };
+            move_rigidly(rng, &mut r, m, depth_cap);
+        }
+        _ => {}
+    }
+    if regime == Degenerate && moving && rng.chance(0.5) {
+        // degenerate at the end of the shutter only
+        degenerate(rng, &mut r);
+    }
+    Case { triangle: cam.triangle(q, r), lens: Some(cam) }
+}
+
+/// Make a triangle degenerate in place: two vertices equal, all three equal, or the
+/// third on the segment between the first two (computed in f32, so it may sit an ulp
+/// off the line: the exact oracle judges the case as it is).
+fn degenerate(rng: &mut impl Source, q: &mut [[f32; 3]; 3]) {
+    let kind = rng.range(0.0, 3.0);
+    if kind < 1.0 {
+        q[2] = q[0];
+    } else if kind < 2.0 {
+        q[1] = q[0];
+        q[2] = q[0];
+    } else {
+        let f = rng.range(0.0, 1.0);
+        for j in 0..3 {
+            q[2][j] = q[0][j] + (q[1][j] - q[0][j]) * f;
+        }
+    }
 }
 
 /// A uniform sample with (x, y) in the tile, over the whole lens and shutter.
@@ -197,4 +468,132 @@ pub fn samples_for(case: &Case, rng: &mut ChaCha8Rng, n: usize) -> Vec<[f64; 5]>
         out.push([x as f32 as f64, y as f32 as f64, u as f64, v as f64, t as f64]);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Dims;
+
+    fn cases(regime: Regime, n: u64) -> Vec<Case> {
+        (0..n).map(|i| physical_case(&mut rng_for(5, i), regime)).collect()
+    }
+
+    /// Pinhole screen position of vertex i at time t (None behind the lens).
+    fn screen(c: &Case, i: usize, t: f32) -> Option<(f64, f64)> {
+        let p = c.triangle.at(i, t);
+        (p[3] > 0.0).then(|| (p[0] as f64 / p[3] as f64, p[1] as f64 / p[3] as f64))
+    }
+
+    fn extent(c: &Case, t: f32) -> Option<f64> {
+        let ps: Option<Vec<_>> = (0..3).map(|i| screen(c, i, t)).collect();
+        let ps = ps?;
+        let span = |f: fn(&(f64, f64)) -> f64| {
+            let v: Vec<f64> = ps.iter().map(f).collect();
+            v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min)
+        };
+        Some(span(|p| p.0).max(span(|p| p.1)))
+    }
+
+    fn area(c: &Case, t: f32) -> Option<f64> {
+        let (a, b, d) = (screen(c, 0, t)?, screen(c, 1, t)?, screen(c, 2, t)?);
+        Some((b.0 - a.0) * (d.1 - a.1) - (b.1 - a.1) * (d.0 - a.0))
+    }
+
+    fn coc_px(c: &Case, i: usize) -> f64 {
+        let t = &c.triangle;
+        (t.c0[i] as f64 / t.q[i][3] as f64).abs()
+    }
+
+    fn median(mut v: Vec<f64>) -> f64 {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    }
+
+    #[test]
+    fn every_regime_gives_valid_cases_in_its_dimensions() {
+        for r in Regime::ALL {
+            let cs = cases(r, 200);
+            for c in &cs {
+                c.validate().unwrap_or_else(|e| panic!("{}: {e}", r.name()));
+            }
+            let dims: Vec<Dims> = cs.iter().map(|c| c.triangle.dims()).collect();
+            let only = |d: Dims| dims.iter().all(|&x| x == d);
+            match r {
+                Regime::Static => assert!(only(Dims::Static)),
+                Regime::Motion => assert!(only(Dims::Motion)),
+                Regime::Defocus => assert!(only(Dims::Defocus)),
+                Regime::Both => assert!(only(Dims::Both)),
+                Regime::Perspective | Regime::FacingFlip => assert!(dims.iter().all(|d| d.has_time())),
+                Regime::HugeCoc | Regime::TinyCoc => assert!(dims.iter().all(|d| d.has_lens())),
+                // The stress regimes mix static, motion-only, defocus-only and both.
+                Regime::Tiny | Regime::Huge | Regime::FarFromOrigin | Regime::Degenerate | Regime::ScreenParallel => {
+                    for d in [Dims::Static, Dims::Motion, Dims::Defocus, Dims::Both] {
+                        assert!(dims.contains(&d), "{}: no {} case in 200", r.name(), d.name());
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+
+    #[test]
+    fn stress_regimes_have_their_property() {
+        let e0 = |r| cases(r, 200).iter().filter_map(|c| extent(c, 0.0)).collect::<Vec<_>>();
+        let tiny = e0(Regime::Tiny);
+        assert!(tiny.iter().all(|&e| e < 3.0) && median(tiny) < 0.3);
+        let huge = e0(Regime::Huge);
+        let (lo, mid) = (huge.iter().cloned().fold(f64::MAX, f64::min), median(huge));
+        assert!(lo > 10.0 && mid > 1e3, "huge: smallest extent {lo}, median {mid}");
+        for c in cases(Regime::Huge, 200) {
+            assert!((0..3).all(|i| c.triangle.q[i][3] > 0.0 && c.triangle.r[i][3] > 0.0));
+        }
+        for c in cases(Regime::Perspective, 200) {
+            for i in 0..3 {
+                let ratio = c.triangle.r[i][3] / c.triangle.q[i][3];
+                let f = ratio.max(1.0 / ratio);
+                assert!((1.999..=8.001).contains(&f), "depth ratio {ratio}");
+            }
+        }
+        let flips = cases(Regime::FacingFlip, 200)
+            .iter()
+            .filter(|c| matches!((area(c, 0.0), area(c, 1.0)), (Some(a), Some(b)) if a * b < 0.0))
+            .count();
+        assert!(flips >= 190, "only {flips} of 200 facing-flip cases turn over");
+        let huge_coc: Vec<f64> = cases(Regime::HugeCoc, 200).iter().map(|c| coc_px(c, 0).max(coc_px(c, 1))).collect();
+        assert!(median(huge_coc) > 100.0);
+        let tiny_coc: Vec<f64> = cases(Regime::TinyCoc, 200).iter().map(|c| coc_px(c, 0)).collect();
+        assert!(median(tiny_coc.clone()) < 0.3 && tiny_coc.iter().all(|&x| x > 0.0));
+        for c in cases(Regime::FarFromOrigin, 200) {
+            let (x, y) = screen(&c, 0, 0.0).unwrap();
+            assert!(x.abs() > 5e3 && y.abs() > 5e3, "({x}, {y}) is near the origin");
+        }
+        let flat = cases(Regime::Degenerate, 200)
+            .iter()
+            .filter(|c| {
+                [0.0, 1.0].iter().any(|&t| match (area(c, t), extent(c, t)) {
+                    (Some(a), Some(e)) => a.abs() <= 1e-4 * e * e,
+                    _ => false,
+                })
+            })
+            .count();
+        assert!(flat >= 100, "only {flat} of 200 degenerate cases have zero area at a shutter end");
+        for c in cases(Regime::ScreenParallel, 200) {
+            let t = &c.triangle;
+            assert!((0..3).all(|i| t.q[i][3] == t.q[0][3] && t.r[i][3] == t.q[0][3] && t.q[i][2] == t.q[0][2]));
+        }
+    }
+
+    #[test]
+    fn a_tape_builds_the_same_case_twice_and_zeros_give_a_plain_one() {
+        for r in Regime::ALL {
+            let v: Vec<f64> = (0..strategy::TAPE_LEN).map(|i| (i as f64 * 0.618034).fract()).collect();
+            let a = physical_case(&mut Tape::new(v.clone()), r);
+            let b = physical_case(&mut Tape::new(v), r);
+            assert_eq!(a, b);
+            a.validate().unwrap();
+            let z = physical_case(&mut Tape::new(vec![0.0; strategy::TAPE_LEN]), r);
+            z.validate().unwrap_or_else(|e| panic!("{}: {e}", r.name()));
+        }
+    }
 }

@@ -41,11 +41,13 @@ enum Cmd {
         /// A method id (see `cullproof methods`) or `all`.
         #[arg(long, default_value = "all")]
         method: String,
-        /// A regime (static, motion, defocus, both, focal-crossing, behind-lens, sliver) or `all`.
+        /// A regime or `all`: static, motion, defocus, both, focal-crossing, behind-lens,
+        /// sliver, tiny, huge, perspective, facing-flip, huge-coc, tiny-coc,
+        /// far-from-origin, degenerate, screen-parallel.
         #[arg(long, default_value = "all")]
         regime: String,
         /// Number of cases (spread over the regimes in turn).
-        #[arg(long, default_value_t = 280, conflicts_with = "time")]
+        #[arg(long, default_value_t = 480, conflicts_with = "time")]
         cases: u64,
         /// Run for about this many seconds instead (whole batches of cases; the report
         /// says how many, and `--cases N` repeats the run exactly).
