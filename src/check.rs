@@ -180,6 +180,9 @@ pub struct Judgement {
     pub boundary_only: bool,
     /// Some claim could be neither confirmed nor refuted within the budgets.
     pub undecided: bool,
+    /// Some violation is witnessed by an f32 sample (one a hardware sample generator
+    /// can produce), not only by points between f32 values.
+    pub f32_witness: bool,
 }
 
 /// The row of the verdict table.
@@ -191,6 +194,8 @@ pub struct Row {
     pub violations: u64,
     pub boundary_only: u64,
     pub undecided: u64,
+    /// Violations witnessed by an f32 sample (the rest only between f32 values).
+    pub f32_witnessed: u64,
     /// Largest margin needed over the violations (0 when none; "inf" in JSON when a
     /// covered tile was culled).
     #[serde(serialize_with = "crate::corpus::num_or_inf::serialize")]
@@ -246,6 +251,44 @@ pub fn boundary_tile(case: &Case, rng: &mut ChaCha8Rng, size: f32) -> Tile {
 
 fn f32_sample(p: [f64; 5]) -> Sample {
     Sample::new(p[0] as f32, p[1] as f32, p[2] as f32, p[3] as f32, p[4] as f32)
+}
+
+/// f32 samples around a point found beyond a bound on coordinate `axis` (0..5; 5 for a
+/// depth bound, which no coordinate carries): on that axis the f32 values just beyond
+/// the bound up to the point's own rounding, on the others the nearest f32 and its two
+/// neighbours. The exact oracle then says whether one of them is a hardware-reachable
+/// witness.
+fn f32_candidates(p: [f64; 5], axis: usize, bound: f32, is_max: bool) -> Vec<Sample> {
+    let near = |x: f64| {
+        let r = x as f32;
+        [r, r.next_down(), r.next_up()]
+    };
+    let mut choices: Vec<Vec<f32>> = p.iter().map(|&x| near(x).to_vec()).collect();
+    if axis < 5 {
+        let (a, b) = if is_max { (bound.next_up(), p[axis] as f32) } else { (p[axis] as f32, bound.next_down()) };
+        let mut v: Vec<f32> = vec![a, b, p[axis] as f32];
+        v.retain(|&x| if is_max { x > bound } else { x < bound });
+        v.dedup();
+        choices[axis] = v;
+    } else {
+        // depth: keep (u, v, t) at their nearest f32 values
+        for c in choices.iter_mut().skip(2) {
+            c.truncate(1);
+        }
+    }
+    let mut out = Vec::new();
+    for &x in &choices[0] {
+        for &y in &choices[1] {
+            for &u in &choices[2] {
+                for &v in &choices[3] {
+                    for &t in &choices[4] {
+                        out.push(Sample::new(x, y, u, v, t));
+                    }
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Which of the method's answers culls the point, and by how much: an interval it lies
@@ -314,7 +357,11 @@ pub fn judge(
         };
         match m.setup(&case.triangle).tile(&tile) {
             TileResult::Empty => match solver.occupancy() {
-                Occupancy::Covered(w) => consider(&mut j, witness(w, "tile culled".into(), f64::INFINITY)),
+                Occupancy::Covered(w) => {
+                    let s = f32_sample(w);
+                    j.f32_witness = tile.contains(s.x, s.y) && classify(&tri, s.to_oracle()) == Coverage::Interior;
+                    consider(&mut j, witness(w, "tile culled".into(), f64::INFINITY))
+                }
                 Occupancy::Unknown => j.undecided = true,
                 Occupancy::Empty => {}
             },
@@ -346,7 +393,18 @@ pub fn judge(
                             };
                             if confirmed {
                                 consider(&mut j, witness(w, name, (value - bound).abs()));
-                                found.push(f32_sample(w));
+                                let axis = if n < 6 { [2, 3, 4][n / 2] } else { 5 };
+                                let cands = f32_candidates(w, axis, bound as f32, is_max);
+                                if n < 6 {
+                                    found.extend(cands);
+                                } else if let Some([z0, z1]) = b.z {
+                                    let want = if is_max { DepthCheck::Above } else { DepthCheck::Below };
+                                    j.f32_witness |= cands.iter().any(|s| {
+                                        tile.contains(s.x, s.y)
+                                            && oracles::classify_depth(&tri, s.to_oracle(), z0 as f64, z1 as f64)
+                                                == want
+                                    });
+                                }
                             } else {
                                 j.undecided = true;
                             }
@@ -369,11 +427,12 @@ pub fn judge(
                 }
                 if !b.constraints.is_empty() || !found.is_empty() {
                     for s in uniform.iter().chain(&found) {
-                        if b.admits(s) {
+                        if b.admits(s) || !tile.contains(s.x, s.y) {
                             continue;
                         }
                         match classify(&tri, s.to_oracle()) {
                             Coverage::Interior => {
+                                j.f32_witness = true;
                                 let (name, deficit) = culled_by(&b, s.to_oracle()).expect("not admitted");
                                 consider(&mut j, witness(s.to_oracle(), name, deficit));
                             }
@@ -448,6 +507,7 @@ pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport 
             });
             row.cases += 1;
             row.boundary_only += j.boundary_only as u64;
+            row.f32_witnessed += (j.violation.is_some() && j.f32_witness) as u64;
             row.undecided += j.undecided as u64;
             if let Some(w) = j.violation {
                 row.violations += 1;
@@ -484,8 +544,19 @@ pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport 
 /// The verdict table.
 pub fn render(r: &CheckReport) -> String {
     let mut s = format!(
-        "cullproof check, seed {}, {} cases (shard {}), {:.1} s\n\n{:<24} {:<15} {:>6} {:>10} {:>9} {:>9} {:>11}  status\n",
-        r.seed, r.cases, r.shard, r.seconds, "method", "regime", "cases", "violations", "boundary", "undecided", "margin"
+        "cullproof check, seed {}, {} cases (shard {}), {:.1} s\n\n{:<24} {:<15} {:>6} {:>10} {:>5} {:>9} {:>9} {:>11}  status\n",
+        r.seed,
+        r.cases,
+        r.shard,
+        r.seconds,
+        "method",
+        "regime",
+        "cases",
+        "violations",
+        "f32",
+        "boundary",
+        "undecided",
+        "margin"
     );
     let mut last = "";
     for row in &r.rows {
@@ -493,12 +564,21 @@ pub fn render(r: &CheckReport) -> String {
         last = &row.method;
         let margin = if row.violations == 0 { "-".to_string() } else { format!("{:.3e}", row.margin_needed) };
         s += &format!(
-            "{:<24} {:<15} {:>6} {:>10} {:>9} {:>9} {:>11}  {}\n",
-            m, row.regime, row.cases, row.violations, row.boundary_only, row.undecided, margin, row.status
+            "{:<24} {:<15} {:>6} {:>10} {:>5} {:>9} {:>9} {:>11}  {}\n",
+            m,
+            row.regime,
+            row.cases,
+            row.violations,
+            row.f32_witnessed,
+            row.boundary_only,
+            row.undecided,
+            margin,
+            row.status
         );
     }
     let unexpected: Vec<_> = r.rows.iter().filter(|x| x.status == "UNEXPECTED VIOLATION").collect();
     s += "\nmargin: the padding of the violated bound that would admit every witness found (inf: a covered tile was culled).\n";
+    s += "f32: violations with a witness that is an f32 sample (the others were found only between f32 values).\n";
     if unexpected.is_empty() {
         s += "verdict: PASS — no method violates where corpus/expectations.json expects it to be conservative\n";
     } else {

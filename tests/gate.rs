@@ -19,6 +19,14 @@ fn gate_passes_on_a_fixed_budget() {
     let bad: Vec<_> = r.rows.iter().filter(|x| x.status == "UNEXPECTED VIOLATION").collect();
     assert!(bad.is_empty(), "{}", cullproof::check::render(&r));
     assert_eq!(r.rows.iter().map(|x| x.cases).sum::<u64>(), 140 * cfg.methods.len() as u64);
+    // every method x every regime got cases
+    for m in &cfg.methods {
+        for g in cullproof::gen::Regime::ALL {
+            let n: u64 =
+                r.rows.iter().filter(|x| x.method == m.info().id && x.regime == g.name()).map(|x| x.cases).sum();
+            assert!(n >= 8, "{} x {}: {n} cases", m.info().id, g.name());
+        }
+    }
 }
 
 #[test]
