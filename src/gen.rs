@@ -390,9 +390,8 @@ fn degenerate(rng: &mut impl Source, q: &mut [[f32; 3]; 3]) {
         q[2] = q[0];
     } else {
         let f = rng.range(0.0, 1.0);
-        for j in 0..3 {
-            q[2][j] = q[0][j] + (q[1][j] - q[0][j]) * f;
-        }
+        let (a, b) = (q[0], q[1]);
+        q[2] = std::array::from_fn(|j| a[j] + (b[j] - a[j]) * f);
     }
 }
 
