@@ -216,6 +216,8 @@ pub struct CheckReport {
     pub cases: u64,
     pub shard: String,
     pub rows: Vec<Row>,
+    /// The sampled cross-check of Embree against the exact oracle, per regime.
+    pub cross_check: Vec<CrossCheck>,
     /// Boxes the extents solver examined in all.
     pub solver_boxes: u64,
     pub seconds: f64,
@@ -316,10 +318,50 @@ pub fn culled_by(b: &TileBounds, p: [f64; 5]) -> Option<(String, f64)> {
 }
 
 /// Judge every method on one case.
-fn judge_case(cfg: &CheckConfig, i: u64) -> (Regime, Vec<Judgement>, u64) {
+fn judge_case(cfg: &CheckConfig, i: u64) -> (Regime, Vec<Judgement>, u64, CrossCheck) {
     let (regime, case, tile) = make_case(cfg, i);
     let (js, boxes) = judge(cfg, &cfg.methods, &case, &tile, i);
-    (regime, js, boxes)
+    (regime, js, boxes, cross_check(cfg, &case, &tile, i))
+}
+
+/// The sampled cross-check of the two ground truths on one case: the gate's uniform
+/// tile samples judged exactly and by Embree (physical cases only).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct CrossCheck {
+    pub regime: String,
+    /// Samples judged by both oracles.
+    pub samples: u64,
+    /// Of those, exactly interior.
+    pub interior: u64,
+    /// Embree said hit where the exact oracle says not interior.
+    pub embree_over: u64,
+    /// Embree said miss on an interior sample.
+    pub embree_under: u64,
+}
+
+fn uniform_samples(cfg: &CheckConfig, tile: &Tile, i: u64) -> Vec<Sample> {
+    let mut rng = rng_for(cfg.seed ^ 0x05ee_d5a3_b1e5, i);
+    (0..cfg.samples).map(|_| tile_sample(&mut rng, tile)).collect()
+}
+
+/// Judge the case's uniform tile samples with both oracles; the exact verdict settles
+/// every difference (counted, never used to judge a method).
+pub fn cross_check(cfg: &CheckConfig, case: &Case, tile: &Tile, i: u64) -> CrossCheck {
+    let mut c = CrossCheck::default();
+    let Some(embree) = lens_tri(case).and_then(|l| oracles::embree::EmbreeOracle::new(&l).ok()) else {
+        return c;
+    };
+    let tri = case.triangle.to_oracle();
+    for s in uniform_samples(cfg, tile, i) {
+        let p = s.to_oracle();
+        let interior = classify(&tri, p) == Coverage::Interior;
+        let hit = embree.hit(p);
+        c.samples += 1;
+        c.interior += interior as u64;
+        c.embree_over += (hit && !interior) as u64;
+        c.embree_under += (!hit && interior) as u64;
+    }
+    c
 }
 
 /// Judge `methods` on one case and tile; `i` seeds the uniform samples (and is
@@ -336,8 +378,7 @@ pub fn judge(
     let tb = [tile.x0 as f64, tile.x1 as f64, tile.y0 as f64, tile.y1 as f64];
     let mut solver = TileSolver::new(&tri, tb, [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg.extents);
     let embree = lens_tri(&case).and_then(|l| oracles::embree::EmbreeOracle::new(&l).ok());
-    let mut rng = rng_for(cfg.seed ^ 0x05ee_d5a3_b1e5, i);
-    let uniform: Vec<Sample> = (0..cfg.samples).map(|_| tile_sample(&mut rng, &tile)).collect();
+    let uniform = uniform_samples(cfg, &tile, i);
     let witness = |sample: [f64; 5], bound: String, margin: f64| Witness {
         case_index: i,
         case,
@@ -493,8 +534,15 @@ pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport 
     let judged = results.len() as u64;
     let mut rows: BTreeMap<(usize, usize), Row> = BTreeMap::new();
     let mut boxes = 0;
-    for (regime, js, b) in results {
+    let mut cross: BTreeMap<usize, CrossCheck> = BTreeMap::new();
+    for (regime, js, b, cc) in results {
         boxes += b;
+        let ri = cfg.regimes.iter().position(|r| *r == regime).unwrap();
+        let x = cross.entry(ri).or_insert_with(|| CrossCheck { regime: regime.name().into(), ..Default::default() });
+        x.samples += cc.samples;
+        x.interior += cc.interior;
+        x.embree_over += cc.embree_over;
+        x.embree_under += cc.embree_under;
         let ri = cfg.regimes.iter().position(|r| *r == regime).unwrap();
         for (mi, j) in js.into_iter().enumerate() {
             let m = cfg.methods[mi].info().id;
@@ -536,6 +584,7 @@ pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport 
         cases: judged,
         shard: format!("{k}/{n}"),
         rows,
+        cross_check: cross.into_values().collect(),
         solver_boxes: boxes,
         seconds: start.elapsed().as_secs_f64(),
     }
@@ -579,6 +628,22 @@ pub fn render(r: &CheckReport) -> String {
     let unexpected: Vec<_> = r.rows.iter().filter(|x| x.status == "UNEXPECTED VIOLATION").collect();
     s += "\nmargin: the padding of the violated bound that would admit every witness found (inf: a covered tile was culled).\n";
     s += "f32: violations with a witness that is an f32 sample (the others were found only between f32 values).\n";
+    let (n, inside, over, under) = r.cross_check.iter().fold((0, 0, 0, 0), |a, c| {
+        (a.0 + c.samples, a.1 + c.interior, a.2 + c.embree_over, a.3 + c.embree_under)
+    });
+    let differ: Vec<String> = r
+        .cross_check
+        .iter()
+        .filter(|c| c.embree_over + c.embree_under > 0)
+        .map(|c| format!("{} {}", c.regime, c.embree_over + c.embree_under))
+        .collect();
+    s += &format!(
+        "sampled cross-check: {n} uniform tile samples of physical cases judged by both oracles, {inside} interior; \
+         Embree (f32) differed on {} ({over} over, {under} under{}{}), each settled by the exact oracle.\n",
+        over + under,
+        if differ.is_empty() { "" } else { "; by regime: " },
+        differ.join(", ")
+    );
     if unexpected.is_empty() {
         s += "verdict: PASS — no method violates where corpus/expectations.json expects it to be conservative\n";
     } else {
