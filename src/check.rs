@@ -628,9 +628,10 @@ pub fn render(r: &CheckReport) -> String {
     let unexpected: Vec<_> = r.rows.iter().filter(|x| x.status == "UNEXPECTED VIOLATION").collect();
     s += "\nmargin: the padding of the violated bound that would admit every witness found (inf: a covered tile was culled).\n";
     s += "f32: violations with a witness that is an f32 sample (the others were found only between f32 values).\n";
-    let (n, inside, over, under) = r.cross_check.iter().fold((0, 0, 0, 0), |a, c| {
-        (a.0 + c.samples, a.1 + c.interior, a.2 + c.embree_over, a.3 + c.embree_under)
-    });
+    let (n, inside, over, under) = r
+        .cross_check
+        .iter()
+        .fold((0, 0, 0, 0), |a, c| (a.0 + c.samples, a.1 + c.interior, a.2 + c.embree_over, a.3 + c.embree_under));
     let differ: Vec<String> = r
         .cross_check
         .iter()
