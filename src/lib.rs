@@ -5,6 +5,7 @@
 //! - [`bounds`]: the culling tests under test, one file per published method.
 //! - [`agree`]: the agreement run of the exact oracle against Embree.
 //! - [`tightness`]: sample test efficiency (STE) per method, tile size and scene.
+//! - [`stability`]: one parameter swept towards a method's singularity (violations, NaN/inf, STE).
 //!
 //! The ground truth lives in the separate `oracles` crate, which never imports this one.
 
@@ -16,6 +17,7 @@ pub mod csearch;
 pub mod explain;
 pub mod gen;
 pub mod model;
+pub mod stability;
 pub mod tightness;
 
 /// Outward-rounded interval arithmetic (the same small type the oracles use: it is

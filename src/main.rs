@@ -146,6 +146,31 @@ enum Cmd {
     /// of an end-to-end software rasterizer per method relative to bbox on static (as
     /// Munkberg 2012 Table 2). Writes ste.md, ste.json and ste_vs_cost.svg into --out.
     Tightness(cullproof::tightness::TightnessArgs),
+    /// Sweep one parameter towards a method's singularity, on a log scale, and report
+    /// per step and method: the certified violation rate (the gate's own judge), the
+    /// undecided cases, the NaN/inf rate of the tile answer, the sampled STE, and the
+    /// first step at which each method fails.
+    ///
+    /// Families: focal (a vertex's distance to the focal plane |z0/F - 1| from 1 to
+    /// 1e-7: its CoC goes to 0; the others in front of and behind the plane; lens on);
+    /// w-zero (the camera depth of one vertex at one shutter end: 1 ... 1e-6, 0, -1e-6
+    /// ... -1, every other decade by default, on a symmetric-log axis; motion on, lens in
+    /// every other case);
+    /// perspective (depth ratio w(1)/w(0) of every vertex: 1, 2, 4 ... 1024); sliver
+    /// (height/base in pixels 1e-1 ... 1e-8); far (the triangle and its tile 1e1 ... 1e7
+    /// px from the screen origin: f32 precision); double-root (a moving edge whose sweep
+    /// grazes a tile corner tangentially, the corner's depth inside it 1e-1 ... 1e-8 px:
+    /// near-double roots of gdam2010's time quadratics). Each case gets a 4 px tile on
+    /// its footprint boundary (double-root: the grazed corner's tile).
+    ///
+    /// Prints a table per family (step value, method, violations/cases, undecided,
+    /// NaN/inf rate, STE, max margin) and the first-fails table (the first violation, and
+    /// the first gross one: margin > 1e-4 or a covered tile culled); writes <out>/<family>.svg (three
+    /// stacked panels: violation rate, NaN/inf rate, STE, one line per method) and
+    /// <out>/<family>.md (the same with how the cases are built and the parameter
+    /// measured back from the f32 cases); --json FILE writes every row. Identical at any
+    /// thread count.
+    Stability(cullproof::stability::StabilityArgs),
     /// List the culling methods under test: id, source, reconstruction flag, dimensions, outputs.
     Methods {
         /// Print JSON instead of a table.
@@ -330,6 +355,7 @@ fn main() -> Result<()> {
             }
         }
         Cmd::Tightness(args) => cullproof::tightness::run_cli(&args)?,
+        Cmd::Stability(args) => cullproof::stability::run_cli(&args)?,
         Cmd::Methods { json } => {
             let ms: Vec<_> = cullproof::bounds::registry().iter().map(|m| *m.info()).collect();
             if json {
