@@ -14,8 +14,8 @@ struct Cli {
 #[derive(Subcommand)]
 enum Cmd {
     /// Check the two ground-truth oracles against each other: exact coverage vs Embree
-    /// on random thin-lens cases (static, motion, defocus, both, focal-plane crossing,
-    /// behind-lens vertices, slivers), samples biased towards triangle edges. Every
+    /// on random thin-lens cases of every regime of `check`, samples biased towards
+    /// triangle edges. Every
     /// disagreement is settled exactly; the run fails (exit 1) if one lies farther from
     /// an edge than the documented f32 band.
     OracleAgree {
@@ -75,7 +75,7 @@ enum Cmd {
     /// Randomized counterexample search for one method: random cases of every regime
     /// (or one), each judged like `check`; every violation is shrunk (freeze the motion,
     /// zero the CoC, snap coordinates to fewer mantissa bits, aspect 1, smaller tiles)
-    /// while it stays a violation, then written to corpus/cases/<method>/<hash>.json
+    /// while it stays a violation at least half as large, then written to corpus/cases/<method>/<hash>.json
     /// (an existing file is never overwritten). One file per regime and bound.
     Search {
         /// The method id (see `cullproof methods`), or a deliberately broken variant:
