@@ -270,6 +270,7 @@ fn f32_candidates(p: [f64; 5], axis: usize, bound: f32, is_max: bool) -> Vec<Sam
         let (a, b) = if is_max { (bound.next_up(), p[axis] as f32) } else { (p[axis] as f32, bound.next_down()) };
         let mut v: Vec<f32> = vec![a, b, p[axis] as f32];
         v.retain(|&x| if is_max { x > bound } else { x < bound });
+        v.sort_by(f32::total_cmp);
         v.dedup();
         choices[axis] = v;
     } else {

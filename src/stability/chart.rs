@@ -11,25 +11,7 @@
 use super::FamilyReport;
 use plotters::prelude::*;
 
-/// The palette (method i gets colour i, cycling).
-pub fn colour(i: usize) -> RGBColor {
-    const C: [(u8, u8, u8); 12] = [
-        (31, 119, 180),
-        (255, 127, 14),
-        (44, 160, 44),
-        (214, 39, 40),
-        (148, 103, 189),
-        (140, 86, 75),
-        (227, 119, 194),
-        (127, 127, 127),
-        (188, 189, 34),
-        (23, 190, 207),
-        (0, 0, 128),
-        (128, 128, 0),
-    ];
-    let (r, g, b) = C[i % C.len()];
-    RGBColor(r, g, b)
-}
+pub use crate::tightness::chart::colour;
 
 /// How the swept parameter maps to the x axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

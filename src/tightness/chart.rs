@@ -96,7 +96,8 @@ pub fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
     best
 }
 
-fn colour(i: usize) -> RGBColor {
+/// The palette shared by the charts (method i gets colour i, cycling).
+pub fn colour(i: usize) -> RGBColor {
     const C: [(u8, u8, u8); 12] = [
         (31, 119, 180),
         (255, 127, 14),
