@@ -697,6 +697,10 @@ pub struct Search {
     pub bound: Option<f64>,
     /// Stop at the first interior sample (for "is anything covered?").
     pub first_witness: bool,
+    /// With a witness beyond `bound`, at most this many more boxes refine the margin
+    /// (None: until it is known to 1 %). The result still encloses the extreme: its
+    /// witness is the farthest found, its other end what the open boxes allow.
+    pub refine_boxes: Option<usize>,
 }
 
 /// True while some active lens or time coordinate of the box can still be split.
@@ -731,16 +735,24 @@ pub fn search(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfig, opts: 
     heap.push(Node { key: key_of(obj, &init, &bv), depth: 0, b: init, bv });
     let mut final_lo = f64::INFINITY;
     let mut stuck: Vec<f64> = Vec::new(); // keys of boxes left undecided at minimum size
+    let mut beyond_at: Option<u64> = None; // boxes examined when a witness first lay beyond the bound
     while let Some(Node { key, depth, b, bv }) = heap.pop() {
         let lower = key.min(stuck_lo);
         if let Some((w, _)) = best {
             // Beyond a claimed bound, the margin (bound - extreme) is wanted to 1 %,
-            // not to the band that finds it.
+            // not to the band that finds it, and with at most `refine_boxes` more boxes.
             let enough = match opts.bound {
                 Some(bd) => cfg.resolution.max(0.01 * (sg * bd - w)),
                 None => cfg.resolution,
             };
-            if w - lower <= enough {
+            if let Some(bd) = opts.bound {
+                if w < sg * bd && beyond_at.is_none() {
+                    beyond_at = Some(boxes);
+                }
+            }
+            let refined_enough =
+                matches!((beyond_at, opts.refine_boxes), (Some(b0), Some(r)) if boxes - b0 >= r as u64);
+            if w - lower <= enough || refined_enough {
                 final_lo = lower;
                 heap.clear();
                 break;
@@ -944,7 +956,7 @@ impl<'a> TileSolver<'a> {
             return Occupancy::Covered(w);
         }
         // A search that stops at the first interior sample settles it.
-        let opts = Search { bound: None, first_witness: true };
+        let opts = Search { bound: None, first_witness: true, refine_boxes: None };
         let r = search(self.tri, self.init, OBJECTIVES[0], &self.cfg, opts);
         self.boxes += r.boxes;
         let o = match r.extreme {
@@ -958,7 +970,10 @@ impl<'a> TileSolver<'a> {
 
     /// Judge the claim "objective `n` stays within `bound`" (at or above it for a
     /// minimum, at or below for a maximum) with at most `budget` boxes, refining down to
-    /// `band` next to the bound. See [`Side`].
+    /// `band` next to the bound. Once a witness lies beyond the bound, at most
+    /// `budget / 8` more boxes push it farther (the margin reported is that of the
+    /// farthest witness found: a lower bound of the true one, known to 1 % when the
+    /// search converges sooner). See [`Side`].
     pub fn side(&mut self, n: usize, bound: f64, band: f64, budget: usize) -> Side {
         let obj = OBJECTIVES[n];
         let max = matches!(obj, Objective::Coord { max: true, .. } | Objective::Depth { max: true });
@@ -1016,12 +1031,24 @@ impl<'a> TileSolver<'a> {
                     return none;
                 }
                 init[index] = cut;
-                let r = search(self.tri, init, obj, cfg, Search { bound: Some(bound), first_witness: false });
+                let r = search(
+                    self.tri,
+                    init,
+                    obj,
+                    cfg,
+                    Search { bound: Some(bound), first_witness: false, refine_boxes: Some(cfg.max_boxes / 8) },
+                );
                 self.boxes += r.boxes;
                 r
             }
             Objective::Depth { .. } => {
-                let r = search(self.tri, self.init, obj, cfg, Search { bound: Some(bound), first_witness: false });
+                let r = search(
+                    self.tri,
+                    self.init,
+                    obj,
+                    cfg,
+                    Search { bound: Some(bound), first_witness: false, refine_boxes: Some(cfg.max_boxes / 8) },
+                );
                 self.boxes += r.boxes;
                 r
             }
@@ -1098,6 +1125,34 @@ mod tests {
     }
 
     const WHOLE: [[f64; 2]; 3] = [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]];
+
+    /// A triangle right of the vertical edge x = -10 + 20 t: on the tile [0, 4]^2 the
+    /// covered times are t < (x + 10) / 20, so t max over the tile is 0.7 (at x = 4).
+    fn sweeping_edge() -> Tri {
+        let at =
+            |dx: f64| [[-10.0 + dx, -1000.0, 0.5, 1.0], [-10.0 + dx, 1000.0, 0.5, 1.0], [1000.0 + dx, 0.0, 0.5, 1.0]];
+        Tri { q: at(0.0), r: at(20.0), c0: [0.0; 3], c1: [0.0; 3], k: 1.0 }
+    }
+
+    #[test]
+    fn side_finds_a_witness_beyond_a_bound_and_certifies_one_that_holds() {
+        let tri = sweeping_edge();
+        let cfg = ExtentsConfig::default();
+        let mut s = TileSolver::new(&tri, [0.0, 4.0, 0.0, 4.0], WHOLE, &cfg);
+        // t max (objective 5) claimed 0.6: a covered sample lies beyond, at most at 0.7.
+        match s.side(5, 0.6, 1e-9, 2000) {
+            Side::Beyond { witness, value, extreme } => {
+                assert!(value > 0.6 && value <= 0.7 + 1e-9, "value {value}");
+                assert!(witness[4] > 0.6 && crate::classify(&tri, witness) == crate::Coverage::Interior);
+                // the enclosure of the extreme still holds the true one
+                assert!(extreme.lo <= 0.7 + 1e-9 && extreme.hi >= 0.7 - 1e-9, "{extreme:?}");
+            }
+            other => panic!("expected a witness beyond 0.6, got {other:?}"),
+        }
+        // claimed 0.75: nothing lies beyond
+        let mut s = TileSolver::new(&tri, [0.0, 4.0, 0.0, 4.0], WHOLE, &cfg);
+        assert!(matches!(s.side(5, 0.75, 1e-9, 2000), Side::Within { .. }));
+    }
 
     #[test]
     fn static_tile_inside_has_full_extents() {
