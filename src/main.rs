@@ -71,6 +71,14 @@ enum Cmd {
         /// The expectations file.
         #[arg(long, default_value = "corpus/expectations.json")]
         expectations: PathBuf,
+        /// Boxes per certified interval-side search (more: fewer undecided sides and
+        /// more rounding-size witnesses, slower).
+        #[arg(long, default_value_t = 2000)]
+        side_budget: usize,
+        /// Boxes per certified per-sample constraint search (more: fewer undecided
+        /// cases for the per-sample methods, slower).
+        #[arg(long, default_value_t = 2000)]
+        constraint_budget: usize,
     },
     /// Randomized counterexample search for one method: random cases of every regime
     /// (or one), each judged like `check`; every violation is shrunk (freeze the motion,
@@ -216,7 +224,20 @@ fn main() -> Result<()> {
                 std::process::exit(1);
             }
         }
-        Cmd::Check { method, regime, cases, time, seed, tile, jobs, shard, json, expectations } => {
+        Cmd::Check {
+            method,
+            regime,
+            cases,
+            time,
+            seed,
+            tile,
+            jobs,
+            shard,
+            json,
+            expectations,
+            side_budget,
+            constraint_budget,
+        } => {
             set_jobs(jobs)?;
             let methods: Vec<_> = if method == "all" {
                 cullproof::bounds::registry()
@@ -244,6 +265,10 @@ fn main() -> Result<()> {
             cfg.seed = seed;
             cfg.tile = tile;
             cfg.shard = (k, n);
+            anyhow::ensure!(side_budget > 0, "--side-budget 0: a search needs at least one box");
+            anyhow::ensure!(constraint_budget > 0, "--constraint-budget 0: a search needs at least one box");
+            cfg.side_budget = side_budget;
+            cfg.constraint_budget = constraint_budget;
             let ex = if expectations.exists() {
                 cullproof::check::Expectations::load(&expectations)?
             } else {
