@@ -9,7 +9,7 @@
 //! The case index `i` (0-based within a step) alternates the dimensions where a family
 //! mixes them, so every step sees the same mix.
 
-use crate::gen::{camera, samples_for};
+use crate::gen::{camera, samples_for, Source};
 use crate::model::{Case, ThinLens, Tile};
 use crate::Interval;
 use anyhow::{bail, Result};
@@ -56,18 +56,6 @@ fn log_steps(e0: i32, e1: i32, n: usize) -> Vec<f64> {
             }
         })
         .collect()
-}
-
-fn log_uniform(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
-    rng.gen_range(lo.ln()..hi.ln()).exp()
-}
-
-fn sign(rng: &mut ChaCha8Rng) -> f32 {
-    if rng.gen_bool(0.5) {
-        1.0
-    } else {
-        -1.0
-    }
 }
 
 /// A tile on the footprint's boundary, placed exactly as `check::make_case` places it:
@@ -273,16 +261,16 @@ pub fn focal_depth(f: f32, s: f32, d: f64) -> f32 {
 fn focal(d: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     let cam = camera(rng, true);
     let f = cam.focus;
-    let s = if d >= 0.5 { 1.0 } else { sign(rng) };
+    let s = if d >= 0.5 { 1.0 } else { rng.sign() };
     let z = [focal_depth(f, s, d), f * rng.gen_range(0.5..0.9), f * rng.gen_range(1.1..2.0)];
     let centre = [rng.gen_range(-0.2..0.2) * f, rng.gen_range(-0.2..0.2) * f];
-    let spread = f * log_uniform(rng, 0.02, 0.3);
+    let spread = f * rng.log_uniform(0.02, 0.3);
     let q: [[f32; 3]; 3] = std::array::from_fn(|k| {
         [centre[0] + rng.gen_range(-1.0..1.0) * spread, centre[1] + rng.gen_range(-1.0..1.0) * spread, z[k]]
     });
     let mut r = q;
     if i % 2 == 1 {
-        let m = spread * log_uniform(rng, 0.1, 3.0);
+        let m = spread * rng.log_uniform(0.1, 3.0);
         let dm = [rng.gen_range(-1.0..1.0) * m, rng.gen_range(-1.0..1.0) * m];
         for p in r.iter_mut() {
             for j in 0..2 {
@@ -297,8 +285,8 @@ fn focal(d: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
 
 fn w_zero(w: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     let cam = camera(rng, i % 2 == 1);
-    let z = log_uniform(rng, 2.0, 20.0);
-    let spread = z * log_uniform(rng, 0.02, 0.3);
+    let z = rng.log_uniform(2.0, 20.0);
+    let spread = z * rng.log_uniform(0.02, 0.3);
     let centre = [rng.gen_range(-0.3..0.3) * z, rng.gen_range(-0.3..0.3) * z];
     let mut q: [[f32; 3]; 3] = std::array::from_fn(|_| {
         [
@@ -307,7 +295,7 @@ fn w_zero(w: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
             z + rng.gen_range(-0.3..0.3) * spread,
         ]
     });
-    let m = spread * log_uniform(rng, 0.2, 3.0);
+    let m = spread * rng.log_uniform(0.2, 3.0);
     let d = [rng.gen_range(-1.0..1.0) * m, rng.gen_range(-1.0..1.0) * m, rng.gen_range(-0.5..0.5) * m];
     let mut r = q.map(|p| [p[0] + d[0], p[1] + d[1], p[2] + d[2]]);
     let at_end = rng.gen_bool(0.5);
@@ -324,8 +312,8 @@ fn w_zero(w: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
 
 fn perspective(ratio: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     let cam = camera(rng, i % 2 == 1);
-    let z0 = log_uniform(rng, 0.5, 2.0);
-    let spread = z0 * log_uniform(rng, 0.02, 0.3);
+    let z0 = rng.log_uniform(0.5, 2.0);
+    let spread = z0 * rng.log_uniform(0.02, 0.3);
     let centre = [rng.gen_range(-0.3..0.3) * z0, rng.gen_range(-0.3..0.3) * z0];
     let q: [[f32; 3]; 3] = std::array::from_fn(|_| {
         [
@@ -334,7 +322,7 @@ fn perspective(ratio: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
             z0 * rng.gen_range(0.9..1.1),
         ]
     });
-    let m = spread * log_uniform(rng, 0.1, 3.0);
+    let m = spread * rng.log_uniform(0.1, 3.0);
     let d = [rng.gen_range(-1.0..1.0) * m, rng.gen_range(-1.0..1.0) * m];
     let k = ratio as f32;
     let r = q.map(|p| [(p[0] + d[0]) * k, (p[1] + d[1]) * k, p[2] * k]);
@@ -365,11 +353,11 @@ fn sliver(aspect: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     } else {
         cam.cy = 0.0;
     }
-    let z = log_uniform(rng, 0.5, 50.0);
+    let z = rng.log_uniform(0.5, 50.0);
     // Depths differ a little (three equal depths trip nilsson2012-depth's known
     // equal-depth rounding, which is not what this family is about).
     let zs: [f32; 3] = std::array::from_fn(|_| z * rng.gen_range(0.95..1.05));
-    let len = z * log_uniform(rng, 0.01, 0.3);
+    let len = z * rng.log_uniform(0.01, 0.3);
     let a0 = rng.gen_range(-0.3..0.3) * z - 0.5 * len;
     let f = rng.gen_range(0.2..0.8);
     // (along the base, across it, depth) -> camera space
@@ -382,11 +370,11 @@ fn sliver(aspect: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     let base = (along(pb) - along(pa)).abs();
     // The apex's pixel height is f_across off / z_C: set it to aspect * base.
     let f_across = if vertical { cam.fx } else { cam.fy } as f64;
-    let off = (sign(rng) as f64 * aspect * base * zs[2] as f64 / f_across) as f32;
+    let off = (rng.sign() as f64 * aspect * base * zs[2] as f64 / f_across) as f32;
     let local = [pa, pb, [a0 + f * len, off, zs[2]]];
     let q = local.map(place);
     let r = if rng.gen_bool(0.5) {
-        let da = rng.gen_range(-1.0..1.0) * len * log_uniform(rng, 0.1, 3.0);
+        let da = rng.gen_range(-1.0..1.0) * len * rng.log_uniform(0.1, 3.0);
         let dz = rng.gen_range(-0.3..0.3) * z;
         local.map(|p| place([p[0] + da, p[1], p[2] + dz]))
     } else {
@@ -415,8 +403,8 @@ fn far(dist: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     let phi = rng.gen_range(0.0..std::f64::consts::TAU);
     cam.cx = (dist * phi.cos()) as f32;
     cam.cy = (dist * phi.sin()) as f32;
-    let z = log_uniform(rng, 1.0, 20.0);
-    let s = log_uniform(rng, 2.0, 40.0) as f64;
+    let z = rng.log_uniform(1.0, 20.0);
+    let s = rng.log_uniform(2.0, 40.0) as f64;
     let mut o: [[f64; 2]; 3] = std::array::from_fn(|_| [rng.gen_range(-1.0..1.0) * s, rng.gen_range(-1.0..1.0) * s]);
     let mean = [(o[0][0] + o[1][0] + o[2][0]) / 3.0, (o[0][1] + o[1][1] + o[2][1]) / 3.0];
     for p in o.iter_mut() {
@@ -432,7 +420,7 @@ fn far(dist: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     });
     let zf = z as f64;
     let r = if moving {
-        let m = s * log_uniform(rng, 0.1, 3.0) as f64;
+        let m = s * rng.log_uniform(0.1, 3.0) as f64;
         let a = rng.gen_range(0.0..std::f64::consts::TAU);
         let dz = rng.gen_range(-0.1..0.1) * z;
         q.map(|p| [p[0] + (m * a.cos() * zf / fx) as f32, p[1] + (m * a.sin() * zf / fy) as f32, p[2] + dz])
@@ -601,7 +589,7 @@ fn double_root(target: f64, rng: &mut ChaCha8Rng, size: f32) -> Built {
     // turns the edge's uncovered normal onto the diagonal into the tile from P (give or
     // take 20 degrees), and a scale of 0.5-2.
     let tm = rng.gen_range(0.35..0.65);
-    let (s1, s2) = (log_uniform(rng, 0.7, 1.4) as f64, log_uniform(rng, 0.7, 1.4) as f64);
+    let (s1, s2) = (rng.log_uniform(0.7, 1.4) as f64, rng.log_uniform(0.7, 1.4) as f64);
     let (sp, cp) = rng.gen_range(0.0..std::f64::consts::PI).sin_cos();
     let stretch = |[x, y]: [f64; 2]| {
         let (u, w) = (cp * x + sp * y, -sp * x + cp * y);
@@ -618,7 +606,7 @@ fn double_root(target: f64, rng: &mut ChaCha8Rng, size: f32) -> Built {
     };
     let into = [(1 - 2 * ci) as f64, (1 - 2 * cj) as f64];
     let theta = into[1].atan2(into[0]) - n[1].atan2(n[0]) + rng.gen_range(-0.35..0.35);
-    let s = log_uniform(rng, 0.5, 2.0) as f64;
+    let s = rng.log_uniform(0.5, 2.0) as f64;
     let (sn, cs) = theta.sin_cos();
     let map = |pt: [f64; 2]| {
         let [x, y] = stretch(pt);
