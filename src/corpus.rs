@@ -350,6 +350,19 @@ fn steps(case: &Case, tile: &Tile, witness: [f64; 5]) -> Vec<Step> {
         c.triangle.k = 1.0;
         out.push(("aspect k = 1", keep_lens_if_matching(c), *tile));
     }
+    // Move the depths to a corner of their range: every vertex to w = 1 at both shutter
+    // ends (each divided by its w, CoC included, so its screen position and
+    // screen-space CoC at t = 0 and t = 1 stay; only the perspective goes).
+    let ws = t.q.iter().chain(&t.r).map(|p| p[3]);
+    if ws.clone().all(|w| w > 0.0) && ws.clone().any(|w| w != 1.0) {
+        let mut c = *case;
+        let unit = |p: [f32; 4]| [p[0] / p[3], p[1] / p[3], p[2] / p[3], 1.0];
+        c.triangle.q = t.q.map(unit);
+        c.triangle.r = t.r.map(unit);
+        c.triangle.c0 = std::array::from_fn(|i| t.c0[i] / t.q[i][3]);
+        c.triangle.c1 = std::array::from_fn(|i| t.c1[i] / t.r[i][3]);
+        out.push(("depths to w = 1", keep_lens_if_matching(c), *tile));
+    }
     // Shrink the tile around the witness to the next smaller power-of-two tile.
     let size = (tile.x1 - tile.x0).min(tile.y1 - tile.y0);
     if size > 1.0 {
@@ -608,6 +621,33 @@ pub fn describe(cf: &CaseFile) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn depths_to_unit_w_keep_the_screen_positions_and_cocs_at_both_ends() {
+        let mut tri = crate::model::Triangle::fixed([[2.0, 4.0, 1.0, 2.0], [8.0, 4.0, 2.0, 4.0], [3.0, 9.0, 0.5, 1.0]]);
+        tri.r[0] = [6.0, 3.0, 1.5, 3.0];
+        tri.c0 = [1.0, -2.0, 0.5];
+        tri.c1 = [3.0, -2.0, 0.5];
+        let case = Case { triangle: tri, lens: None };
+        let tile = Tile::square(0.0, 0.0, 4.0);
+        let (_, c, _) = steps(&case, &tile, [1.0, 1.0, 0.0, 0.0, 0.5])
+            .into_iter()
+            .find(|s| s.0 == "depths to w = 1")
+            .expect("a case with w != 1 offers the step");
+        let t = c.triangle;
+        for i in 0..3 {
+            assert_eq!((t.q[i][3], t.r[i][3]), (1.0, 1.0));
+            for (a, b, ca, cb) in [(tri.q[i], t.q[i], tri.c0[i], t.c0[i]), (tri.r[i], t.r[i], tri.c1[i], t.c1[i])] {
+                assert_eq!((a[0] / a[3], a[1] / a[3], ca / a[3]), (b[0], b[1], cb));
+            }
+        }
+        // nothing to do when every w is already 1, or a vertex is behind the lens
+        let flat = Case { triangle: t, lens: None };
+        assert!(steps(&flat, &tile, [1.0; 5]).iter().all(|s| s.0 != "depths to w = 1"));
+        let mut behind = case;
+        behind.triangle.q[1][3] = -1.0;
+        assert!(steps(&behind, &tile, [1.0; 5]).iter().all(|s| s.0 != "depths to w = 1"));
+    }
 
     /// A conservative bbox case file built from generated case `index`.
     fn fixture(index: u64) -> CaseFile {

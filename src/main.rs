@@ -82,7 +82,8 @@ enum Cmd {
     },
     /// Randomized counterexample search for one method: random cases of every regime
     /// (or one), each judged like `check`; every violation is shrunk (freeze the motion,
-    /// zero the CoC, snap coordinates to fewer mantissa bits, aspect 1, smaller tiles)
+    /// zero the CoC, snap coordinates to fewer mantissa bits, aspect 1, depths to w = 1,
+    /// smaller tiles)
     /// while it stays a violation at least half as large, then written to corpus/cases/<method>/<hash>.json
     /// (an existing file is never overwritten). One file per regime and bound.
     Search {
