@@ -14,7 +14,7 @@
 use crate::bounds::{SampleBox, TileBounds};
 use crate::model::{Sample, Tile};
 use crate::Interval;
-use oracles::extents::{box_values, classify_values, Box5, BoxClass};
+use oracles::extents::{box_values_with, classify_values, Box5, BoxClass};
 use oracles::{classify, Coverage, Tri};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -118,7 +118,7 @@ pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_wi
         if boxes as usize > budget {
             return ConstraintSearch { verdict: ConstraintVerdict::Undecided, boxes };
         }
-        let bv = box_values(tri, &b);
+        let bv = box_values_with(tri, &b, false);
         if classify_values(&bv) == BoxClass::Empty {
             continue;
         }

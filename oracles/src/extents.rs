@@ -207,6 +207,14 @@ fn ends(iv: Interval) -> ([f64; 2], usize) {
 
 /// Enclosures of the coverage values over a box (corners in x, y, u, v; Taylor in t).
 pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
+    box_values_with(tri, b, true)
+}
+
+/// [`box_values`], with the depth enclosures (`nz`, `depth`, `depth_smear`) only when
+/// `with_depth`: without them `nz` is the whole line, `depth` None and `depth_smear`
+/// zero, and the coverage values are the same. Searches for u, v, t and occupancy
+/// never look at the depth, and it is a third of the work.
+pub fn box_values_with(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValues {
     let tm = b[4].mid();
     let h = (b[4].hi - tm).max(tm - b[4].lo).max(0.0);
     let t = TPoly::t_at(tm);
@@ -276,6 +284,10 @@ pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
                         hull(&mut e[k], ev[k].range(h));
                         em[iu][iv][ix][iy][k] = ev[k].mid();
                         smear[k][4] = smear[k][4].max(ev[k].variation(h));
+                    }
+                    if !with_depth {
+                        depth_ok = false;
+                        continue;
                     }
                     let n = ev[0].mul(&zb[0]).add(&ev[1].mul(&zb[1])).add(&ev[2].mul(&zb[2]));
                     let nc = n.range(h);
@@ -370,7 +382,8 @@ pub fn box_values(tri: &Tri, b: &Box5) -> BoxValues {
     if depth.is_none() || depth_smear.iter().any(|v| !v.is_finite()) {
         depth_smear = [0.0; 5];
     }
-    BoxValues { e: e.map(|v| v.unwrap()), d, nz: nz.unwrap(), depth, smear, depth_smear, in_front, separated }
+    let nz = nz.unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY));
+    BoxValues { e: e.map(|v| v.unwrap()), d, nz, depth, smear, depth_smear, in_front, separated }
 }
 
 /// Empty / full / undecided from the enclosures.
@@ -731,7 +744,8 @@ pub fn search(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfig, opts: 
     // only tried for witnesses.
     let drop_at = opts.bound.map_or(f64::INFINITY, |b| sg * b - cfg.resolution);
     let mut dropped_lo = f64::INFINITY;
-    let bv = box_values(tri, &init);
+    let with_depth = matches!(obj, Objective::Depth { .. });
+    let bv = box_values_with(tri, &init, with_depth);
     heap.push(Node { key: key_of(obj, &init, &bv), depth: 0, b: init, bv });
     let mut final_lo = f64::INFINITY;
     let mut stuck: Vec<f64> = Vec::new(); // keys of boxes left undecided at minimum size
@@ -846,7 +860,7 @@ pub fn search(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfig, opts: 
         for half in [Interval::new(b[dim].lo, m), Interval::new(m, b[dim].hi)] {
             let mut c = b;
             c[dim] = half;
-            let cv = box_values(tri, &c);
+            let cv = box_values_with(tri, &c, with_depth);
             if classify_values(&cv) == BoxClass::Empty {
                 continue;
             }
