@@ -493,6 +493,50 @@ pub fn judge(
     (out, solver.boxes)
 }
 
+/// One line per method over all regimes: the verdict at a glance.
+fn render_summary(r: &CheckReport) -> String {
+    let mut s = format!(
+        "\nper method, all regimes:\n{:<24} {:>6} {:>10} {:>5} {:>9} {:>11}  {}\n",
+        "method", "cases", "violations", "f32", "undecided", "margin", "status"
+    );
+    let mut methods: Vec<&str> = Vec::new();
+    for row in &r.rows {
+        if !methods.contains(&row.method.as_str()) {
+            methods.push(&row.method);
+        }
+    }
+    for m in methods {
+        let rows: Vec<&Row> = r.rows.iter().filter(|x| x.method == m).collect();
+        let sum = |f: fn(&Row) -> u64| rows.iter().map(|x| f(x)).sum::<u64>();
+        let violations = sum(|x| x.violations);
+        let margin = rows.iter().filter(|x| x.violations > 0).map(|x| x.margin_needed).fold(0.0, f64::max);
+        let where_: Vec<&str> = rows.iter().filter(|x| x.violations > 0).map(|x| x.regime.as_str()).collect();
+        let status = if rows.iter().any(|x| x.status == "UNEXPECTED VIOLATION") {
+            "UNEXPECTED VIOLATION"
+        } else if violations > 0 {
+            "known violations only"
+        } else {
+            "no violation"
+        };
+        let regimes = match where_.len() {
+            0 => String::new(),
+            n => format!(", in {n} of {} regimes", rows.len()),
+        };
+        s += &format!(
+            "{:<24} {:>6} {:>10} {:>5} {:>9} {:>11}  {}{}\n",
+            m,
+            sum(|x| x.cases),
+            violations,
+            sum(|x| x.f32_witnessed),
+            sum(|x| x.undecided),
+            if violations == 0 { "-".to_string() } else { format!("{margin:.3e}") },
+            status,
+            regimes
+        );
+    }
+    s
+}
+
 /// Run the gate.
 pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport {
     let start = std::time::Instant::now();
@@ -626,6 +670,7 @@ pub fn render(r: &CheckReport) -> String {
             row.status
         );
     }
+    s += &render_summary(r);
     let unexpected: Vec<_> = r.rows.iter().filter(|x| x.status == "UNEXPECTED VIOLATION").collect();
     s += "\nmargin: the padding of the violated bound that would admit every witness found (inf: a covered tile was culled).\n";
     s += "f32: violations with a witness that is an f32 sample (the others were found only between f32 values).\n";

@@ -41,3 +41,21 @@ fn every_expected_violation_is_backed_by_a_case_file() {
         }
     }
 }
+
+#[test]
+fn explain_renders_every_corpus_case() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    for f in case_files(&[root.join("corpus/cases")]).unwrap() {
+        let cf = CaseFile::load(&f).unwrap();
+        let text = cullproof::corpus::describe(&cf);
+        assert!(text.contains(&cf.method), "{}: the description does not name the method", f.display());
+        let m = cullproof::bounds::by_id(&cf.method).unwrap();
+        let w = cf.witness.as_ref().map(|w| w.sample).unwrap_or_else(|| {
+            let (x, y) = cf.tile.center();
+            [x as f64, y as f64, 0.0, 0.0, 0.5]
+        });
+        let svg = cullproof::explain::svg(&cf.case, &cf.tile, m, w, "corpus test")
+            .unwrap_or_else(|e| panic!("{}: {e}", f.display()));
+        assert!(svg.starts_with("<svg") && svg.contains("witness"), "{}: not a picture of the witness", f.display());
+    }
+}

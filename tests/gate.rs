@@ -26,6 +26,13 @@ fn gate_passes_on_a_fixed_budget() {
     for c in r.cross_check.iter().filter(|c| c.regime != "far-from-origin") {
         assert!((c.embree_over + c.embree_under) * 1000 <= c.samples, "{c:?}");
     }
+    // the summary names every method once, bbox without a violation
+    let text = cullproof::check::render(&r);
+    let summary = text.split("per method, all regimes:").nth(1).expect("a per-method summary");
+    for m in &cfg.methods {
+        assert!(summary.lines().any(|l| l.starts_with(&format!("{} ", m.info().id))), "{}", m.info().id);
+    }
+    assert!(summary.lines().any(|l| l.starts_with("bbox ") && l.ends_with("no violation")), "{summary}");
     // every method x every regime got cases
     for m in &cfg.methods {
         for g in cullproof::gen::Regime::ALL {
