@@ -934,6 +934,9 @@ pub struct TileSolver<'a> {
     cfg: ExtentsConfig,
     results: [Option<ObjectiveResult>; 8],
     occupancy: Option<Occupancy>,
+    /// Side judgements already made, by (objective, bound, band, budget): methods that
+    /// share a bound (lc and la2011, mam2012-new and its parts) are judged once.
+    sides: Vec<((usize, u64, u64, usize), Side)>,
     /// Boxes examined so far.
     pub boxes: u64,
 }
@@ -957,7 +960,17 @@ impl<'a> TileSolver<'a> {
                 init[i] = Interval::point(p);
             }
         }
-        TileSolver { tri, full, init, active, cfg: *cfg, results: [None; 8], occupancy: None, boxes: 0 }
+        TileSolver {
+            tri,
+            full,
+            init,
+            active,
+            cfg: *cfg,
+            results: [None; 8],
+            occupancy: None,
+            sides: Vec::new(),
+            boxes: 0,
+        }
     }
 
     /// Is anything in the tile covered? The first search run answers it.
@@ -989,6 +1002,16 @@ impl<'a> TileSolver<'a> {
     /// farthest witness found: a lower bound of the true one, known to 1 % when the
     /// search converges sooner). See [`Side`].
     pub fn side(&mut self, n: usize, bound: f64, band: f64, budget: usize) -> Side {
+        let key = (n, bound.to_bits(), band.to_bits(), budget);
+        if let Some((_, s)) = self.sides.iter().find(|(k, _)| *k == key) {
+            return *s;
+        }
+        let s = self.side_uncached(n, bound, band, budget);
+        self.sides.push((key, s));
+        s
+    }
+
+    fn side_uncached(&mut self, n: usize, bound: f64, band: f64, budget: usize) -> Side {
         let obj = OBJECTIVES[n];
         let max = matches!(obj, Objective::Coord { max: true, .. } | Objective::Depth { max: true });
         let beyond = |v: f64| if max { v > bound } else { v < bound };
