@@ -139,7 +139,7 @@ impl CheckConfig {
         CheckConfig {
             methods,
             regimes: Regime::ALL.to_vec(),
-            cases: 960,
+            cases: 1920,
             time: None,
             seed: 1,
             tile: None,

@@ -47,7 +47,7 @@ enum Cmd {
         #[arg(long, default_value = "all")]
         regime: String,
         /// Number of cases (spread over the regimes in turn).
-        #[arg(long, default_value_t = 960, conflicts_with = "time")]
+        #[arg(long, default_value_t = 1920, conflicts_with = "time")]
         cases: u64,
         /// Run for about this many seconds instead (whole batches of cases; the report
         /// says how many, and `--cases N` repeats the run exactly).
