@@ -321,8 +321,16 @@ pub fn culled_by(b: &TileBounds, p: [f64; 5]) -> Option<(String, f64)> {
 /// Judge every method on one case.
 fn judge_case(cfg: &CheckConfig, i: u64) -> (Regime, Vec<Judgement>, u64, CrossCheck) {
     let (regime, case, tile) = make_case(cfg, i);
-    let (js, boxes) = judge(cfg, &cfg.methods, &case, &tile, i);
-    (regime, js, boxes, cross_check(cfg, &case, &tile, i))
+    // One Embree scene and one set of uniform samples serve the judging and the
+    // cross-check.
+    let embree = embree_for(&case);
+    let uniform = uniform_samples(cfg, &tile, i);
+    let (js, boxes) = judge_with(cfg, &cfg.methods, &case, &tile, i, embree.as_ref(), &uniform);
+    (regime, js, boxes, cross_check(&case, embree.as_ref(), &uniform))
+}
+
+fn embree_for(case: &Case) -> Option<oracles::embree::EmbreeOracle> {
+    lens_tri(case).and_then(|l| oracles::embree::EmbreeOracle::new(&l).ok())
 }
 
 /// The sampled cross-check of the two ground truths on one case: the gate's uniform
@@ -347,13 +355,13 @@ fn uniform_samples(cfg: &CheckConfig, tile: &Tile, i: u64) -> Vec<Sample> {
 
 /// Judge the case's uniform tile samples with both oracles; the exact verdict settles
 /// every difference (counted, never used to judge a method).
-pub fn cross_check(cfg: &CheckConfig, case: &Case, tile: &Tile, i: u64) -> CrossCheck {
+fn cross_check(case: &Case, embree: Option<&oracles::embree::EmbreeOracle>, uniform: &[Sample]) -> CrossCheck {
     let mut c = CrossCheck::default();
-    let Some(embree) = lens_tri(case).and_then(|l| oracles::embree::EmbreeOracle::new(&l).ok()) else {
+    let Some(embree) = embree else {
         return c;
     };
     let tri = case.triangle.to_oracle();
-    for s in uniform_samples(cfg, tile, i) {
+    for s in uniform {
         let p = s.to_oracle();
         let interior = classify(&tri, p) == Coverage::Interior;
         let hit = embree.hit(p);
@@ -374,12 +382,23 @@ pub fn judge(
     tile: &Tile,
     i: u64,
 ) -> (Vec<Judgement>, u64) {
+    judge_with(cfg, methods, case, tile, i, embree_for(case).as_ref(), &uniform_samples(cfg, tile, i))
+}
+
+/// [`judge`] with the case's Embree scene and uniform tile samples made by the caller.
+fn judge_with(
+    cfg: &CheckConfig,
+    methods: &[&'static dyn Method],
+    case: &Case,
+    tile: &Tile,
+    i: u64,
+    embree: Option<&oracles::embree::EmbreeOracle>,
+    uniform: &[Sample],
+) -> (Vec<Judgement>, u64) {
     let (case, tile) = (*case, *tile);
     let tri = case.triangle.to_oracle();
     let tb = [tile.x0 as f64, tile.x1 as f64, tile.y0 as f64, tile.y1 as f64];
     let mut solver = TileSolver::new(&tri, tb, [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg.extents);
-    let embree = lens_tri(&case).and_then(|l| oracles::embree::EmbreeOracle::new(&l).ok());
-    let uniform = uniform_samples(cfg, &tile, i);
     let witness = |sample: [f64; 5], bound: String, margin: f64| Witness {
         case_index: i,
         case,
@@ -387,7 +406,7 @@ pub fn judge(
         sample,
         bound,
         margin,
-        embree_hit: embree.as_ref().map(|o| o.hit(sample)),
+        embree_hit: embree.map(|o| o.hit(sample)),
     };
     let mut out = Vec::with_capacity(methods.len());
     for m in methods {

@@ -280,21 +280,8 @@ mod tests {
     fn no_covered_sample_is_culled() {
         let tri = moving();
         // A thin-lens triangle crossing the focal plane (CoC changes sign) with
-        // perspective motion.
-        let cam = crate::model::ThinLens {
-            fx: 50.0,
-            fy: 60.0,
-            cx: 0.0,
-            cy: 0.0,
-            radius: 0.3,
-            focus: 4.0,
-            near: 0.1,
-            far: 100.0,
-        };
-        let lens_tri = cam.triangle(
-            [[-1.0, -1.0, 2.0], [1.0, -0.5, 6.0], [0.0, 1.0, 3.0]],
-            [[-0.5, -1.0, 3.0], [1.5, 0.0, 5.0], [0.5, 1.5, 2.5]],
-        );
+        // perspective motion: the first of the dual-space tests' hard triangles.
+        let lens_tri = super::super::la2011::cases::hard_triangles()[0];
         let mut total = 0;
         let mut seed = 1;
         for (tri, tiles) in [
@@ -318,5 +305,10 @@ mod tests {
             }
         }
         assert!(total > 500, "too few covered samples to mean anything: {total}");
+    }
+
+    #[test]
+    fn degenerate_and_huge_input_is_answered_in_the_domain() {
+        super::super::testkit::assert_degenerate_input_is_answered(METHOD, &super::super::la2011::figure1::triangle());
     }
 }

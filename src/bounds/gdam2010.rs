@@ -324,6 +324,17 @@ mod tests {
     }
 
     /// A triangle moving in x, y and depth (so the edge quadratics are really quadratic).
+    /// A triangle that changes facing during the shutter: vertex 2 crosses edge 01.
+    fn flip() -> Triangle {
+        Triangle {
+            q: [[0.0, 0.0, 0.0, 1.0], [40.0, 0.0, 0.0, 1.0], [20.0, 30.0, 0.0, 1.0]],
+            r: [[0.0, 10.0, 0.0, 1.0], [40.0, 10.0, 0.0, 1.0], [25.0, -20.0, 0.0, 1.0]],
+            c0: [0.0; 3],
+            c1: [0.0; 3],
+            k: 1.0,
+        }
+    }
+
     fn moving() -> Triangle {
         let q = [[10.0, 10.0, 0.5, 1.0], [50.0, 14.0, 0.5, 1.0], [18.0, 44.0, 0.6, 1.0]];
         let r = [[60.0, 30.0, 1.0, 2.0], [100.0, 70.0, 1.0, 2.5], [40.0, 90.0, 1.2, 1.6]];
@@ -386,14 +397,7 @@ mod tests {
         let mut flipped = moving();
         flipped.q.swap(1, 2);
         flipped.r.swap(1, 2);
-        // A triangle that changes facing during the shutter: vertex 2 crosses edge 01.
-        let flip = Triangle {
-            q: [[0.0, 0.0, 0.0, 1.0], [40.0, 0.0, 0.0, 1.0], [20.0, 30.0, 0.0, 1.0]],
-            r: [[0.0, 10.0, 0.0, 1.0], [40.0, 10.0, 0.0, 1.0], [25.0, -20.0, 0.0, 1.0]],
-            c0: [0.0; 3],
-            c1: [0.0; 3],
-            k: 1.0,
-        };
+        let flip = flip();
         let mut total = 0;
         for (tri, tiles) in [
             (
@@ -498,13 +502,7 @@ mod tests {
 
     #[test]
     fn agrees_with_exact_time_spans() {
-        let flip = Triangle {
-            q: [[0.0, 0.0, 0.0, 1.0], [40.0, 0.0, 0.0, 1.0], [20.0, 30.0, 0.0, 1.0]],
-            r: [[0.0, 10.0, 0.0, 1.0], [40.0, 10.0, 0.0, 1.0], [25.0, -20.0, 0.0, 1.0]],
-            c0: [0.0; 3],
-            c1: [0.0; 3],
-            k: 1.0,
-        };
+        let flip = flip();
         // (name, triangle, grid, step, largest allowed disagreement)
         let cases = [
             ("moving, near the origin", moving(), (0..110, 0..100), 1, 1e-4),
@@ -622,5 +620,10 @@ mod tests {
         );
         // Generic pixels err by ~1e-7 (agrees_with_exact_time_spans); here far more.
         assert!(worst > 1e-5 || lost > 0);
+    }
+
+    #[test]
+    fn degenerate_and_huge_input_is_answered_in_the_domain() {
+        super::super::testkit::assert_degenerate_input_is_answered(METHOD, &super::super::la2011::figure1::triangle());
     }
 }

@@ -418,16 +418,13 @@ pub(crate) mod cases {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testkit::assert_spot;
+    use super::super::testkit::{assert_degenerate_input_is_answered, assert_spot, bounds_of, random_dual_case};
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
     fn bounds(tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
-        match METHOD.setup(tri).tile(tile) {
-            TileResult::Empty => None,
-            TileResult::Bounds(b) => Some(b),
-        }
+        bounds_of(METHOD, tri, tile)
     }
 
     /// Random samples in the tile: no interior-covered sample may be rejected.
@@ -536,24 +533,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(42);
         let (mut total, mut admitted) = (0, 0);
         for n in 0..300 {
-            let mut v = || {
-                let w: f32 = if n % 5 == 0 { rng.gen_range(-0.5..3.0) } else { rng.gen_range(0.5..3.0) };
-                [rng.gen_range(-8.0..8.0) * w.abs().max(0.3), rng.gen_range(-8.0..8.0) * w.abs().max(0.3), 0.5, w]
-            };
-            let q = [v(), v(), v()];
-            let r = [v(), v(), v()];
-            let mut c = || {
-                if n % 7 == 0 {
-                    0.0
-                } else {
-                    rng.gen_range(-4.0..4.0)
-                }
-            };
-            let tri = Triangle { q, r, c0: [c(), c(), c()], c1: [c(), c(), c()], k: rng.gen_range(0.5..2.0) };
-            let i = rng.gen_range(0..3);
-            let (cx, cy) = if q[i][3] > 0.1 { (q[i][0] / q[i][3], q[i][1] / q[i][3]) } else { (0.0, 0.0) };
-            let size = [0.5f32, 2.0, 6.0][n % 3];
-            let tile = Tile::square(cx - size * 0.5 + rng.gen_range(-2.0..2.0), cy - size * 0.5, size);
+            let (tri, tile) = random_dual_case(&mut rng, n);
             let (c, a) = spot_check(&tri, &tile, 2000, 1000 + n as u64);
             total += c;
             admitted += a;
@@ -565,17 +545,6 @@ mod tests {
 
     #[test]
     fn degenerate_input_does_not_panic() {
-        let z = Triangle { q: [[0.0; 4]; 3], r: [[0.0; 4]; 3], c0: [0.0; 3], c1: [0.0; 3], k: 0.0 };
-        let _ = METHOD.setup(&z).tile(&Tile::square(0.0, 0.0, 1.0));
-        let mut t = figure1::triangle();
-        t.q[0] = [3.0e38, -3.0e38, 0.5, 1.0e-30];
-        t.c0[1] = 3.0e38;
-        t.c1[2] = -3.0e38;
-        for tile in [Tile::square(0.0, 0.0, 1.0), Tile::square(-1e30, 1e30, 1e20)] {
-            if let TileResult::Bounds(b) = METHOD.setup(&t).tile(&tile) {
-                assert!(b.u[0] <= b.u[1] && b.v[0] <= b.v[1] && b.t[0] <= b.t[1]);
-                assert!(b.u[0] >= -1.0 && b.u[1] <= 1.0 && b.t[0] >= 0.0 && b.t[1] <= 1.0);
-            }
-        }
+        assert_degenerate_input_is_answered(METHOD, &figure1::triangle());
     }
 }

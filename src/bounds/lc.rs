@@ -280,4 +280,9 @@ mod tests {
         assert_eq!(viol, [0; 3], "covered {covered}, pushed {near}");
         assert!(covered > 50000 && near > 500000, "covered {covered}, pushed {near}");
     }
+
+    #[test]
+    fn degenerate_and_huge_input_is_answered_in_the_domain() {
+        super::super::testkit::assert_degenerate_input_is_answered(METHOD, &super::super::la2011::figure1::triangle());
+    }
 }

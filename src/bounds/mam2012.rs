@@ -362,7 +362,7 @@ impl Prepared for Prep {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testkit::{covered, near_miss_check, random_sample, spot_check};
+    use super::super::testkit::{assert_keeps_covered, covered, near_miss_check, random_sample, spot_check};
     use super::*;
     use crate::model::ThinLens;
     use rand::{Rng, SeedableRng};
@@ -463,19 +463,9 @@ mod tests {
                     TileResult::Empty => culled_tiles += 1,
                     TileResult::Bounds(b) => constrained += (b.u != [-1.0, 1.0] || b.v != [-1.0, 1.0]) as usize,
                 }
-                let (cov, bad) = spot_check(p.as_ref(), &tri, &tile, 2000, it * 7 + 1);
-                assert!(
-                    bad.is_empty(),
-                    "triangle {it} {tri:?} tile {tile:?}: first culled covered sample {:?}",
-                    bad[0]
-                );
+                let (cov, tried) =
+                    assert_keeps_covered(p.as_ref(), &tri, &tile, (2000, 300), it * 7 + 1, &format!("triangle {it}"));
                 cov_total += cov;
-                let (tried, bad) = near_miss_check(p.as_ref(), &tri, &tile, 300, it * 7 + 2);
-                assert!(
-                    bad.is_empty(),
-                    "triangle {it} {tri:?} tile {tile:?}: first culled covered sample near a bound {:?}",
-                    bad[0]
-                );
                 near_total += tried;
             }
         }
@@ -693,5 +683,10 @@ mod tests {
         let mut t = fig1();
         t.q[0][3] = -1.0;
         assert!(METHOD.setup(&t).disabled().unwrap().contains("w <= 0"));
+    }
+
+    #[test]
+    fn degenerate_and_huge_input_is_answered_in_the_domain() {
+        super::super::testkit::assert_degenerate_input_is_answered(METHOD, &super::super::la2011::figure1::triangle());
     }
 }

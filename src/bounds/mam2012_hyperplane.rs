@@ -429,7 +429,7 @@ impl Prepared for Prep {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testkit::{near_miss_check, random_sample, spot_check};
+    use super::super::testkit::{assert_keeps_covered, near_miss_check, random_sample, spot_check};
     use super::*;
     use crate::model::ThinLens;
     use rand::{Rng, SeedableRng};
@@ -544,19 +544,9 @@ mod tests {
                 if matches!(p.tile(&tile), TileResult::Empty) {
                     culled_tiles += 1;
                 }
-                let (cov, bad) = spot_check(p.as_ref(), &tri, &tile, 2000, it * 7 + 1);
-                assert!(
-                    bad.is_empty(),
-                    "triangle {it} {tri:?} tile {tile:?}: first culled covered sample {:?}",
-                    bad[0]
-                );
+                let (cov, tried) =
+                    assert_keeps_covered(p.as_ref(), &tri, &tile, (2000, 300), it * 7 + 1, &format!("triangle {it}"));
                 cov_total += cov;
-                let (tried, bad) = near_miss_check(p.as_ref(), &tri, &tile, 300, it * 7 + 2);
-                assert!(
-                    bad.is_empty(),
-                    "triangle {it} {tri:?} tile {tile:?}: first culled covered sample near a bound {:?}",
-                    bad[0]
-                );
                 near_total += tried;
             }
         }
@@ -667,5 +657,14 @@ mod tests {
             let _ = p.tile(&Tile::square(0.0, 0.0, 1.0));
         }
         let _ = Mam2012Hyperplane::selective(true, 4.0).setup(&tri);
+    }
+
+    #[test]
+    fn degenerate_and_huge_input_is_answered_in_the_domain() {
+        super::super::testkit::assert_degenerate_input_is_answered(METHOD, &super::super::la2011::figure1::triangle());
+        super::super::testkit::assert_degenerate_input_is_answered(
+            METHOD_PS,
+            &super::super::la2011::figure1::triangle(),
+        );
     }
 }

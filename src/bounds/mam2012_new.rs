@@ -227,4 +227,9 @@ mod tests {
             assert!(total > 100, "case {ci}: only {total} covered samples");
         }
     }
+
+    #[test]
+    fn degenerate_and_huge_input_is_answered_in_the_domain() {
+        super::super::testkit::assert_degenerate_input_is_answered(METHOD, &super::super::la2011::figure1::triangle());
+    }
 }

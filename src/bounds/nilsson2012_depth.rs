@@ -360,7 +360,7 @@ pub static METHOD: &dyn Method = &Nilsson2012Depth;
 
 #[cfg(test)]
 mod tests {
-    use super::super::testkit::{bounds_of, random_sample};
+    use super::super::testkit::{bounds_of, random_lens, random_sample};
     use super::*;
     use crate::model::ThinLens;
     use oracles::DepthCheck;
@@ -548,17 +548,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(31);
         let (mut covered, mut bounded, mut tiles) = (0, 0, 0);
         for it in 0..200 {
-            let focus = rng.gen_range(2.0f32..10.0);
-            let c = ThinLens {
-                fx: 100.0,
-                fy: 110.0,
-                cx: 32.0,
-                cy: 32.0,
-                radius: rng.gen_range(0.0..0.3),
-                focus,
-                near: 0.5,
-                far: 50.0,
-            };
+            let c = random_lens(&mut rng);
             let zlo = if it % 4 == 0 { -1.0 } else { 0.6 };
             let q: [[f32; 3]; 3] = std::array::from_fn(|_| {
                 let z = rng.gen_range(zlo..12.0f32);
@@ -597,5 +587,10 @@ mod tests {
         }
         eprintln!("nilsson2012-depth random: {covered} interior samples, {bounded} of {tiles} tiles with a finite z^");
         assert!(covered > 10000 && bounded > tiles / 2, "{covered} {bounded} {tiles}");
+    }
+
+    #[test]
+    fn degenerate_and_huge_input_is_answered_in_the_domain() {
+        super::super::testkit::assert_degenerate_input_is_answered(METHOD, &super::super::la2011::figure1::triangle());
     }
 }

@@ -161,3 +161,84 @@ pub(crate) fn assert_eval_box_encloses(b: &TileBounds, tile: &Tile, seed: u64) {
         }
     }
 }
+
+/// Triangle `n` of the random stress set of the dual-space tests: moving, defocused,
+/// every fifth with a vertex that may sit at w <= 0, every seventh with zero CoC, any
+/// aspect k; and a tile of 0.5, 2 or 6 px near one projected vertex.
+pub(crate) fn random_dual_case(rng: &mut ChaCha8Rng, n: usize) -> (Triangle, Tile) {
+    let mut v = || {
+        let w: f32 = if n.is_multiple_of(5) { rng.gen_range(-0.5..3.0) } else { rng.gen_range(0.5..3.0) };
+        [rng.gen_range(-8.0..8.0) * w.abs().max(0.3), rng.gen_range(-8.0..8.0) * w.abs().max(0.3), 0.5, w]
+    };
+    let q = [v(), v(), v()];
+    let r = [v(), v(), v()];
+    let mut c = || {
+        if n.is_multiple_of(7) {
+            0.0
+        } else {
+            rng.gen_range(-4.0..4.0)
+        }
+    };
+    let tri = Triangle { q, r, c0: [c(), c(), c()], c1: [c(), c(), c()], k: rng.gen_range(0.5..2.0) };
+    let i = rng.gen_range(0..3);
+    let (cx, cy) = if q[i][3] > 0.1 { (q[i][0] / q[i][3], q[i][1] / q[i][3]) } else { (0.0, 0.0) };
+    let size = [0.5f32, 2.0, 6.0][n % 3];
+    let tile = Tile::square(cx - size * 0.5 + rng.gen_range(-2.0..2.0), cy - size * 0.5, size);
+    (tri, tile)
+}
+
+/// A method must answer degenerate and huge input without panicking, with ordered
+/// intervals inside the domain and constraints that can be evaluated: a zero triangle,
+/// and `tri` with one vertex at +-3e38 (w = 1e-30) and extreme CoCs, on an ordinary
+/// and on a huge tile.
+pub(crate) fn assert_degenerate_input_is_answered(m: &dyn Method, tri: &Triangle) {
+    let z = Triangle { q: [[0.0; 4]; 3], r: [[0.0; 4]; 3], c0: [0.0; 3], c1: [0.0; 3], k: 0.0 };
+    let _ = m.setup(&z).tile(&Tile::square(0.0, 0.0, 1.0));
+    let mut t = *tri;
+    t.q[0] = [3.0e38, -3.0e38, 0.5, 1.0e-30];
+    t.c0[1] = 3.0e38;
+    t.c1[2] = -3.0e38;
+    for tile in [Tile::square(0.0, 0.0, 1.0), Tile::square(-1e30, 1e30, 1e20)] {
+        if let TileResult::Bounds(b) = m.setup(&t).tile(&tile) {
+            assert!(b.u[0] <= b.u[1] && b.v[0] <= b.v[1] && b.t[0] <= b.t[1], "{b:?}");
+            assert!(b.u[0] >= -1.0 && b.u[1] <= 1.0 && b.v[0] >= -1.0 && b.v[1] <= 1.0, "{b:?}");
+            assert!(b.t[0] >= 0.0 && b.t[1] <= 1.0, "{b:?}");
+            let _ = b.admits(&Sample::new(0.0, 0.0, 0.0, 0.0, 0.5));
+        }
+    }
+}
+
+/// Both checks on one prepared triangle and tile, failing with `what` and the first
+/// culled covered sample: `n` uniform samples ([`spot_check`], seed `seed`) and `near`
+/// samples just beyond each bound ([`near_miss_check`], seed `seed + 1`). Returns
+/// (covered samples seen, near-miss samples tried).
+pub(crate) fn assert_keeps_covered(
+    p: &dyn Prepared,
+    tri: &Triangle,
+    tile: &Tile,
+    (n, near): (usize, usize),
+    seed: u64,
+    what: &str,
+) -> (usize, usize) {
+    let (cov, bad) = spot_check(p, tri, tile, n, seed);
+    assert!(bad.is_empty(), "{what} {tri:?} tile {tile:?}: {} covered samples culled, first {:?}", bad.len(), bad[0]);
+    let (tried, bad) = near_miss_check(p, tri, tile, near, seed + 1);
+    assert!(bad.is_empty(), "{what} {tri:?} tile {tile:?}: covered sample culled near a bound {:?}", bad[0]);
+    (cov, tried)
+}
+
+/// A thin lens of the random-triangle tests: 100 x 110 px focal scale, centre (32, 32),
+/// focus depth in [2, 10), lens radius in [0, 0.3) (0: a pinhole).
+pub(crate) fn random_lens(rng: &mut ChaCha8Rng) -> crate::model::ThinLens {
+    let focus = rng.gen_range(2.0f32..10.0);
+    crate::model::ThinLens {
+        fx: 100.0,
+        fy: 110.0,
+        cx: 32.0,
+        cy: 32.0,
+        radius: rng.gen_range(0.0..0.3),
+        focus,
+        near: 0.5,
+        far: 50.0,
+    }
+}

@@ -434,7 +434,7 @@ static GUARDED: &dyn Method = &Wu2013 { guarded: true };
 
 #[cfg(test)]
 mod tests {
-    use super::super::testkit::{assert_spot, bounds_of, random_sample, spot};
+    use super::super::testkit::{assert_spot, bounds_of, random_lens, random_sample, spot};
     use super::*;
     use crate::model::ThinLens;
     use rand::{Rng, SeedableRng};
@@ -442,6 +442,18 @@ mod tests {
 
     fn bounds(tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
         bounds_of(METHOD, tri, tile)
+    }
+
+    /// Vertices crossing the column x = 20 in opposite directions (the stage-2
+    /// assumption broken): vertex 0 moves right, vertex 1 left.
+    fn opposite_motion() -> Triangle {
+        Triangle {
+            q: [[15.0, 10.0, 0.5, 1.0], [30.0, 30.0, 0.5, 1.0], [40.0, 20.0, 0.5, 1.0]],
+            r: [[35.0, 10.0, 0.5, 1.0], [0.0, 30.0, 0.5, 1.0], [42.0, 20.0, 0.5, 1.0]],
+            c0: [0.0; 3],
+            c1: [0.0; 3],
+            k: 1.0,
+        }
     }
 
     fn cam() -> ThinLens {
@@ -746,13 +758,7 @@ mod tests {
     /// covered sample (20, 20, 0, 0, 1).
     #[test]
     fn finding_opposite_motion() {
-        let tri = Triangle {
-            q: [[15.0, 10.0, 0.5, 1.0], [30.0, 30.0, 0.5, 1.0], [40.0, 20.0, 0.5, 1.0]],
-            r: [[35.0, 10.0, 0.5, 1.0], [0.0, 30.0, 0.5, 1.0], [42.0, 20.0, 0.5, 1.0]],
-            c0: [0.0; 3],
-            c1: [0.0; 3],
-            k: 1.0,
-        };
+        let tri = opposite_motion();
         let s = Sample::new(20.0, 20.0, 0.0, 0.0, 1.0);
         assert_eq!(oracles::classify(&tri.to_oracle(), s.to_oracle()), oracles::Coverage::Interior);
         let b = bounds(&tri, &Tile::square(19.0, 19.0, 2.0));
@@ -766,17 +772,8 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let (mut culled, mut covered, mut tris) = (0, 0, 0);
         for _ in 0..150 {
-            let focus = rng.gen_range(2.0f32..10.0);
-            let c = ThinLens {
-                fx: 100.0,
-                fy: 110.0,
-                cx: 32.0,
-                cy: 32.0,
-                radius: rng.gen_range(0.0..0.3),
-                focus,
-                near: 0.5,
-                far: 50.0,
-            };
+            let c = random_lens(&mut rng);
+            let focus = c.focus;
             let q: [[f32; 3]; 3] = std::array::from_fn(|_| {
                 let z = rng.gen_range(focus * 0.5..focus * 2.0);
                 [rng.gen_range(-0.15f32..0.15) * z, rng.gen_range(-0.15f32..0.15) * z, z]
@@ -833,13 +830,12 @@ mod tests {
         let c = cam();
         let g = [[-1.0, -1.0, 2.5], [1.0, -1.0, 6.0], [0.0, 1.2, 6.0]];
         spot_check_of(GUARDED, &c.triangle(g, g), &Tile::square(31.0, 31.0, 2.0), 4000, 21);
-        let tri = Triangle {
-            q: [[15.0, 10.0, 0.5, 1.0], [30.0, 30.0, 0.5, 1.0], [40.0, 20.0, 0.5, 1.0]],
-            r: [[35.0, 10.0, 0.5, 1.0], [0.0, 30.0, 0.5, 1.0], [42.0, 20.0, 0.5, 1.0]],
-            c0: [0.0; 3],
-            c1: [0.0; 3],
-            k: 1.0,
-        };
+        let tri = opposite_motion();
         spot_check_of(GUARDED, &tri, &Tile::square(19.0, 19.0, 2.0), 4000, 22);
+    }
+
+    #[test]
+    fn degenerate_and_huge_input_is_answered_in_the_domain() {
+        super::super::testkit::assert_degenerate_input_is_answered(METHOD, &super::super::la2011::figure1::triangle());
     }
 }
