@@ -3,7 +3,6 @@
 //! single-ray agreement, and input validation.
 
 use std::sync::Arc;
-use std::time::Instant;
 
 use oracles::embree::{EmbreeError, EmbreeOracle, LensTri};
 
@@ -413,49 +412,4 @@ fn bad_input_is_an_error_not_a_panic() {
     let mut t = good;
     t.a = 0.5;
     assert!(matches!(EmbreeOracle::new(&t), Err(EmbreeError::LensParameterPositive(_))));
-}
-
-/// Throughput of `hit` (rtcOccluded1) vs `hits` (packets) over 1e6 samples.
-/// Run with `cargo test --release --test embree -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn timing_single_vs_packets() {
-    const N: usize = 1_000_000;
-    let tri = assorted()[1];
-    let t0 = Instant::now();
-    let o = oracle(&tri);
-    let build = t0.elapsed();
-    let mut rng = XorShift(0x1234_5678_9abc_def1);
-    let samples: Vec<[f64; 5]> = (0..N).map(|_| rng.sample(-3.0, 3.0)).collect();
-
-    let t0 = Instant::now();
-    let mut n_single = 0usize;
-    for s in &samples {
-        n_single += o.hit(*s) as usize;
-    }
-    let single = t0.elapsed().as_secs_f64();
-
-    let mut out = Vec::with_capacity(N);
-    let t0 = Instant::now();
-    o.hits(&samples, &mut out);
-    let packets = t0.elapsed().as_secs_f64();
-    let n_packets = out.iter().filter(|&&h| h).count();
-    assert_eq!(n_single, n_packets);
-
-    let t0 = Instant::now();
-    let k = 1000;
-    for _ in 0..k {
-        let _ = oracle(&tri);
-    }
-    let per_build = t0.elapsed() / k;
-
-    println!("embree oracle: first build {build:?}, later builds {per_build:?} each");
-    println!(
-        "embree oracle: hit  (rtcOccluded1): {:>6.1} Mrays/s ({N} rays, {n_single} hits)",
-        N as f64 / single / 1e6
-    );
-    println!(
-        "embree oracle: hits (packets)     : {:>6.1} Mrays/s ({N} rays, {n_packets} hits)",
-        N as f64 / packets / 1e6
-    );
 }

@@ -122,9 +122,10 @@
 //! while the row is straddled (and the pixel covered) for the whole shutter. The
 //! thesis's unsigned Eq. 1 (`|v0 - x0| / |v1 - x1| = t / (1 - t)`) would not help: it
 //! puts a "crossing" in [0, 1] for every vertex, crossing or not.
-//! The unit tests `finding_*` (ignored) hold witnesses; the conservativeness spot checks
-//! use triangles that satisfy both assumptions (rigid translation in camera space gives
-//! every vertex the same D; all vertices on one side of the focal plane).
+//! The unit tests `finding_*` hold the witnesses (they pass while the bound culls the
+//! covered sample); the conservativeness spot checks use triangles that satisfy both
+//! assumptions (rigid translation in camera space gives every vertex the same D; all
+//! vertices on one side of the focal plane).
 //!
 //! A guarded variant (not registered, tested in `guarded_variant_is_conservative`)
 //! adds the two missing conditions: stage 1 only when all six CoC values share one
