@@ -6,7 +6,8 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughpu
 use cullproof::agree::lens_tri;
 use cullproof::gen::{physical_case, rng_for, samples_for, Regime};
 use oracles::embree::EmbreeOracle;
-use oracles::extents::{tile_extents, ExtentsConfig};
+use oracles::extents::{box_values_with, tile_extents, Box5, ExtentsConfig};
+use oracles::interval::Interval;
 
 fn cases() -> Vec<(cullproof::model::Case, Vec<[f64; 5]>)> {
     (0..14u64)
@@ -92,6 +93,31 @@ fn extents(c: &mut Criterion) {
             }
         })
     });
+    g.finish();
+    // One box judgement (the unit of every certified search): boxes around covered
+    // samples of each case, from the whole tile down to 2^-20 of it.
+    let mut boxes: Vec<(oracles::Tri, Box5)> = Vec::new();
+    for (case, s) in &cs {
+        let t = case.triangle.to_oracle();
+        for (k, x) in
+            s.iter().filter(|x| oracles::classify(&t, **x) == oracles::Coverage::Interior).take(64).enumerate()
+        {
+            let f = 0.5f64.powi((k % 21) as i32);
+            let half = [0.5 * f, 0.5 * f, f, f, 0.5 * f];
+            boxes.push((t, std::array::from_fn(|i| Interval::new(x[i] - half[i], x[i] + half[i]))));
+        }
+    }
+    let mut g = c.benchmark_group("box_values");
+    g.throughput(Throughput::Elements(boxes.len() as u64));
+    for depth in [false, true] {
+        g.bench_function(if depth { "with_depth" } else { "coverage_only" }, |b| {
+            b.iter(|| {
+                for (t, bx) in &boxes {
+                    black_box(box_values_with(t, bx, depth));
+                }
+            })
+        });
+    }
     g.finish();
 }
 

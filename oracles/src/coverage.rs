@@ -148,6 +148,17 @@ pub fn classify_traced(tri: &Tri, s: [f64; 5]) -> (Coverage, bool) {
     (class_of_signs(exact_signs(tri, s)), true)
 }
 
+/// True when the fast path alone certifies the sample interior (false: outside, on the
+/// boundary, or too close to tell without the exact path). A cheap test for searches
+/// that only want certified interior points and can do without the rest.
+#[inline]
+pub fn certainly_interior(tri: &Tri, s: [f64; 5]) -> bool {
+    check_sample(&s);
+    let p = Fe::c;
+    let ev = edge_values(tri, &p(s[0]), &p(s[1]), &p(s[2]), &p(s[3]), &p(s[4]));
+    fast_class(&ev) == Some(Coverage::Interior)
+}
+
 /// Classify one sample `[x, y, u, v, t]` exactly.
 #[inline]
 pub fn classify(tri: &Tri, s: [f64; 5]) -> Coverage {

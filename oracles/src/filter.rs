@@ -17,8 +17,8 @@
 
 use crate::ring::Ring;
 
-const U: f64 = 1.0 / 9007199254740992.0; // 2^-53
-const ETA: f64 = f64::from_bits(4); // 4 * 2^-1074
+pub(crate) const U: f64 = 1.0 / 9007199254740992.0; // 2^-53
+pub(crate) const ETA: f64 = f64::from_bits(4); // 4 * 2^-1074
 
 /// A value and a bound on its absolute error.
 #[derive(Clone, Copy, Debug)]
