@@ -129,6 +129,11 @@ pub struct CheckConfig {
     pub band: f64,
     /// Boxes per interval side.
     pub side_budget: usize,
+    /// An interval side gives up after this many boxes in a row that did not raise its
+    /// certified bound while no witness lies beyond the claim (0: only the budget
+    /// stops it). Such a side is one tight to a rounding: the rest of its budget would
+    /// mostly find nothing, so the boxes go to more cases instead.
+    pub side_stall: usize,
     /// Boxes per constraint search.
     pub constraint_budget: usize,
 }
@@ -139,7 +144,7 @@ impl CheckConfig {
         CheckConfig {
             methods,
             regimes: Regime::ALL.to_vec(),
-            cases: 1920,
+            cases: 9600,
             time: None,
             seed: 1,
             tile: None,
@@ -153,6 +158,7 @@ impl CheckConfig {
             extents: ExtentsConfig { resolution: 1e-3, max_boxes: 20_000, min_fraction: 1e-9 },
             band: 1e-9,
             side_budget: 2000,
+            side_stall: 250,
             constraint_budget: 2000,
         }
     }
@@ -449,7 +455,13 @@ fn judge_with(
                 }
                 let mut found: Vec<Sample> = Vec::new();
                 for (n, bound, is_max, name) in checks {
-                    match solver.side(n, bound, cfg.band, cfg.side_budget) {
+                    match solver.side(
+                        n,
+                        bound,
+                        cfg.band,
+                        cfg.side_budget,
+                        (cfg.side_stall > 0).then_some(cfg.side_stall),
+                    ) {
                         Side::Beyond { witness: w, value, .. } => {
                             // A depth witness is re-judged exactly against the bound.
                             let confirmed = n < 6 || {

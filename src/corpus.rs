@@ -230,12 +230,13 @@ fn judged_word(j: &Judgement) -> &'static str {
     }
 }
 
-/// Re-judge one case file.
+/// Re-judge one case file, with the whole side budget (one case: no stall cut-off).
 pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
     let cf = CaseFile::load(path)?;
     let m = by_id(&cf.method).expect("checked at load");
     let witness = cf.witness.as_ref().map(|w| witness_holds(m, &cf.case, &cf.tile, w.sample));
-    let (js, _) = judge(cfg, &[m], &cf.case, &cf.tile, cf.provenance.case_index);
+    let cfg = CheckConfig { side_stall: 0, ..cfg.clone() };
+    let (js, _) = judge(&cfg, &[m], &cf.case, &cf.tile, cf.provenance.case_index);
     let j = &js[0];
     let judged = judged_word(j).to_string();
     let ok = match cf.expected {
@@ -440,6 +441,7 @@ pub fn search(
     m: &'static dyn Method,
     seconds: f64,
     max_found: usize,
+    min_margin: f64,
     out: Option<&Path>,
     progress: bool,
 ) -> Result<SearchReport> {
@@ -463,7 +465,7 @@ pub fn search(
             .collect();
         pb.set_message(format!("{} cases, {} found", next, found.len()));
         for (i, regime, case, tile, j) in results {
-            if j.violation.is_none() || found.len() >= max_found {
+            if j.violation.as_ref().is_none_or(|v| v.margin < min_margin) || found.len() >= max_found {
                 continue;
             }
             let t_first = start.elapsed().as_secs_f64();

@@ -47,7 +47,7 @@ enum Cmd {
         #[arg(long, default_value = "all")]
         regime: String,
         /// Number of cases (spread over the regimes in turn).
-        #[arg(long, default_value_t = 1920, conflicts_with = "time")]
+        #[arg(long, default_value_t = 9600, conflicts_with = "time")]
         cases: u64,
         /// Run for about this many seconds instead (whole batches of cases; the report
         /// says how many, and `--cases N` repeats the run exactly).
@@ -75,6 +75,12 @@ enum Cmd {
         /// more rounding-size witnesses, slower).
         #[arg(long, default_value_t = 2000)]
         side_budget: usize,
+        /// An interval-side search gives up after this many boxes in a row that did not
+        /// raise its certified bound, while no witness lies beyond the claim (a bound
+        /// tight to a rounding; 0: only --side-budget stops it). Larger: more
+        /// rounding-size witnesses per case, fewer cases per minute.
+        #[arg(long, default_value_t = 250)]
+        side_stall: usize,
         /// Boxes per certified per-sample constraint search (more: fewer undecided
         /// cases for the per-sample methods, slower).
         #[arg(long, default_value_t = 2000)]
@@ -98,6 +104,10 @@ enum Cmd {
         /// Stop after this many violations.
         #[arg(long, default_value_t = 8)]
         max: usize,
+        /// Keep only violations that need at least this margin (e.g. one beyond the cap
+        /// `corpus/expectations.json` allows, to back a new finding with a case file).
+        #[arg(long, default_value_t = 0.0)]
+        min_margin: f64,
         /// Seed of the case streams.
         #[arg(long, default_value_t = 1)]
         seed: u64,
@@ -237,6 +247,7 @@ fn main() -> Result<()> {
             json,
             expectations,
             side_budget,
+            side_stall,
             constraint_budget,
         } => {
             set_jobs(jobs)?;
@@ -269,6 +280,7 @@ fn main() -> Result<()> {
             anyhow::ensure!(side_budget > 0, "--side-budget 0: a search needs at least one box");
             anyhow::ensure!(constraint_budget > 0, "--constraint-budget 0: a search needs at least one box");
             cfg.side_budget = side_budget;
+            cfg.side_stall = side_stall;
             cfg.constraint_budget = constraint_budget;
             let ex = if expectations.exists() {
                 cullproof::check::Expectations::load(&expectations)?
@@ -285,7 +297,7 @@ fn main() -> Result<()> {
                 std::process::exit(1);
             }
         }
-        Cmd::Search { method, time, max, seed, regime, tile, out, dry_run, json, jobs } => {
+        Cmd::Search { method, time, max, min_margin, seed, regime, tile, out, dry_run, json, jobs } => {
             set_jobs(jobs)?;
             let m = cullproof::bounds::by_id(&method).or_else(|| cullproof::bounds::broken::parse(&method)).with_context(|| {
                 format!("--method {method}: no such method (see `cullproof methods`; or broken/shrink/ID, broken/no-coc-pad/ID)")
@@ -296,7 +308,9 @@ fn main() -> Result<()> {
             }
             cfg.seed = seed;
             cfg.tile = tile;
-            let r = cullproof::corpus::search(&cfg, m, time, max, (!dry_run).then_some(out.as_path()), true)?;
+            anyhow::ensure!(min_margin >= 0.0, "--min-margin {min_margin}: a margin is a non-negative padding");
+            let r =
+                cullproof::corpus::search(&cfg, m, time, max, min_margin, (!dry_run).then_some(out.as_path()), true)?;
             println!(
                 "search {}: seed {}, {} cases in {:.1} s, {} violation(s)",
                 r.method,

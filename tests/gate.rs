@@ -110,3 +110,22 @@ fn a_bound_that_culls_nothing_shows_no_violation_in_100k_cases() {
     assert_eq!(r.rows.iter().map(|x| x.cases).sum::<u64>(), 100_000);
     assert!(r.rows.iter().all(|x| x.violations == 0 && x.undecided == 0), "{}", cullproof::check::render(&r));
 }
+
+/// A side search that stops raising its certified bound gives up after `side_stall`
+/// boxes: the same cases cost fewer boxes, and what it still finds is a certified
+/// violation all the same (the verdicts only lose rounding-size witnesses).
+#[test]
+fn stalled_side_searches_give_up_early() {
+    let m = cullproof::bounds::by_id("la2011").unwrap();
+    let run_with = |stall: usize| {
+        let mut cfg = CheckConfig::default_with(vec![m]);
+        cfg.cases = 96;
+        cfg.side_stall = stall;
+        run(&cfg, &expectations(), false)
+    };
+    let (full, stalled) = (run_with(0), run_with(50));
+    assert!(stalled.solver_boxes * 2 < full.solver_boxes, "{} vs {} boxes", stalled.solver_boxes, full.solver_boxes);
+    let v = |r: &cullproof::check::CheckReport| r.rows.iter().map(|x| x.violations).sum::<u64>();
+    assert!(v(&full) > 0 && v(&stalled) > 0, "{} and {} violations", v(&full), v(&stalled));
+    assert!(!stalled.failed());
+}

@@ -979,6 +979,12 @@ pub struct Search {
     /// (None: until it is known to 1 %). The result still encloses the extreme: its
     /// witness is the farthest found, its other end what the open boxes allow.
     pub refine_boxes: Option<usize>,
+    /// With a bound and no witness beyond it yet, give up after this many boxes in a
+    /// row that did not raise the certified lower bound (the smallest key still open),
+    /// as if the budget had run out: the result is the enclosure reached so far. Next
+    /// to a bound that is tight to a rounding, most of a budget goes to boxes that can
+    /// neither be ruled out nor hold a witness; this spends it on more cases instead.
+    pub stall: Option<usize>,
 }
 
 /// True while some active lens or time coordinate of the box can still be split.
@@ -1015,6 +1021,7 @@ pub fn search(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfig, opts: 
     let mut final_lo = f64::INFINITY;
     let mut stuck: Vec<f64> = Vec::new(); // keys of boxes left undecided at minimum size
     let mut beyond_at: Option<u64> = None; // boxes examined when a witness first lay beyond the bound
+    let (mut last_lower, mut moved_at) = (f64::NEG_INFINITY, 0u64);
     while let Some(Node { key, depth, b, bv }) = heap.pop() {
         let lower = key.min(stuck_lo);
         if let Some((w, _)) = best {
@@ -1038,7 +1045,15 @@ pub fn search(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfig, opts: 
             }
         }
         boxes += 1;
-        if boxes as usize > cfg.max_boxes {
+        if lower > last_lower {
+            last_lower = lower;
+            moved_at = boxes;
+        }
+        // A search for a witness beyond a bound that has stopped raising its certified
+        // lower bound gives up like one out of budget (see `Search::stall`).
+        let stagnant =
+            matches!((opts.bound, beyond_at, opts.stall), (Some(_), None, Some(k)) if boxes - moved_at > k as u64);
+        if boxes as usize > cfg.max_boxes || stagnant {
             stuck.push(key);
             stuck.extend(heap.drain().map(|n| n.key));
             final_lo = lower;
@@ -1188,6 +1203,9 @@ pub enum Side {
     Within { gap: f64, boxes: u64 },
 }
 
+/// What a side judgement is cached by: objective, bound and band (as bits), budget, stall.
+type SideKey = (usize, u64, u64, usize, Option<usize>);
+
 /// Extents of one tile, computed objective by objective on demand and kept: a caller
 /// that needs only some of them (a culling test that narrows only t, say) pays only
 /// for those.
@@ -1199,9 +1217,9 @@ pub struct TileSolver<'a> {
     cfg: ExtentsConfig,
     results: [Option<ObjectiveResult>; 8],
     occupancy: Option<Occupancy>,
-    /// Side judgements already made, by (objective, bound, band, budget): methods that
+    /// Side judgements already made, by (objective, bound, band, budget, stall): methods that
     /// share a bound (lc and la2011, mam2012-new and its parts) are judged once.
-    sides: Vec<((usize, u64, u64, usize), Side)>,
+    sides: Vec<(SideKey, Side)>,
     /// Boxes examined so far.
     pub boxes: u64,
 }
@@ -1248,7 +1266,7 @@ impl<'a> TileSolver<'a> {
             return Occupancy::Covered(w);
         }
         // A search that stops at the first interior sample settles it.
-        let opts = Search { bound: None, first_witness: true, refine_boxes: None };
+        let opts = Search { bound: None, first_witness: true, refine_boxes: None, stall: None };
         let r = search(self.tri, self.init, OBJECTIVES[0], &self.cfg, opts);
         self.boxes += r.boxes;
         let o = match r.extreme {
@@ -1266,22 +1284,22 @@ impl<'a> TileSolver<'a> {
     /// `budget / 8` more boxes push it farther (the margin reported is that of the
     /// farthest witness found: a lower bound of the true one, known to 1 % when the
     /// search converges sooner). See [`Side`].
-    pub fn side(&mut self, n: usize, bound: f64, band: f64, budget: usize) -> Side {
-        let key = (n, bound.to_bits(), band.to_bits(), budget);
+    pub fn side(&mut self, n: usize, bound: f64, band: f64, budget: usize, stall: Option<usize>) -> Side {
+        let key = (n, bound.to_bits(), band.to_bits(), budget, stall);
         if let Some((_, s)) = self.sides.iter().find(|(k, _)| *k == key) {
             return *s;
         }
-        let s = self.side_uncached(n, bound, band, budget);
+        let s = self.side_uncached(n, bound, band, budget, stall);
         self.sides.push((key, s));
         s
     }
 
-    fn side_uncached(&mut self, n: usize, bound: f64, band: f64, budget: usize) -> Side {
+    fn side_uncached(&mut self, n: usize, bound: f64, band: f64, budget: usize, stall: Option<usize>) -> Side {
         let obj = OBJECTIVES[n];
         let max = matches!(obj, Objective::Coord { max: true, .. } | Objective::Depth { max: true });
         let beyond = |v: f64| if max { v > bound } else { v < bound };
         let cfg = ExtentsConfig { resolution: band, max_boxes: budget, ..self.cfg };
-        let r = self.beyond(n, bound, &cfg);
+        let r = self.beyond(n, bound, &cfg, stall);
         match r.extreme {
             Some(e) if beyond(if max { e.lo } else { e.hi }) => {
                 Side::Beyond { witness: e.witness, value: if max { e.lo } else { e.hi }, extreme: e }
@@ -1308,7 +1326,7 @@ impl<'a> TileSolver<'a> {
     /// within the resolution of it; None with nothing undecided certifies that none
     /// lies beyond `bound -/+ cfg.resolution`. Not cached; a known full result
     /// answers at once.
-    fn beyond(&mut self, n: usize, bound: f64, cfg: &ExtentsConfig) -> ObjectiveResult {
+    fn beyond(&mut self, n: usize, bound: f64, cfg: &ExtentsConfig, stall: Option<usize>) -> ObjectiveResult {
         let obj = OBJECTIVES[n];
         let max = matches!(obj, Objective::Coord { max: true, .. } | Objective::Depth { max: true });
         let none = ObjectiveResult::nothing(max);
@@ -1338,7 +1356,7 @@ impl<'a> TileSolver<'a> {
                     init,
                     obj,
                     cfg,
-                    Search { bound: Some(bound), first_witness: false, refine_boxes: Some(cfg.max_boxes / 8) },
+                    Search { bound: Some(bound), first_witness: false, refine_boxes: Some(cfg.max_boxes / 8), stall },
                 );
                 self.boxes += r.boxes;
                 r
@@ -1349,7 +1367,7 @@ impl<'a> TileSolver<'a> {
                     self.init,
                     obj,
                     cfg,
-                    Search { bound: Some(bound), first_witness: false, refine_boxes: Some(cfg.max_boxes / 8) },
+                    Search { bound: Some(bound), first_witness: false, refine_boxes: Some(cfg.max_boxes / 8), stall },
                 );
                 self.boxes += r.boxes;
                 r
@@ -1719,7 +1737,7 @@ mod tests {
         let cfg = ExtentsConfig::default();
         let mut s = TileSolver::new(&tri, [0.0, 4.0, 0.0, 4.0], WHOLE, &cfg);
         // t max (objective 5) claimed 0.6: a covered sample lies beyond, at most at 0.7.
-        match s.side(5, 0.6, 1e-9, 2000) {
+        match s.side(5, 0.6, 1e-9, 2000, None) {
             Side::Beyond { witness, value, extreme } => {
                 // the true t max is the real 0.7: the witness's value cannot pass it
                 assert!(value > 0.6 && value <= 0.7f64.next_up(), "value {value}");
@@ -1731,7 +1749,7 @@ mod tests {
         }
         // claimed 0.75: nothing lies beyond
         let mut s = TileSolver::new(&tri, [0.0, 4.0, 0.0, 4.0], WHOLE, &cfg);
-        assert!(matches!(s.side(5, 0.75, 1e-9, 2000), Side::Within { .. }));
+        assert!(matches!(s.side(5, 0.75, 1e-9, 2000, None), Side::Within { .. }));
     }
 
     /// The vertex hull holds the exact depth of every covered sample it is drawn for,
@@ -1785,7 +1803,7 @@ mod tests {
         let tri = Tri { q, r: q, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 };
         let cfg = ExtentsConfig::default();
         let mut s = TileSolver::new(&tri, [0.0, 4.0, 0.0, 4.0], WHOLE, &cfg);
-        match s.side(6, 0.25, 1e-9, 2000) {
+        match s.side(6, 0.25, 1e-9, 2000, None) {
             Side::Within { gap, boxes } => {
                 // certified down to the outward rounding of z(t) / w(t): a few ulps
                 assert!(gap <= 1e-15, "gap {gap}");
@@ -1795,7 +1813,7 @@ mod tests {
         }
         // Claimed a hair higher: covered samples lie below it, next to the vertex.
         let mut s = TileSolver::new(&tri, [0.0, 4.0, 0.0, 4.0], WHOLE, &cfg);
-        assert!(matches!(s.side(6, 0.25 + 1e-6, 1e-9, 2000), Side::Beyond { .. }));
+        assert!(matches!(s.side(6, 0.25 + 1e-6, 1e-9, 2000, None), Side::Beyond { .. }));
     }
 
     #[test]
