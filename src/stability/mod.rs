@@ -290,6 +290,9 @@ pub fn run_family(cfg: &Config, family: Family, progress: bool) -> FamilyReport 
     let mut ccfg = CheckConfig::default_with(cfg.methods.clone());
     ccfg.seed = cfg.seed ^ family.salt();
     ccfg.tile = Some(cfg.tile);
+    // Few cases per step, each judged with the whole side budget: a sweep wants the
+    // first rounding witness, not throughput.
+    ccfg.side_stall = 0;
     let jobs: Vec<(usize, u64)> = (0..params.len()).flat_map(|s| (0..cfg.cases).map(move |c| (s, c))).collect();
     let pb = if progress { ProgressBar::new(jobs.len() as u64) } else { ProgressBar::hidden() };
     pb.set_style(
