@@ -14,6 +14,7 @@ pub trait Ring: Clone {
     fn sub(&self, o: &Self) -> Self;
     fn mul(&self, o: &Self) -> Self;
     /// `(1 - t) * a + t * b`, the model's linear motion.
+    #[inline]
     fn lerp(a: &Self, b: &Self, t: &Self) -> Self {
         Self::c(1.0).sub(t).mul(a).add(&t.mul(b))
     }
