@@ -176,7 +176,7 @@ impl<const K: usize, const N: usize> LPoly<K, N> {
     }
     #[inline(always)]
     fn zero() -> Self {
-        LPoly([Lanes::c(0.0); K])
+        LPoly([Lanes { v: [0.0; N], e: [0.0; N] }; K])
     }
     #[inline(always)]
     fn add(&self, o: &Self) -> Self {
@@ -285,43 +285,6 @@ impl<const K: usize, const N: usize> LPoly<K, N> {
 #[inline(always)]
 fn lconst<const N: usize>(v: &[f64; N]) -> LPoly<1, N> {
     LPoly([Lanes { v: *v, e: [0.0; N] }])
-}
-
-impl<const N: usize> Ring for Lanes<N> {
-    #[inline(always)]
-    fn c(x: f64) -> Self {
-        Lanes { v: [x; N], e: [0.0; N] }
-    }
-    #[inline(always)]
-    fn add(&self, o: &Self) -> Self {
-        let mut r = Lanes { v: [0.0; N], e: [0.0; N] };
-        for n in 0..N {
-            let v = self.v[n] + o.v[n];
-            r.v[n] = v;
-            r.e[n] = self.e[n] + o.e[n] + U * v.abs() + ETA;
-        }
-        r
-    }
-    #[inline(always)]
-    fn sub(&self, o: &Self) -> Self {
-        let mut r = Lanes { v: [0.0; N], e: [0.0; N] };
-        for n in 0..N {
-            let v = self.v[n] - o.v[n];
-            r.v[n] = v;
-            r.e[n] = self.e[n] + o.e[n] + U * v.abs() + ETA;
-        }
-        r
-    }
-    #[inline(always)]
-    fn mul(&self, o: &Self) -> Self {
-        let mut r = Lanes { v: [0.0; N], e: [0.0; N] };
-        for n in 0..N {
-            let v = self.v[n] * o.v[n];
-            r.v[n] = v;
-            r.e[n] = self.v[n].abs() * o.e[n] + o.v[n].abs() * self.e[n] + self.e[n] * o.e[n] + U * v.abs() + ETA;
-        }
-        r
-    }
 }
 
 /// Coordinates of a sample box, in the order x, y, u, v, t.
@@ -1440,14 +1403,6 @@ pub fn tile_extents(tri: &Tri, tile: [f64; 4], uvt: [[f64; 2]; 3], cfg: &Extents
 mod reference {
     use super::*;
 
-    fn ends(iv: Interval) -> ([f64; 2], usize) {
-        if iv.lo == iv.hi {
-            ([iv.lo, iv.lo], 1)
-        } else {
-            ([iv.lo, iv.hi], 2)
-        }
-    }
-
     pub(super) fn box_values_with(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValues {
         let tm = b[4].mid();
         let h = (b[4].hi - tm).max(tm - b[4].lo).max(0.0);
@@ -1647,18 +1602,22 @@ mod tests {
 
     const WHOLE: [[f64; 2]; 3] = [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]];
 
+    /// Uniform numbers in [0, 1) from a xorshift stream (reproducible test inputs).
+    fn unit_stream(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     /// The vectorised corner loop returns exactly (bit for bit) what the corner-by-corner
     /// loop returns, on triangles of every kind (static, moving, defocused, behind the
     /// lens, far from the origin, degenerate) and boxes with point and open dimensions.
     #[test]
     fn lanes_match_the_corner_loop_bit_for_bit() {
-        let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = unit_stream(0x2545_F491_4F6C_DD1D);
         let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()) || (a == 0.0 && b == 0.0);
         let same_iv = |a: Interval, b: Interval| same(a.lo, b.lo) && same(a.hi, b.hi);
         for case in 0..4000 {
@@ -1756,13 +1715,7 @@ mod tests {
     /// on moving, defocused triangles in front of the lens over random time ranges.
     #[test]
     fn vertex_depths_hold_every_covered_sample() {
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = unit_stream(0x9E37_79B9_7F4A_7C15);
         let mut checked = 0;
         for _ in 0..300 {
             let mut v = |lo: f64, hi: f64| lo + (hi - lo) * next();
