@@ -19,7 +19,14 @@
 //! hull over the 16 (x, y, u, v) corners of the range in t. In t each value is a
 //! polynomial of degree <= 3, carried exactly as a polynomial in `s = t - t_mid` with
 //! coefficients carrying rigorous rounding-error bounds ([`TPoly`]) and bounded over `s in [-h, h]`
-//! term by term. All arithmetic rounds outward; nothing uses an epsilon.
+//! term by term. All arithmetic rounds outward; nothing uses an epsilon. The 16 corners
+//! are evaluated side by side in lanes (`LPoly`), each lane doing exactly what a
+//! corner-by-corner loop would (a test holds the two to the same bits).
+//!
+//! For the hit depth a box has two enclosures: the corner quotients `N / D` (over every
+//! sample of the box, covered or not) and the hull of the vertex depths `z_k / w_k`
+//! over the box's times, which holds every covered sample in front of the lens (see
+//! [`BoxValues::vertex_depth`]); a depth search keys a box by the tighter of the two.
 //!
 //! For a minimum (say of u) the search always splits the live box of smallest lower
 //! bound `u_lo`; that `u_lo` is a certified lower bound of the infimum. Each undecided or
@@ -147,14 +154,13 @@ impl Ring for TPoly {
     }
 }
 
-/// `N` values with rigorous error bounds side by side: lane n performs exactly the
-/// operations of a lone [`Fe`], in the same order (the corner loop of
-/// [`box_values_with`] runs all corners of a box at once and the compiler vectorises
-/// it; the results are those of the corner-by-corner loop, bit for bit).
+/// `N` [`Fe`] values side by side (values and error bounds): a coefficient of an
+/// [`LPoly`], one lane per box corner, so that [`box_values_with`] runs all corners of
+/// a box at once and the compiler vectorises the loop.
 #[derive(Clone, Copy, Debug)]
-pub struct Lanes<const N: usize> {
-    pub v: [f64; N],
-    pub e: [f64; N],
+struct Lanes<const N: usize> {
+    v: [f64; N],
+    e: [f64; N],
 }
 
 /// A polynomial in s with `K` coefficients (degree `K - 1`, fixed at compile time) in
@@ -309,7 +315,7 @@ pub struct BoxValues {
     /// How much each coordinate (x, y, u, v, t) moves the values over the box: the
     /// largest change of an edge value or D between corners that differ in that
     /// coordinate only (t: the non-constant terms of the Taylor form). Guides splitting.
-    /// Indexed [quantity][coordinate], quantities E_0, E_1, E_2, D.
+    /// Indexed `[quantity][coordinate]`, quantities E_0, E_1, E_2, D.
     pub smear: [[f64; 5]; 4],
     /// The same for the hit depth N / D (zero where D's sign is open).
     pub depth_smear: [f64; 5],
