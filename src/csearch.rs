@@ -155,7 +155,17 @@ pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_wi
                 0.0
             }
         });
-        let dim = (0..5).max_by(|&a, &c| rel[a].partial_cmp(&rel[c]).unwrap_or(Ordering::Equal)).unwrap();
+        // Among the coordinates still worth splitting (rel > 0), favour those that move
+        // the coverage values whose sign is open (their smear over the box), so that
+        // the split separates covered from uncovered; the 0.01 keeps every such
+        // coordinate's score positive (it is split once the others are 100x finer).
+        // 960-case gate: fewer undecided for every per-sample method (gdam2010 220 ->
+        // 183, mam2012-hyperplane-ps 569 -> 539) and more violations found (gdam2010
+        // 83 -> 120, -ps 99 -> 108), no slower.
+        let sm = bv.open_smear();
+        let smax = sm.iter().cloned().fold(0.0, f64::max);
+        let score: [f64; 5] = std::array::from_fn(|k| if smax > 0.0 { rel[k] * (0.01 + sm[k] / smax) } else { rel[k] });
+        let dim = (0..5).max_by(|&a, &c| score[a].partial_cmp(&score[c]).unwrap_or(Ordering::Equal)).unwrap();
         if rel[dim] == 0.0 {
             small = true;
             continue;
