@@ -139,10 +139,7 @@ pub fn exact_signs(tri: &Tri, s: [f64; 5]) -> [i8; 4] {
 /// Classify one sample `[x, y, u, v, t]`; also says whether the exact path was needed.
 #[inline]
 pub fn classify_traced(tri: &Tri, s: [f64; 5]) -> (Coverage, bool) {
-    check_sample(&s);
-    let p = Fe::c;
-    let ev = edge_values(tri, &p(s[0]), &p(s[1]), &p(s[2]), &p(s[3]), &p(s[4]));
-    if let Some(c) = fast_class(&ev) {
+    if let Some(c) = fast_path(tri, s) {
         return (c, false);
     }
     (class_of_signs(exact_signs(tri, s)), true)
@@ -153,10 +150,16 @@ pub fn classify_traced(tri: &Tri, s: [f64; 5]) -> (Coverage, bool) {
 /// that only want certified interior points and can do without the rest.
 #[inline]
 pub fn certainly_interior(tri: &Tri, s: [f64; 5]) -> bool {
+    fast_path(tri, s) == Some(Coverage::Interior)
+}
+
+/// The class from the fast path alone (None: go exact).
+#[inline]
+fn fast_path(tri: &Tri, s: [f64; 5]) -> Option<Coverage> {
     check_sample(&s);
     let p = Fe::c;
     let ev = edge_values(tri, &p(s[0]), &p(s[1]), &p(s[2]), &p(s[3]), &p(s[4]));
-    fast_class(&ev) == Some(Coverage::Interior)
+    fast_class(&ev)
 }
 
 /// Classify one sample `[x, y, u, v, t]` exactly.

@@ -193,16 +193,22 @@ pub(crate) fn random_dual_case(rng: &mut ChaCha8Rng, n: usize) -> (Triangle, Til
 /// and on a huge tile.
 pub(crate) fn assert_degenerate_input_is_answered(m: &dyn Method, tri: &Triangle) {
     let z = Triangle { q: [[0.0; 4]; 3], r: [[0.0; 4]; 3], c0: [0.0; 3], c1: [0.0; 3], k: 0.0 };
-    let _ = m.setup(&z).tile(&Tile::square(0.0, 0.0, 1.0));
+    assert_answered_in_domain(m.setup(&z).as_ref(), &[Tile::square(0.0, 0.0, 1.0)]);
     let mut t = *tri;
     t.q[0] = [3.0e38, -3.0e38, 0.5, 1.0e-30];
     t.c0[1] = 3.0e38;
     t.c1[2] = -3.0e38;
-    for tile in [Tile::square(0.0, 0.0, 1.0), Tile::square(-1e30, 1e30, 1e20)] {
-        if let TileResult::Bounds(b) = m.setup(&t).tile(&tile) {
-            assert!(b.u[0] <= b.u[1] && b.v[0] <= b.v[1] && b.t[0] <= b.t[1], "{b:?}");
-            assert!(b.u[0] >= -1.0 && b.u[1] <= 1.0 && b.v[0] >= -1.0 && b.v[1] <= 1.0, "{b:?}");
-            assert!(b.t[0] >= 0.0 && b.t[1] <= 1.0, "{b:?}");
+    assert_answered_in_domain(m.setup(&t).as_ref(), &[Tile::square(0.0, 0.0, 1.0), Tile::square(-1e30, 1e30, 1e20)]);
+}
+
+/// Every tile gets an answer (no panic): empty, or ordered intervals inside
+/// [-1, 1]^2 x [0, 1] whose per-sample test answers too.
+pub(crate) fn assert_answered_in_domain(p: &dyn Prepared, tiles: &[Tile]) {
+    for tile in tiles {
+        if let TileResult::Bounds(b) = p.tile(tile) {
+            assert!(b.u[0] <= b.u[1] && b.v[0] <= b.v[1] && b.t[0] <= b.t[1], "{tile:?}: {b:?}");
+            assert!(b.u[0] >= -1.0 && b.u[1] <= 1.0 && b.v[0] >= -1.0 && b.v[1] <= 1.0, "{tile:?}: {b:?}");
+            assert!(b.t[0] >= 0.0 && b.t[1] <= 1.0, "{tile:?}: {b:?}");
             let _ = b.admits(&Sample::new(0.0, 0.0, 0.0, 0.0, 0.5));
         }
     }

@@ -258,6 +258,21 @@ pub fn focal_depth(f: f32, s: f32, d: f64) -> f32 {
     }
 }
 
+/// Three vertices scattered up to `spread` around `centre` in x and y, each with the
+/// depth `depth(rng, k)` (drawn after its x and y).
+fn scatter(
+    rng: &mut ChaCha8Rng,
+    centre: [f32; 2],
+    spread: f32,
+    mut depth: impl FnMut(&mut ChaCha8Rng, usize) -> f32,
+) -> [[f32; 3]; 3] {
+    std::array::from_fn(|k| {
+        let x = centre[0] + rng.gen_range(-1.0..1.0) * spread;
+        let y = centre[1] + rng.gen_range(-1.0..1.0) * spread;
+        [x, y, depth(rng, k)]
+    })
+}
+
 fn focal(d: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     let cam = camera(rng, true);
     let f = cam.focus;
@@ -265,9 +280,7 @@ fn focal(d: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     let z = [focal_depth(f, s, d), f * rng.gen_range(0.5..0.9), f * rng.gen_range(1.1..2.0)];
     let centre = [rng.gen_range(-0.2..0.2) * f, rng.gen_range(-0.2..0.2) * f];
     let spread = f * rng.log_uniform(0.02, 0.3);
-    let q: [[f32; 3]; 3] = std::array::from_fn(|k| {
-        [centre[0] + rng.gen_range(-1.0..1.0) * spread, centre[1] + rng.gen_range(-1.0..1.0) * spread, z[k]]
-    });
+    let q = scatter(rng, centre, spread, |_, k| z[k]);
     let mut r = q;
     if i % 2 == 1 {
         let m = spread * rng.log_uniform(0.1, 3.0);
@@ -288,13 +301,7 @@ fn w_zero(w: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     let z = rng.log_uniform(2.0, 20.0);
     let spread = z * rng.log_uniform(0.02, 0.3);
     let centre = [rng.gen_range(-0.3..0.3) * z, rng.gen_range(-0.3..0.3) * z];
-    let mut q: [[f32; 3]; 3] = std::array::from_fn(|_| {
-        [
-            centre[0] + rng.gen_range(-1.0..1.0) * spread,
-            centre[1] + rng.gen_range(-1.0..1.0) * spread,
-            z + rng.gen_range(-0.3..0.3) * spread,
-        ]
-    });
+    let mut q = scatter(rng, centre, spread, |rng, _| z + rng.gen_range(-0.3..0.3) * spread);
     let m = spread * rng.log_uniform(0.2, 3.0);
     let d = [rng.gen_range(-1.0..1.0) * m, rng.gen_range(-1.0..1.0) * m, rng.gen_range(-0.5..0.5) * m];
     let mut r = q.map(|p| [p[0] + d[0], p[1] + d[1], p[2] + d[2]]);
@@ -315,13 +322,7 @@ fn perspective(ratio: f64, rng: &mut ChaCha8Rng, i: u64, size: f32) -> Built {
     let z0 = rng.log_uniform(0.5, 2.0);
     let spread = z0 * rng.log_uniform(0.02, 0.3);
     let centre = [rng.gen_range(-0.3..0.3) * z0, rng.gen_range(-0.3..0.3) * z0];
-    let q: [[f32; 3]; 3] = std::array::from_fn(|_| {
-        [
-            centre[0] + rng.gen_range(-1.0..1.0) * spread,
-            centre[1] + rng.gen_range(-1.0..1.0) * spread,
-            z0 * rng.gen_range(0.9..1.1),
-        ]
-    });
+    let q = scatter(rng, centre, spread, |rng, _| z0 * rng.gen_range(0.9..1.1));
     let m = spread * rng.log_uniform(0.1, 3.0);
     let d = [rng.gen_range(-1.0..1.0) * m, rng.gen_range(-1.0..1.0) * m];
     let k = ratio as f32;
