@@ -175,6 +175,12 @@ pub fn witness_holds(
     if !(inside(s[0], tile.x0, tile.x1) && inside(s[1], tile.y0, tile.y1)) {
         return Err("the witness is not in the tile".into());
     }
+    if !crate::check::in_domain(tile, s) {
+        return Err(format!(
+            "the witness (u, v, t) = ({}, {}, {}) is outside the lens/shutter domain [-1, 1]^2 x [0, 1]",
+            s[2], s[3], s[4]
+        ));
+    }
     match classify(&tri, s) {
         Coverage::Interior => {}
         c => return Err(format!("the witness is not interior ({c:?})")),
@@ -212,21 +218,20 @@ pub struct Replay {
     pub expected: Verdict,
     /// The stored witness, re-decided: Ok((bound, margin)) or why it no longer holds.
     pub witness: Option<std::result::Result<(String, f64), String>>,
-    /// A fresh judgement: "violation", "conservative", "boundary-only", "undecided".
+    /// A fresh judgement: "violation", "proven", "unproven (reasons)".
     pub judged: String,
     pub margin: Option<f64>,
     pub ok: bool,
 }
 
-fn judged_word(j: &Judgement) -> &'static str {
-    if j.violation.is_some() {
-        "violation"
-    } else if j.undecided {
-        "undecided"
-    } else if j.boundary_only {
-        "boundary-only"
-    } else {
-        "conservative"
+fn judged_word(j: &Judgement) -> String {
+    match j.verdict() {
+        crate::check::Verdict::Violated => "violation".into(),
+        crate::check::Verdict::Proven => "proven".into(),
+        crate::check::Verdict::Unproven => {
+            let r: Vec<&str> = j.unproven().iter().map(|r| r.name()).collect();
+            format!("unproven ({})", r.join(", "))
+        }
     }
 }
 
@@ -238,11 +243,16 @@ pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
     let cfg = CheckConfig { side_stall: 0, ..cfg.clone() };
     let (js, _) = judge(&cfg, &[m], &cf.case, &cf.tile, cf.provenance.case_index);
     let j = &js[0];
-    let judged = judged_word(j).to_string();
+    let judged = judged_word(j);
     let ok = match cf.expected {
-        // The stored witness must still hold (the fresh search may find a worse one).
-        Verdict::Violation => matches!(witness, Some(Ok(_))),
-        Verdict::Conservative => j.violation.is_none() && !matches!(witness, Some(Ok(_))),
+        // The stored witness must still hold, and the fresh judgement must find a
+        // violation too (it may find a worse one).
+        Verdict::Violation => matches!(witness, Some(Ok(_))) && j.violation.is_some(),
+        // A conservative case must be proven afresh, and its stored witness (if any)
+        // must not hold.
+        Verdict::Conservative => {
+            j.verdict() == crate::check::Verdict::Proven && !matches!(witness, Some(Ok(_)))
+        }
     };
     Ok(Replay {
         path: path.display().to_string(),

@@ -74,6 +74,51 @@
 //!   vertices' depth range, a superset of the box here; we take the per-vertex sheared
 //!   corners, which give the exact AABB of the union of the projected vertices over
 //!   the lens square and the shutter (so this is the tightest BBOX).
+//!
+//! # `bbox-safe`: the same box, rounded outward
+//! The f32 box above is the published one and stays as it is: the gate finds tiles it
+//! culls although they hold covered samples (the tile's edge sits between the rounded
+//! corner value and the exact one). `bbox-safe` computes the same corner values and
+//! pads each outward by a bound on its rounding error, so the f32 box encloses the
+//! real one and every tile it culls is empty (a proof, not a hope).
+//!
+//! *Error analysis* (u = 2^-24, the unit roundoff of f32 round-to-nearest; the inputs
+//! `a` (x or y), `c`, `w > 0`, `k` are f32 values, exact). The corner value is
+//! `q = fl(n / w)` with `n = fl(a ± s)`, `s = c` for x (exact) and `s = fl(k c)` for y.
+//! A rounded result r of an exact z satisfies `|r - z| <= u |r|` while it is normal; a
+//! product or quotient that underflows errs by at most 2^-150 instead, and a sum of two
+//! floats that underflows is exact. With `X = (a ± k c) / w` the exact corner value
+//! (k = 1 for x):
+//!
+//! ```text
+//! |s - k c|       <= u |s| + 2^-150
+//! |n - (a ± s)|   <= u |n|
+//! |q - n / w|     <= u |q| + 2^-150,   so |q| <= (|n| / w + 2^-150) / (1 - u)
+//! |q - X|         <= |q - n/w| + |n - (a ± s)| / w + |s - k c| / w
+//!                 <= 2u (|n| + |s|) / w (1 + 2u) + 2^-149 + 2^-150 / w
+//! ```
+//!
+//! The padding is computed in f32 as `p = fl(fl(fl(|s| + |n|) + 2^-120) / w) * 2^-21`.
+//! Three roundings shrink it by at most a factor `(1 - u)^3`, the exact scaling by
+//! 2^-21 = 8u can underflow by at most 2^-150, so
+//! `p >= 8u (1 - u)^3 (|n| + |s| + 2^-120) / w - 2^-150`: four times the relative term
+//! above, and `2^-141 (1 - u)^3 / w`, far above `2^-150 / w`. What is left,
+//! `2^-149 + 2^-150` plus the rounding of `q ± p`, is covered by four steps to the next
+//! f32 value: the first covers the rounding of the sum (a value rounded to nearest has
+//! the exact one between it and its neighbour on that side), the other three move by at
+//! least 3 x 2^-149. So the padded ends `next_down^4(fl(q - p))` and
+//! `next_up^4(fl(q + p))` enclose X. A value that overflows (inf) or is NaN leaves that
+//! axis unbounded, as in `bbox`.
+//!
+//! Together: the padded corner values enclose the exact ones, the exact box is the
+//! min/max of those (derivation above, real arithmetic), and the f32 comparisons of
+//! the tile's edges with the padded box are exact. So `bbox-safe` culls a tile only
+//! when its distance from the real box exceeds zero: conservative for every finite
+//! input with every w > 0, and disabled (full bounds) otherwise.
+//!
+//! *Cost*: per corner value two adds, a divide, a multiply and eight steps more than
+//! `bbox`; the box grows by about 2^-21 (|s| + |n|) / w, a few f32 ulps of the
+//! coordinates, which no sample test efficiency figure can see.
 
 use super::*;
 
@@ -125,6 +170,36 @@ fn aabb(tri: &Triangle) -> Option<[f32; 4]> {
     Some([x0, x1, y0, y1])
 }
 
+/// Setup of the outward-rounded AABB of `bbox-safe` (f32; see the module's error
+/// analysis).
+fn aabb_safe(tri: &Triangle) -> Option<[f32; 4]> {
+    let ends = [(&tri.q, &tri.c0), (&tri.r, &tri.c1)];
+    if ends.iter().any(|(p, _)| p.iter().any(|v| v[3] <= 0.0 || v[3].is_nan())) {
+        return None;
+    }
+    const PAD: f32 = 1.0 / (1u32 << 21) as f32; // 2^-21 = 8u
+    const FLOOR: f32 = 1.0 / (1u128 << 120) as f32; // 2^-120: covers the underflow of k c and n / w
+    let corners = |axis: usize, scale: f32| {
+        ends.iter().flat_map(move |(p, c)| {
+            (0..3).flat_map(move |i| {
+                let (a, w) = (p[i][axis], p[i][3]);
+                let s = scale * c[i];
+                [a - s, a + s].into_iter().flat_map(move |n| {
+                    let q = n / w;
+                    let pad = ((s.abs() + n.abs() + FLOOR) / w) * PAD;
+                    let (lo, hi) = (q - pad, q + pad);
+                    [lo.next_down().next_down().next_down().next_down(), hi.next_up().next_up().next_up().next_up()]
+                })
+            })
+        })
+    };
+    let (kx, ky) = (1.0f32, tri.k);
+    let nan = f32::NAN;
+    let [x0, x1] = extent(corners(0, kx)).unwrap_or([nan, nan]);
+    let [y0, y1] = extent(corners(1, ky)).unwrap_or([nan, nan]);
+    Some([x0, x1, y0, y1])
+}
+
 impl Prepared for Prep {
     fn tile(&self, tile: &Tile) -> TileResult {
         let Some([bx0, bx1, by0, by1]) = self.bx else {
@@ -166,6 +241,29 @@ impl Method for BBox {
 }
 
 pub static METHOD: &dyn Method = &BBox;
+
+struct BBoxSafe;
+
+static INFO_SAFE: MethodInfo = MethodInfo {
+    id: "bbox-safe",
+    source: "bbox with every corner value padded outward by a bound on its f32 rounding \
+             error (error analysis in this file): conservative for every finite input",
+    reconstruction: false,
+    dims: &[Dims::Static, Dims::Motion, Dims::Defocus, Dims::Both],
+    outputs: Outputs { tile_reject: true, lens: false, time: false, depth: false, per_sample: false },
+};
+
+impl Method for BBoxSafe {
+    fn info(&self) -> &'static MethodInfo {
+        &INFO_SAFE
+    }
+    fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
+        Box::new(Prep { bx: aabb_safe(tri) })
+    }
+}
+
+/// `bbox-safe`: the box rounded outward (see the module's error analysis).
+pub static METHOD_SAFE: &dyn Method = &BBoxSafe;
 
 #[cfg(test)]
 mod tests {
@@ -305,6 +403,56 @@ mod tests {
             }
         }
         assert!(total > 500, "too few covered samples to mean anything: {total}");
+    }
+
+    /// The padded box holds the exact corner values (computed in f64, exact for these
+    /// sums and within 2^-53 for the quotient, far below an f32 ulp) of random
+    /// triangles of every scale, including subnormal and huge coordinates, and holds
+    /// the unpadded box.
+    #[test]
+    fn the_safe_box_encloses_the_exact_corners() {
+        let mut seed = 0x1234_5678_9abc_def1u64;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for n in 0..20_000 {
+            let scale = [1e-40f64, 1e-20, 1e-3, 1.0, 1e3, 1e6, 1e15, 1e30][n % 8];
+            let mut tri = moving();
+            for p in tri.q.iter_mut().chain(tri.r.iter_mut()) {
+                p[0] = ((rnd() - 0.5) * 2.0 * scale) as f32;
+                p[1] = ((rnd() - 0.5) * 2.0 * scale) as f32;
+                p[3] = (rnd() * 4.0f64.powi((rnd() * 20.0) as i32 - 10)) as f32 + f32::MIN_POSITIVE;
+            }
+            for c in tri.c0.iter_mut().chain(tri.c1.iter_mut()) {
+                *c = ((rnd() - 0.5) * 2.0 * scale) as f32;
+            }
+            tri.k = (0.25 + rnd() * 4.0) as f32;
+            let (Some(safe), Some(plain)) = (aabb_safe(&tri), aabb(&tri)) else { continue };
+            for (axis, ends) in [(0usize, [safe[0], safe[1]]), (1, [safe[2], safe[3]])] {
+                if ends[0].is_nan() {
+                    continue;
+                }
+                for (p, c) in [(&tri.q, &tri.c0), (&tri.r, &tri.c1)] {
+                    for i in 0..3 {
+                        let s = if axis == 0 { c[i] as f64 } else { tri.k as f64 * c[i] as f64 };
+                        for sg in [-1.0, 1.0] {
+                            let x = (p[i][axis] as f64 + sg * s) / p[i][3] as f64;
+                            assert!(
+                                ends[0] as f64 <= x && x <= ends[1] as f64,
+                                "axis {axis} vertex {i}: exact {x:e} outside {ends:?} ({tri:?})"
+                            );
+                        }
+                    }
+                }
+            }
+            let pl = [plain[0], plain[1], plain[2], plain[3]];
+            if !pl[0].is_nan() && !safe[0].is_nan() {
+                assert!(safe[0] <= pl[0] && safe[1] >= pl[1]);
+            }
+        }
     }
 
     #[test]

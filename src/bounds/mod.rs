@@ -161,6 +161,7 @@ pub trait Method: Send + Sync {
 pub fn registry() -> Vec<&'static dyn Method> {
     vec![
         bbox::METHOD,
+        bbox::METHOD_SAFE,
         la2011::METHOD,
         lb2011::METHOD,
         lc::METHOD,

@@ -1,0 +1,203 @@
+//! The stored baseline: what the gate saw on a given setting, row by row, so that a
+//! later run on the same setting fails when a row gets worse.
+//!
+//! A run is deterministic for its settings (seed, cases, regimes, tile size, budgets),
+//! so a change between two runs of the same setting is a change in a method or in the
+//! judge. The gate fails a row that shows, against the baseline:
+//! - a **new kind** of violated bound;
+//! - a **larger margin** of a bound kind, by more than a factor [`MARGIN_FACTOR`]
+//!   (rounding-size margins move by a few ulps when the solver changes how it
+//!   refines);
+//! - **more violations**, by more than `3 sqrt(n) + 3` for n before (the counting noise
+//!   of a solver change);
+//! - a **looser answer**: the mean share of the lens/shutter domain the intervals let
+//!   through grows by more than 1e-9 of itself (the answers do not depend on the judge,
+//!   so any growth is the method's).
+//!
+//! `cullproof check --write-baseline` rewrites the entry for the run's settings: right
+//! after a deliberate change (a method fixed, the judge made stronger) once the new
+//! table has been read and the changes are understood; never to silence a failure.
+
+use super::report::{BoundStat, CheckReport, Status};
+use super::CheckConfig;
+use anyhow::{anyhow, Context, Result};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// A margin may grow by this factor before it counts as a regression.
+pub const MARGIN_FACTOR: f64 = 2.0;
+
+/// The format tag of a baseline file.
+pub const FORMAT: &str = "cullproof-baseline/1";
+
+/// The settings a baseline belongs to.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Settings {
+    pub seed: u64,
+    pub cases: u64,
+    pub regimes: Vec<String>,
+    pub tile: Option<f32>,
+    pub samples: usize,
+    pub side_budget: usize,
+    pub side_stall: usize,
+    pub constraint_budget: usize,
+    pub limit_methods: usize,
+}
+
+impl Settings {
+    /// The settings of a run (None for a timed or sharded run, which has no fixed
+    /// case set to compare).
+    pub fn of(cfg: &CheckConfig) -> Option<Settings> {
+        (cfg.time.is_none() && cfg.shard == (0, 1)).then(|| Settings {
+            seed: cfg.seed,
+            cases: cfg.cases,
+            regimes: cfg.regimes.iter().map(|r| r.name().to_string()).collect(),
+            tile: cfg.tile,
+            samples: cfg.samples,
+            side_budget: cfg.side_budget,
+            side_stall: cfg.side_stall,
+            constraint_budget: cfg.constraint_budget,
+            limit_methods: cfg.limit_methods,
+        })
+    }
+}
+
+/// One row as stored.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BaseRow {
+    pub method: String,
+    pub regime: String,
+    pub cases: u64,
+    pub violations: u64,
+    pub unproven: u64,
+    pub bounds: BTreeMap<String, BoundStat>,
+    pub pass_fraction: f64,
+}
+
+/// The rows of one setting.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Baseline {
+    pub settings: Settings,
+    pub rows: Vec<BaseRow>,
+}
+
+/// A baseline file: one entry per setting.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BaselineFile {
+    pub format: String,
+    pub baselines: Vec<Baseline>,
+}
+
+impl BaselineFile {
+    pub fn load(path: &Path) -> Result<BaselineFile> {
+        let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        let de = &mut serde_json::Deserializer::from_str(&text);
+        let f: BaselineFile = serde_path_to_error::deserialize(de)
+            .map_err(|e| anyhow!("{}: field `{}`: {}", path.display(), e.path(), e.inner()))?;
+        if f.format != FORMAT {
+            anyhow::bail!("{}: field `format` = {:?}: expected {FORMAT:?}", path.display(), f.format);
+        }
+        Ok(f)
+    }
+
+    /// The entry for these settings.
+    pub fn find(&self, s: &Settings) -> Option<&Baseline> {
+        self.baselines.iter().find(|b| &b.settings == s)
+    }
+
+    /// Replace (or add) the entry for the report's settings, keeping the others.
+    pub fn record(&mut self, cfg: &CheckConfig, r: &CheckReport) -> Result<()> {
+        let settings = Settings::of(cfg).context("a baseline needs a fixed case count, not --time or --shard")?;
+        let rows = r
+            .rows
+            .iter()
+            .map(|x| BaseRow {
+                method: x.method.clone(),
+                regime: x.regime.clone(),
+                cases: x.cases,
+                violations: x.violations,
+                unproven: x.unproven,
+                bounds: x.bounds.clone(),
+                pass_fraction: x.pass_fraction,
+            })
+            .collect();
+        self.format = FORMAT.into();
+        self.baselines.retain(|b| b.settings != settings);
+        self.baselines.push(Baseline { settings, rows });
+        Ok(())
+    }
+
+    /// Write to `path` through a temporary file, so a failed write never leaves half a
+    /// baseline behind.
+    pub fn save(&self, path: &Path) -> Result<()> {
+        let text = serde_json::to_string_pretty(self)? + "\n";
+        let tmp = path.with_extension("json.tmp");
+        std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
+        std::fs::rename(&tmp, path).with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))
+    }
+}
+
+/// What changed in one row against its baseline row (empty: nothing worse).
+pub fn compare(row: &super::Row, base: &BaseRow) -> Vec<String> {
+    let mut out = Vec::new();
+    for (k, b) in &row.bounds {
+        match base.bounds.get(k) {
+            None => out.push(format!(
+                "new kind of violated bound `{k}` ({} cases, margin {:.3e})",
+                b.cases, b.max_margin
+            )),
+            Some(o) if b.max_margin > o.max_margin * MARGIN_FACTOR => out.push(format!(
+                "`{k}` margin {:.3e} -> {:.3e} (more than {MARGIN_FACTOR}x)",
+                o.max_margin, b.max_margin
+            )),
+            Some(_) => {}
+        }
+    }
+    let n0 = base.violations as f64;
+    if row.cases == base.cases && row.violations as f64 > n0 + 3.0 * n0.sqrt() + 3.0 {
+        out.push(format!("violations {} -> {} of {} cases", base.violations, row.violations, row.cases));
+    }
+    if row.cases == base.cases && row.pass_fraction > base.pass_fraction * (1.0 + 1e-9) + 1e-300 {
+        out.push(format!(
+            "looser: the intervals let {:.6} of the domain through on average (was {:.6})",
+            row.pass_fraction, base.pass_fraction
+        ));
+    }
+    out
+}
+
+/// Compare every row with the baseline for the run's settings, if there is one; rows
+/// that got worse become [`Status::Regression`].
+pub fn apply(r: &mut CheckReport, cfg: &CheckConfig, file: &BaselineFile) {
+    let Some(settings) = Settings::of(cfg) else {
+        r.baseline = None;
+        return;
+    };
+    let Some(b) = file.find(&settings) else {
+        r.baseline = None;
+        return;
+    };
+    let mut compared = 0;
+    let mut worse = 0;
+    for row in &mut r.rows {
+        let Some(br) = b.rows.iter().find(|x| x.method == row.method && x.regime == row.regime) else { continue };
+        compared += 1;
+        let diffs = compare(row, br);
+        if !diffs.is_empty() {
+            worse += 1;
+            if !row.status.fails() {
+                row.status = Status::Regression;
+            }
+            row.problems.extend(diffs);
+        }
+    }
+    r.baseline = Some(format!(
+        "seed {} x {} cases: {compared} rows compared, {worse} worse than stored",
+        settings.seed, settings.cases
+    ));
+}

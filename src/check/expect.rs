@@ -1,0 +1,189 @@
+//! `corpus/expectations.json`: what the gate expects of each method in each regime.
+//!
+//! ```json
+//! { "la2011": {
+//!     "*": { "expect": "violation", "why": "f32 rounding ...",
+//!            "bounds": { "u min": 1e-4, "t max": 1e-4 }, "max_rate": 0.3 },
+//!     "far-from-origin": { "expect": "violation", "why": "...",
+//!            "bounds": { "u min": 0.1, "tile culled": "inf" }, "max_rate": 0.6 } },
+//!   "bbox": { "*": { "expect": "conservative",
+//!            "unproven": { "max_rate": 0.01, "why": "..." } } } }
+//! ```
+//!
+//! A method or regime not listed is expected conservative with no unproven case
+//! allowed. An expected violation carries its **signature**: every kind of bound it may
+//! violate (see [`super::judge::bound_kind`]) with a finite cap on the margin ("inf"
+//! only for "tile culled" or "NaN interval end", i.e. a culled covered tile, and only
+//! where listed), and the largest share of cases that may show a violation. A violation
+//! of another kind, a larger margin or a higher rate fails the gate: a new bug in a
+//! method already known to be off is still caught.
+
+use crate::corpus::num_or_inf;
+use crate::gen::Regime;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// What a method is expected to do in a regime.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Expected {
+    Conservative,
+    Violation,
+    /// Reported, never failing (for exploration).
+    Unknown,
+}
+
+/// The unproven cases an expected-conservative row may have, and why.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Allowance {
+    pub max_rate: f64,
+    pub why: String,
+}
+
+/// A cap on one kind of bound's margin ("inf" in JSON for a culled covered tile).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Cap(#[serde(with = "num_or_inf")] pub f64);
+
+/// One expectation.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Entry {
+    pub expect: Expected,
+    #[serde(default)]
+    pub why: String,
+    /// For an expected violation: each bound kind it may violate, with the largest
+    /// margin allowed.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub bounds: BTreeMap<String, Cap>,
+    /// For an expected violation: the largest share of cases with a violation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_rate: Option<f64>,
+    /// Unproven cases allowed (for an expected-conservative row; none by default).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unproven: Option<Allowance>,
+}
+
+impl Entry {
+    pub fn conservative() -> Self {
+        Entry { expect: Expected::Conservative, why: String::new(), bounds: BTreeMap::new(), max_rate: None, unproven: None }
+    }
+    /// Where this row's violations leave the signature: one line per breach.
+    pub fn breaches(&self, violated: &BTreeMap<String, (u64, f64)>, violations: u64, cases: u64) -> Vec<String> {
+        let mut out = Vec::new();
+        for (kind, &(n, m)) in violated {
+            match self.bounds.get(kind) {
+                None => out.push(format!("violates `{kind}` ({n} cases, margin {m:.3e}), which the signature does not list")),
+                Some(Cap(cap)) if m > *cap => {
+                    out.push(format!("`{kind}` margin {m:.3e} above the cap {cap:.3e}"))
+                }
+                Some(_) => {}
+            }
+        }
+        if let Some(r) = self.max_rate {
+            if cases > 0 && violations as f64 > r * cases as f64 {
+                out.push(format!(
+                    "violation rate {violations}/{cases} = {:.3} above the cap {r}",
+                    violations as f64 / cases as f64
+                ));
+            }
+        }
+        out
+    }
+}
+
+/// Per method id, per regime name (or `*` for every regime not listed).
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct Expectations(pub BTreeMap<String, BTreeMap<String, Entry>>);
+
+/// An entry as written: a bare status or the whole object.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum Raw {
+    Plain(Expected),
+    Full(Entry),
+}
+
+impl Expectations {
+    /// Load from a file; an error names the file, the method, the regime and the field.
+    /// `known` says which method ids exist.
+    pub fn load_with(path: &Path, known: &dyn Fn(&str) -> bool) -> anyhow::Result<Self> {
+        let text =
+            std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("{}: cannot read: {e}", path.display()))?;
+        let raw: BTreeMap<String, BTreeMap<String, serde_json::Value>> = serde_json::from_str(&text)
+            .map_err(|e| anyhow::anyhow!("{}: not an expectations file: {e}", path.display()))?;
+        let mut out = BTreeMap::new();
+        for (m, regimes) in raw {
+            if !known(&m) {
+                anyhow::bail!("{}: method `{m}` is not a known method id (see `cullproof methods`)", path.display());
+            }
+            let mut rows = BTreeMap::new();
+            for (r, v) in regimes {
+                let at = format!("{}: method `{m}`, regime `{r}`", path.display());
+                if r != "*" && !Regime::ALL.iter().any(|x| x.name() == r) {
+                    anyhow::bail!("{at}: `{r}` is not a known regime");
+                }
+                let e = match serde_path_to_error::deserialize::<_, Raw>(v) {
+                    Ok(Raw::Plain(e)) => Entry { expect: e, ..Entry::conservative() },
+                    Ok(Raw::Full(e)) => e,
+                    Err(err) => anyhow::bail!("{at}: field `{}`: {}", err.path(), err.inner()),
+                };
+                Self::validate(&e).map_err(|why| anyhow::anyhow!("{at}: {why}"))?;
+                rows.insert(r, e);
+            }
+            out.insert(m, rows);
+        }
+        Ok(Expectations(out))
+    }
+
+    /// Load from a file, for the built-in methods.
+    pub fn load(path: &Path) -> anyhow::Result<Self> {
+        Self::load_with(path, &|m| crate::bounds::by_id(m).is_some())
+    }
+
+    fn validate(e: &Entry) -> Result<(), String> {
+        if let Some(a) = &e.unproven {
+            if !(0.0..=1.0).contains(&a.max_rate) {
+                return Err(format!("field `unproven.max_rate` = {}: a share of cases in [0, 1]", a.max_rate));
+            }
+            if a.why.trim().is_empty() {
+                return Err("field `unproven.why`: an allowance for unproven cases needs its reason".into());
+            }
+        }
+        if e.expect != Expected::Violation {
+            if !e.bounds.is_empty() || e.max_rate.is_some() {
+                return Err("fields `bounds` and `max_rate` belong to an expected violation".into());
+            }
+            return Ok(());
+        }
+        if e.why.trim().is_empty() {
+            return Err("field `why`: an expected violation needs its reason".into());
+        }
+        if e.bounds.is_empty() {
+            return Err("field `bounds`: an expected violation lists the bounds it violates, each with a cap".into());
+        }
+        for (k, Cap(c)) in &e.bounds {
+            let whole = k == "tile culled" || k == "NaN interval end";
+            if c.is_nan() || *c <= 0.0 || (c.is_infinite() && !whole) {
+                return Err(format!(
+                    "field `bounds.{k}` = {c}: a cap is a finite margin > 0 (\"inf\" only for `tile culled` or `NaN interval end`)"
+                ));
+            }
+        }
+        match e.max_rate {
+            Some(r) if r > 0.0 && r <= 1.0 => Ok(()),
+            Some(r) => Err(format!("field `max_rate` = {r}: a share of cases in (0, 1]")),
+            None => Err("field `max_rate`: an expected violation caps its rate".into()),
+        }
+    }
+
+    /// The entry for a method in a regime (expected conservative when not listed).
+    pub fn entry(&self, method: &str, regime: &str) -> Entry {
+        self.0.get(method).and_then(|m| m.get(regime).or_else(|| m.get("*"))).cloned().unwrap_or_else(Entry::conservative)
+    }
+
+    pub fn get(&self, method: &str, regime: &str) -> Expected {
+        self.entry(method, regime).expect
+    }
+}

@@ -1,0 +1,346 @@
+//! `check`: the conservativeness gate.
+//!
+//! Every case is a physical (thin-lens) triangle of one regime. Every method is judged
+//! on a tile on the boundary of the footprint ([`make_case`]), and in turn each method
+//! also on the two tiles at its own tile-reject limit ([`tiles`]). Each answer gets one
+//! of three verdicts ([`judge`]): **proven** conservative (every claim certified, no gap
+//! left), **violated** (an interior sample, confirmed exactly, inside the tile and the
+//! lens/shutter domain, that the answer culls) or **unproven** (counted by reason).
+//!
+//! Each method x regime row is then held against `corpus/expectations.json`
+//! ([`expect`]): an expected-conservative row fails on any violation and on unproven
+//! cases beyond its stated allowance; an expected violation fails when it leaves its
+//! signature (a bound kind not listed, a margin above its cap, a rate above its cap).
+//! With a stored baseline for the same settings ([`baseline`]), a row also fails when it
+//! shows a new kind of violated bound, a larger margin beyond noise, a higher rate, or
+//! an answer that lets more of the domain through than before.
+//!
+//! Results depend only on the seed and the case indices, never on the thread count:
+//! each case draws from its own stream, and the merge is in case order.
+
+pub mod baseline;
+pub mod expect;
+pub mod judge;
+pub mod report;
+pub mod tiles;
+
+pub use expect::{Allowance, Cap, Entry, Expectations, Expected};
+pub use judge::{bound_kind, culled_by, in_domain, Judgement, Unproven, Verdict};
+pub use report::{render, CheckReport, CrossCheck, Row, Status};
+
+use crate::agree::lens_tri;
+use crate::bounds::{Method, TileResult};
+use crate::gen::{physical_case, rng_for, samples_for, tile_sample, Regime};
+use crate::model::{Case, Sample, Tile};
+use indicatif::{ProgressBar, ProgressStyle};
+use judge::TileJudge;
+use oracles::extents::ExtentsConfig;
+use oracles::{classify, Coverage};
+use rand::seq::SliceRandom;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// Settings of a run.
+#[derive(Clone)]
+pub struct CheckConfig {
+    pub methods: Vec<&'static dyn Method>,
+    pub regimes: Vec<Regime>,
+    pub cases: u64,
+    /// Run whole batches of cases for about this many seconds instead of `cases`.
+    pub time: Option<f64>,
+    pub seed: u64,
+    /// Fixed tile size in pixels; None draws from 1, 2, 4, 8, 16.
+    pub tile: Option<f32>,
+    /// This shard `(k, n)`: cases whose index is k modulo n.
+    pub shard: (u64, u64),
+    /// Uniform samples per case for the per-sample constraints.
+    pub samples: usize,
+    /// The solver's settings for occupancy and whole extents.
+    pub extents: ExtentsConfig,
+    /// How close to a claimed bound a side search may stop refining. 0 (the default)
+    /// refines until every box beyond the bound is decided, which a proof needs: a box
+    /// dropped within the band would leave a gap.
+    pub band: f64,
+    /// Boxes per interval side.
+    pub side_budget: usize,
+    /// An interval side gives up after this many boxes in a row that did not raise its
+    /// certified bound while no witness lies beyond the claim (0: only the budget
+    /// stops it). Such a side is tight to a rounding; giving up leaves it unproven.
+    pub side_stall: usize,
+    /// Boxes per constraint search.
+    pub constraint_budget: usize,
+    /// Constraint-search boxes narrower than this in every coordinate are not split.
+    pub constraint_min_width: f64,
+    /// Methods per case that are also judged on the two tiles at their own tile-reject
+    /// limit (in turn, so that every method meets every regime).
+    pub limit_methods: usize,
+    /// Screen shifts of the case tried when placing a limit tile (the one whose flip
+    /// lies farthest inside the footprint's extreme is judged).
+    pub limit_shifts: usize,
+}
+
+impl CheckConfig {
+    /// The balanced default: every method and regime, about a minute on 2 cores.
+    pub fn default_with(methods: Vec<&'static dyn Method>) -> Self {
+        CheckConfig {
+            methods,
+            regimes: Regime::ALL.to_vec(),
+            cases: 9600,
+            time: None,
+            seed: 1,
+            tile: None,
+            shard: (0, 1),
+            samples: 512,
+            // Boxes may shrink to 1e-9 of the tile and domain: fine enough to separate a
+            // bound from the true extreme when they differ by an f32 rounding.
+            extents: ExtentsConfig { resolution: 1e-3, max_boxes: 20_000, min_fraction: 1e-9 },
+            band: 0.0,
+            side_budget: 2000,
+            side_stall: 250,
+            constraint_budget: 2000,
+            constraint_min_width: 1e-9,
+            limit_methods: 1,
+            limit_shifts: 8,
+        }
+    }
+}
+
+/// A violation, with what is needed to replay it.
+#[derive(Clone, Debug, Serialize)]
+pub struct Witness {
+    pub case_index: u64,
+    pub case: Case,
+    pub tile: Tile,
+    /// The interior sample the method culls (exactly confirmed; in the tile and the
+    /// lens/shutter domain).
+    pub sample: [f64; 5],
+    /// Which bound culls it: "tile culled", "u min", "t max", "z min", or a constraint's name.
+    pub bound: String,
+    /// Padding of that bound that would admit the witness ("inf" in JSON when a
+    /// covered tile was culled).
+    #[serde(serialize_with = "crate::corpus::num_or_inf::serialize")]
+    pub margin: f64,
+    /// Embree's verdict on the witness ray (None: not a physical case).
+    pub embree_hit: Option<bool>,
+}
+
+/// The case with index `i`: its regime, the triangle and a tile on the footprint's
+/// boundary (a tile containing a sample drawn near an edge).
+pub fn make_case(cfg: &CheckConfig, i: u64) -> (Regime, Case, Tile) {
+    let regime = cfg.regimes[(i % cfg.regimes.len() as u64) as usize];
+    let mut rng = rng_for(cfg.seed, i);
+    let case = physical_case(&mut rng, regime);
+    let size = tile_size(cfg, &mut rng);
+    let tile = boundary_tile(&case, &mut rng, size);
+    (regime, case, tile)
+}
+
+fn tile_size(cfg: &CheckConfig, rng: &mut ChaCha8Rng) -> f32 {
+    cfg.tile.unwrap_or_else(|| *[1.0f32, 2.0, 4.0, 8.0, 16.0].choose(rng).unwrap())
+}
+
+/// A tile of `size` pixels (on the grid of that size) holding a sample drawn near an
+/// edge of the triangle: where its footprint's boundary is.
+pub fn boundary_tile(case: &Case, rng: &mut ChaCha8Rng, size: f32) -> Tile {
+    let pts = samples_for(case, rng, 16);
+    // odd indices are the edge-biased samples
+    let p = pts[1 + 2 * rng.gen_range(0..8)];
+    let (x0, y0) = ((p[0] as f32 / size).floor() * size, (p[1] as f32 / size).floor() * size);
+    Tile::square(x0, y0, size)
+}
+
+fn embree_for(case: &Case) -> Option<oracles::embree::EmbreeOracle> {
+    lens_tri(case).and_then(|l| oracles::embree::EmbreeOracle::new(&l).ok())
+}
+
+fn uniform_samples(cfg: &CheckConfig, tile: &Tile, stream: u64, i: u64, n: usize) -> Vec<Sample> {
+    let mut rng = rng_for(cfg.seed ^ stream, i);
+    (0..n).map(|_| tile_sample(&mut rng, tile)).collect()
+}
+
+const UNIFORM_STREAM: u64 = 0x05ee_d5a3_b1e5;
+const LIMIT_STREAM: u64 = 0x7113_e5ba_5e11;
+
+/// What one case gives: its regime, a judgement per method, the solver's boxes and the
+/// Embree cross-check.
+struct CaseResult {
+    regime: Regime,
+    judgements: Vec<Judgement>,
+    /// Per method: the share of the (u, v, t) domain its answer on the boundary tile
+    /// lets through (0 for a culled tile).
+    pass: Vec<f64>,
+    boxes: u64,
+    cross: CrossCheck,
+}
+
+/// The share of the lens/shutter domain that an answer's intervals keep.
+fn pass_fraction(r: &TileResult) -> f64 {
+    match r {
+        TileResult::Empty => 0.0,
+        TileResult::Bounds(b) => {
+            let w = |a: [f32; 2], lo: f64, hi: f64| {
+                let (a0, a1) = ((a[0] as f64).max(lo), (a[1] as f64).min(hi));
+                if a0.is_nan() || a1.is_nan() || a1 < a0 {
+                    0.0
+                } else {
+                    (a1 - a0) / (hi - lo)
+                }
+            };
+            w(b.u, -1.0, 1.0) * w(b.v, -1.0, 1.0) * w(b.t, 0.0, 1.0)
+        }
+    }
+}
+
+/// Judge every method on one case: the boundary tile for all, the limit tiles for the
+/// methods whose turn it is.
+fn judge_case(cfg: &CheckConfig, i: u64) -> CaseResult {
+    let (regime, case, tile) = make_case(cfg, i);
+    let embree = embree_for(&case);
+    let uniform = uniform_samples(cfg, &tile, UNIFORM_STREAM, i, cfg.samples);
+    let tri = case.triangle.to_oracle();
+    let prepared: Vec<_> = cfg.methods.iter().map(|m| m.setup(&case.triangle)).collect();
+    let answers: Vec<TileResult> = prepared.iter().map(|p| p.tile(&tile)).collect();
+    let mut tj = TileJudge::new(cfg, case, tile, i, &tri, embree.as_ref(), &uniform);
+    let mut judgements: Vec<Judgement> = answers.iter().map(|a| tj.judge(a)).collect();
+    let mut boxes = tj.solver.boxes;
+    let pass = answers.iter().map(pass_fraction).collect();
+    let nm = cfg.methods.len();
+    let turn = (i / cfg.regimes.len() as u64) as usize;
+    for j in 0..cfg.limit_methods.min(nm) {
+        let mi = (turn + j) % nm;
+        let (jl, b) = judge_limit_tiles(cfg, cfg.methods[mi], &case, i, mi as u64);
+        boxes += b;
+        if let Some(jl) = jl {
+            judgements[mi].merge(jl);
+        }
+    }
+    CaseResult { regime, judgements, pass, boxes, cross: cross_check(&case, embree.as_ref(), &uniform) }
+}
+
+/// Judge one method on the two tiles at its own tile-reject limit ([`tiles`]); `salt`
+/// picks the stream (the method's index in the run). None when the method culls no
+/// tile near the footprint. Also returns the solver's box count.
+pub fn judge_limit_tiles(cfg: &CheckConfig, m: &dyn Method, case: &Case, i: u64, salt: u64) -> (Option<Judgement>, u64) {
+    let mut rng = rng_for(cfg.seed ^ LIMIT_STREAM, i.wrapping_mul(64).wrapping_add(salt));
+    let size = tile_size(cfg, &mut rng);
+    let setup = |c: &Case| m.setup(&c.triangle);
+    let Some((lc, kept, culled)) = tiles::limit_tiles(&setup, case, &mut rng, size, cfg.limit_shifts) else {
+        return (None, 0);
+    };
+    let tri = lc.triangle.to_oracle();
+    let embree = embree_for(&lc);
+    let p = m.setup(&lc.triangle);
+    let mut out = Judgement::default();
+    let mut boxes = 0;
+    for t in [culled, kept] {
+        let uni = uniform_samples(cfg, &t, LIMIT_STREAM, i, cfg.samples / 4);
+        let mut lj = TileJudge::new(cfg, lc, t, i, &tri, embree.as_ref(), &uni);
+        let mut jj = lj.judge(&p.tile(&t));
+        boxes += lj.solver.boxes;
+        jj.adversarial_tiles = 1;
+        jj.adversarial_violations = jj.violation.is_some() as u32;
+        out.merge(jj);
+    }
+    (Some(out), boxes)
+}
+
+/// Judge the case's uniform tile samples with both oracles; the exact verdict settles
+/// every difference (counted, never used to judge a method).
+fn cross_check(case: &Case, embree: Option<&oracles::embree::EmbreeOracle>, uniform: &[Sample]) -> CrossCheck {
+    let mut c = CrossCheck::default();
+    let Some(embree) = embree else {
+        return c;
+    };
+    let tri = case.triangle.to_oracle();
+    for s in uniform {
+        let p = s.to_oracle();
+        let interior = classify(&tri, p) == Coverage::Interior;
+        let hit = embree.hit(p);
+        c.samples += 1;
+        c.interior += interior as u64;
+        c.embree_over += (hit && !interior) as u64;
+        c.embree_under += (!hit && interior) as u64;
+    }
+    c
+}
+
+/// Judge `methods` on one case and tile (no limit tiles); `i` seeds the uniform samples
+/// (and is recorded in witnesses). Returns the judgements and the solver's box count.
+pub fn judge(
+    cfg: &CheckConfig,
+    methods: &[&'static dyn Method],
+    case: &Case,
+    tile: &Tile,
+    i: u64,
+) -> (Vec<Judgement>, u64) {
+    let embree = embree_for(case);
+    let uniform = uniform_samples(cfg, tile, UNIFORM_STREAM, i, cfg.samples);
+    let tri = case.triangle.to_oracle();
+    let mut tj = TileJudge::new(cfg, *case, *tile, i, &tri, embree.as_ref(), &uniform);
+    let js = methods.iter().map(|m| tj.judge(&m.setup(&case.triangle).tile(tile))).collect();
+    (js, tj.solver.boxes)
+}
+
+/// Run the gate: judge the cases, then hold each row against the expectations and
+/// (when it matches the settings) the baseline.
+pub fn run(cfg: &CheckConfig, ex: &Expectations, progress: bool) -> CheckReport {
+    run_with_baseline(cfg, ex, None, progress)
+}
+
+/// [`run`] with a baseline file's contents to compare against.
+pub fn run_with_baseline(
+    cfg: &CheckConfig,
+    ex: &Expectations,
+    base: Option<&baseline::BaselineFile>,
+    progress: bool,
+) -> CheckReport {
+    let start = std::time::Instant::now();
+    let (k, n) = cfg.shard;
+    let mut results = Vec::new();
+    match cfg.time {
+        None => {
+            let ids: Vec<u64> = (0..cfg.cases).filter(|i| i % n == k).collect();
+            let pb = if progress { ProgressBar::new(ids.len() as u64) } else { ProgressBar::hidden() };
+            pb.set_style(
+                ProgressStyle::with_template("{bar:40} {pos}/{len} cases {elapsed_precise} eta {eta}").unwrap(),
+            );
+            results = ids
+                .par_iter()
+                .map(|&i| {
+                    let r = judge_case(cfg, i);
+                    pb.inc(1);
+                    r
+                })
+                .collect();
+            pb.finish_and_clear();
+        }
+        Some(secs) => {
+            // Whole batches of case indices until the time is up: the cases judged are
+            // 0..N for the N reported, so `--cases N` repeats the run exactly.
+            let pb = if progress { ProgressBar::new((secs * 1000.0) as u64) } else { ProgressBar::hidden() };
+            pb.set_style(ProgressStyle::with_template("{bar:40} {msg} {elapsed_precise}").unwrap());
+            let batch = 256 * n;
+            let mut next = 0u64;
+            while start.elapsed().as_secs_f64() < secs {
+                let ids: Vec<u64> = (next..next + batch).filter(|i| i % n == k).collect();
+                results.par_extend(ids.par_iter().map(|&i| judge_case(cfg, i)));
+                next += batch;
+                pb.set_position((start.elapsed().as_secs_f64() * 1000.0) as u64);
+                pb.set_message(format!("{next} cases"));
+            }
+            pb.finish_and_clear();
+        }
+    }
+    let judged = results.len() as u64;
+    let mut acc = report::Accumulator::new(cfg, ex);
+    for r in results {
+        acc.add_with(cfg, r.regime, r.judgements, &r.pass, r.boxes, r.cross);
+    }
+    let mut rep = acc.finish(cfg, judged, start.elapsed().as_secs_f64());
+    if let Some(b) = base {
+        baseline::apply(&mut rep, cfg, b);
+    }
+    rep
+}

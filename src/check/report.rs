@@ -1,0 +1,414 @@
+//! The gate's report: a row per method x regime with the three counts, its status
+//! against the expectations (and the baseline), a summary per method, the text table.
+
+use super::expect::{Entry, Expectations, Expected};
+use super::judge::{Judgement, Verdict};
+use super::{CheckConfig, Witness};
+use crate::gen::Regime;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// A row's standing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Status {
+    /// Expected conservative: every case proven.
+    Proven,
+    /// Expected conservative: no violation, unproven cases within the stated allowance.
+    ProvenExceptAllowed,
+    /// Expected conservative: no violation, but more unproven cases than allowed.
+    Unproven,
+    /// A violation where the row is expected conservative.
+    UnexpectedViolation,
+    /// Expected violations, within their signature.
+    KnownViolation,
+    /// Expected violations that leave their signature (a new kind of bound, a margin or
+    /// a rate above its cap).
+    BeyondSignature,
+    /// An expected violation that this run did not see (not a failure).
+    ExpectedNotSeen,
+    /// Expectation "unknown": reported, never failing.
+    NotGated,
+    /// Worse than the stored baseline for the same settings.
+    Regression,
+}
+
+impl Status {
+    pub fn fails(self) -> bool {
+        matches!(self, Status::Unproven | Status::UnexpectedViolation | Status::BeyondSignature | Status::Regression)
+    }
+    pub fn text(self) -> &'static str {
+        match self {
+            Status::Proven => "proven",
+            Status::ProvenExceptAllowed => "ok, unproven allowed",
+            Status::Unproven => "UNPROVEN",
+            Status::UnexpectedViolation => "UNEXPECTED VIOLATION",
+            Status::KnownViolation => "known violation",
+            Status::BeyondSignature => "BEYOND SIGNATURE",
+            Status::ExpectedNotSeen => "expected violation not seen",
+            Status::NotGated => "not gated",
+            Status::Regression => "REGRESSION",
+        }
+    }
+}
+
+/// One kind of violated bound in a row: cases and the largest margin.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, serde::Deserialize)]
+pub struct BoundStat {
+    pub cases: u64,
+    #[serde(with = "crate::corpus::num_or_inf")]
+    pub max_margin: f64,
+}
+
+/// The row of the verdict table.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    pub method: String,
+    pub regime: String,
+    pub cases: u64,
+    /// Cases whose every claim was certified.
+    pub proven: u64,
+    /// Cases with a violation (witness confirmed exactly, in the tile and the domain).
+    pub violations: u64,
+    /// Cases neither proven nor violated.
+    pub unproven: u64,
+    /// Unproven cases by reason (a case may have several).
+    pub unproven_by: BTreeMap<String, u64>,
+    /// Violated bound kinds: cases and largest margin.
+    pub bounds: BTreeMap<String, BoundStat>,
+    pub boundary_only: u64,
+    /// Violations witnessed by an f32 sample (the rest only between f32 values).
+    pub f32_witnessed: u64,
+    /// Tiles judged at the method's own tile-reject limit, and those with a violation.
+    pub limit_tiles: u64,
+    pub limit_violations: u64,
+    /// Mean share of the (u, v, t) domain the intervals let through on the boundary
+    /// tile (0 for a culled tile): the row's looseness, compared with the baseline.
+    pub pass_fraction: f64,
+    /// Largest margin needed over the violations (0 when none; "inf" in JSON when a
+    /// covered tile was culled).
+    #[serde(serialize_with = "crate::corpus::num_or_inf::serialize")]
+    pub margin_needed: f64,
+    pub expected: Expected,
+    pub status: Status,
+    /// What made the status (signature breaches, unproven beyond the allowance,
+    /// differences from the baseline).
+    pub problems: Vec<String>,
+    /// The violation with the largest margin.
+    pub worst: Option<Witness>,
+    #[serde(skip)]
+    pub(crate) entry: Option<Entry>,
+}
+
+/// The result of a run.
+#[derive(Clone, Debug, Serialize)]
+pub struct CheckReport {
+    pub seed: u64,
+    pub cases: u64,
+    pub shard: String,
+    pub rows: Vec<Row>,
+    /// The sampled cross-check of Embree against the exact oracle, per regime.
+    pub cross_check: Vec<CrossCheck>,
+    /// Boxes the extents solver examined in all.
+    pub solver_boxes: u64,
+    pub seconds: f64,
+    /// Whether a baseline for these settings was found and compared.
+    pub baseline: Option<String>,
+}
+
+impl CheckReport {
+    /// True when some row fails (see [`Status::fails`]).
+    pub fn failed(&self) -> bool {
+        self.rows.iter().any(|r| r.status.fails())
+    }
+}
+
+/// The sampled cross-check of the two ground truths on one case: the gate's uniform
+/// tile samples judged exactly and by Embree (physical cases only).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct CrossCheck {
+    pub regime: String,
+    /// Samples judged by both oracles.
+    pub samples: u64,
+    /// Of those, exactly interior.
+    pub interior: u64,
+    /// Embree said hit where the exact oracle says not interior.
+    pub embree_over: u64,
+    /// Embree said miss on an interior sample.
+    pub embree_under: u64,
+}
+
+/// Collects case results into rows, in case order.
+pub(crate) struct Accumulator<'a> {
+    ex: &'a Expectations,
+    rows: BTreeMap<(usize, usize), Row>,
+    pass_sum: BTreeMap<(usize, usize), f64>,
+    cross: BTreeMap<usize, CrossCheck>,
+    boxes: u64,
+}
+
+impl<'a> Accumulator<'a> {
+    pub fn new(_cfg: &CheckConfig, ex: &'a Expectations) -> Self {
+        Accumulator { ex, rows: BTreeMap::new(), pass_sum: BTreeMap::new(), cross: BTreeMap::new(), boxes: 0 }
+    }
+
+    pub fn add_with(&mut self, cfg: &CheckConfig, regime: Regime, js: Vec<Judgement>, pass: &[f64], boxes: u64, cc: CrossCheck) {
+        self.boxes += boxes;
+        let ri = cfg.regimes.iter().position(|r| *r == regime).unwrap();
+        let x = self.cross.entry(ri).or_insert_with(|| CrossCheck { regime: regime.name().into(), ..Default::default() });
+        x.samples += cc.samples;
+        x.interior += cc.interior;
+        x.embree_over += cc.embree_over;
+        x.embree_under += cc.embree_under;
+        for (mi, j) in js.into_iter().enumerate() {
+            let m = cfg.methods[mi].info().id;
+            let ex = self.ex;
+            let row = self.rows.entry((mi, ri)).or_insert_with(|| {
+                let entry = ex.entry(m, regime.name());
+                Row {
+                    method: m.into(),
+                    regime: regime.name().into(),
+                    cases: 0,
+                    proven: 0,
+                    violations: 0,
+                    unproven: 0,
+                    unproven_by: BTreeMap::new(),
+                    bounds: BTreeMap::new(),
+                    boundary_only: 0,
+                    f32_witnessed: 0,
+                    limit_tiles: 0,
+                    limit_violations: 0,
+                    pass_fraction: 0.0,
+                    margin_needed: 0.0,
+                    expected: entry.expect,
+                    status: Status::Proven,
+                    problems: Vec::new(),
+                    worst: None,
+                    entry: Some(entry),
+                }
+            });
+            *self.pass_sum.entry((mi, ri)).or_insert(0.0) += pass.get(mi).copied().unwrap_or(0.0);
+            row.cases += 1;
+            row.boundary_only += j.boundary_only as u64;
+            row.limit_tiles += j.adversarial_tiles as u64;
+            row.limit_violations += j.adversarial_violations as u64;
+            match j.verdict() {
+                Verdict::Proven => row.proven += 1,
+                Verdict::Unproven => {
+                    row.unproven += 1;
+                    for r in j.unproven() {
+                        *row.unproven_by.entry(r.name().into()).or_insert(0) += 1;
+                    }
+                }
+                Verdict::Violated => {
+                    row.violations += 1;
+                    row.f32_witnessed += j.f32_witness as u64;
+                }
+            }
+            for (k, m) in &j.violated {
+                let b = row.bounds.entry(k.clone()).or_default();
+                b.cases += 1;
+                b.max_margin = b.max_margin.max(*m);
+            }
+            if let Some(w) = j.violation {
+                if w.margin >= row.margin_needed {
+                    row.margin_needed = w.margin;
+                    row.worst = Some(w);
+                }
+            }
+        }
+    }
+
+    pub fn finish(mut self, cfg: &CheckConfig, judged: u64, seconds: f64) -> CheckReport {
+        for (key, row) in self.rows.iter_mut() {
+            row.pass_fraction = self.pass_sum[key] / row.cases.max(1) as f64;
+            set_status(row);
+        }
+        let (k, n) = cfg.shard;
+        CheckReport {
+            seed: cfg.seed,
+            cases: judged,
+            shard: format!("{k}/{n}"),
+            rows: self.rows.into_values().collect(),
+            cross_check: self.cross.into_values().collect(),
+            solver_boxes: self.boxes,
+            seconds,
+            baseline: None,
+        }
+    }
+}
+
+/// The status of a row against its expectation.
+fn set_status(row: &mut Row) {
+    let entry = row.entry.clone().unwrap_or_else(Entry::conservative);
+    row.problems.clear();
+    row.status = match entry.expect {
+        Expected::Unknown => Status::NotGated,
+        Expected::Conservative if row.violations > 0 => {
+            let kinds: Vec<&str> = row.bounds.keys().map(|s| s.as_str()).collect();
+            row.problems.push(format!("{} violations ({})", row.violations, kinds.join(", ")));
+            Status::UnexpectedViolation
+        }
+        Expected::Conservative if row.unproven == 0 => Status::Proven,
+        Expected::Conservative => {
+            let allowed = entry.unproven.as_ref().map_or(0.0, |a| a.max_rate);
+            if row.unproven as f64 <= allowed * row.cases as f64 {
+                Status::ProvenExceptAllowed
+            } else {
+                row.problems.push(format!(
+                    "{} of {} cases unproven ({}), allowance {}",
+                    row.unproven,
+                    row.cases,
+                    row.unproven_by.iter().map(|(k, v)| format!("{k} {v}")).collect::<Vec<_>>().join(", "),
+                    allowed
+                ));
+                Status::Unproven
+            }
+        }
+        Expected::Violation if row.violations == 0 => Status::ExpectedNotSeen,
+        Expected::Violation => {
+            let stats: BTreeMap<String, (u64, f64)> =
+                row.bounds.iter().map(|(k, b)| (k.clone(), (b.cases, b.max_margin))).collect();
+            let br = entry.breaches(&stats, row.violations, row.cases);
+            if br.is_empty() {
+                Status::KnownViolation
+            } else {
+                row.problems = br;
+                Status::BeyondSignature
+            }
+        }
+    };
+}
+
+fn fmt_margin(row: &Row) -> String {
+    if row.violations == 0 {
+        "-".to_string()
+    } else {
+        format!("{:.3e}", row.margin_needed)
+    }
+}
+
+/// One line per method over all regimes: the verdict at a glance.
+fn render_summary(r: &CheckReport) -> String {
+    let mut s = format!(
+        "\nper method, all regimes:\n{:<24} {:>6} {:>7} {:>10} {:>8} {:>11}  {}\n",
+        "method", "cases", "proven", "violated", "unproven", "margin", "verdict"
+    );
+    let mut methods: Vec<&str> = Vec::new();
+    for row in &r.rows {
+        if !methods.contains(&row.method.as_str()) {
+            methods.push(&row.method);
+        }
+    }
+    for m in methods {
+        let rows: Vec<&Row> = r.rows.iter().filter(|x| x.method == m).collect();
+        let sum = |f: fn(&Row) -> u64| rows.iter().map(|x| f(x)).sum::<u64>();
+        let (cases, proven, violations, unproven) =
+            (sum(|x| x.cases), sum(|x| x.proven), sum(|x| x.violations), sum(|x| x.unproven));
+        let margin = rows.iter().filter(|x| x.violations > 0).map(|x| x.margin_needed).fold(0.0, f64::max);
+        let failing = rows.iter().filter(|x| x.status.fails()).count();
+        let verdict = if violations > 0 {
+            let n = rows.iter().filter(|x| x.violations > 0).count();
+            format!("violated in {n} of {} regimes", rows.len())
+        } else if unproven > 0 {
+            format!("no violation; {unproven} cases unproven")
+        } else {
+            format!("proven conservative on {cases} cases")
+        };
+        let gate = if failing > 0 { format!(" — FAILS in {failing} rows") } else { String::new() };
+        s += &format!(
+            "{:<24} {:>6} {:>7} {:>10} {:>8} {:>11}  {}{}\n",
+            m,
+            cases,
+            proven,
+            violations,
+            unproven,
+            if violations == 0 { "-".to_string() } else { format!("{margin:.3e}") },
+            verdict,
+            gate
+        );
+    }
+    s
+}
+
+/// The verdict table.
+pub fn render(r: &CheckReport) -> String {
+    let mut s = format!(
+        "cullproof check, seed {}, {} cases (shard {}), {:.1} s\n\n{:<24} {:<15} {:>6} {:>7} {:>8} {:>8} {:>5} {:>7} {:>11}  status\n",
+        r.seed, r.cases, r.shard, r.seconds, "method", "regime", "cases", "proven", "violated", "unproven", "f32", "limit", "margin"
+    );
+    let mut last = "";
+    for row in &r.rows {
+        let m = if row.method == last { "" } else { row.method.as_str() };
+        last = &row.method;
+        s += &format!(
+            "{:<24} {:<15} {:>6} {:>7} {:>8} {:>8} {:>5} {:>7} {:>11}  {}\n",
+            m,
+            row.regime,
+            row.cases,
+            row.proven,
+            row.violations,
+            row.unproven,
+            row.f32_witnessed,
+            format!("{}/{}", row.limit_violations, row.limit_tiles),
+            fmt_margin(row),
+            row.status.text()
+        );
+    }
+    s += &render_summary(r);
+    s += "\nproven: every claim certified (no gap left); violated: an interior sample, confirmed exactly, in the tile and\n\
+          the lens/shutter domain, that the answer culls; unproven: neither (by reason in the JSON report).\n\
+          margin: the padding of the violated bound that would admit every witness found (inf: a covered tile was culled).\n\
+          f32: violations with a witness that is an f32 sample. limit: violations / tiles judged at the method's own\n\
+          tile-reject limit.\n";
+    let (n, inside, over, under) = r
+        .cross_check
+        .iter()
+        .fold((0, 0, 0, 0), |a, c| (a.0 + c.samples, a.1 + c.interior, a.2 + c.embree_over, a.3 + c.embree_under));
+    let differ: Vec<String> = r
+        .cross_check
+        .iter()
+        .filter(|c| c.embree_over + c.embree_under > 0)
+        .map(|c| format!("{} {}", c.regime, c.embree_over + c.embree_under))
+        .collect();
+    s += &format!(
+        "sampled cross-check: {n} uniform tile samples of physical cases judged by both oracles, {inside} interior; \
+         Embree (f32) differed on {} ({over} over, {under} under{}{}), each settled by the exact oracle.\n",
+        over + under,
+        if differ.is_empty() { "" } else { "; by regime: " },
+        differ.join(", ")
+    );
+    match &r.baseline {
+        Some(b) => s += &format!("baseline: {b}\n"),
+        None => s += "baseline: none stored for these settings (only the expectations were applied)\n",
+    }
+    let failing: Vec<&Row> = r.rows.iter().filter(|x| x.status.fails()).collect();
+    if failing.is_empty() {
+        s += "verdict: PASS — every row is proven, within its allowance of unproven cases, or within the signature \
+              of its expected violations\n";
+    } else {
+        s += &format!("verdict: FAIL — {} method x regime rows:\n", failing.len());
+        for row in failing {
+            s += &format!("  {} / {}: {}: {}\n", row.method, row.regime, row.status.text(), row.problems.join("; "));
+            if let Some(w) = &row.worst {
+                s += &format!(
+                    "    worst: case {} tile [{}, {}]x[{}, {}] sample {:?} culled by {} (margin {:.3e}, Embree {})\n",
+                    w.case_index,
+                    w.tile.x0,
+                    w.tile.x1,
+                    w.tile.y0,
+                    w.tile.y1,
+                    w.sample,
+                    w.bound,
+                    w.margin,
+                    match w.embree_hit {
+                        Some(true) => "hits too",
+                        Some(false) => "misses",
+                        None => "n/a",
+                    }
+                );
+            }
+        }
+    }
+    s
+}
