@@ -470,7 +470,18 @@ pub fn search(
             .map(|&i| {
                 let (regime, case, tile) = make_case(cfg, i);
                 let (js, _) = judge(cfg, &[m], &case, &tile, i);
-                (i, regime, case, tile, js.into_iter().next().unwrap())
+                let j = js.into_iter().next().unwrap();
+                // Also the tiles at the method's own tile-reject limit (the witness
+                // then carries the case, moved on screen, and the tile).
+                if j.violation.as_ref().is_none_or(|v| v.margin < min_margin) {
+                    if let (Some(l), _) = crate::check::judge_limit_tiles(cfg, m, &case, i, 0) {
+                        if l.violation.as_ref().is_some_and(|v| v.margin >= min_margin) {
+                            let w = l.violation.as_ref().unwrap();
+                            return (i, regime, w.case, w.tile, l);
+                        }
+                    }
+                }
+                (i, regime, case, tile, j)
             })
             .collect();
         pb.set_message(format!("{} cases, {} found", next, found.len()));

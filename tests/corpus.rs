@@ -33,7 +33,7 @@ fn every_expected_violation_is_backed_by_a_case_file() {
     let files = case_files(&[root.join("corpus/cases")]).unwrap();
     let cases: Vec<CaseFile> = files.iter().map(|f| CaseFile::load(f).unwrap()).collect();
     for (method, regimes) in &ex.0 {
-        if regimes.values().any(|e| e.expected() == cullproof::check::Expected::Violation) {
+        if regimes.values().any(|e| e.expect == cullproof::check::Expected::Violation) {
             assert!(
                 cases.iter().any(|c| &c.method == method && c.expected == Verdict::Violation),
                 "{method}: expected to violate, but no case file in corpus/cases/{method}"
@@ -58,4 +58,40 @@ fn explain_renders_every_corpus_case() {
             .unwrap_or_else(|e| panic!("{}: {e}", f.display()));
         assert!(svg.starts_with("<svg") && svg.contains("witness"), "{}: not a picture of the witness", f.display());
     }
+}
+
+/// A stored witness outside the lens/shutter domain never holds, and a violation file
+/// whose fresh judgement disagrees does not replay as ok.
+#[test]
+fn a_witness_outside_the_domain_does_not_replay() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let files = case_files(&[root.join("corpus/cases")]).unwrap();
+    let cfg = CheckConfig::default_with(cullproof::bounds::registry());
+    let dir = std::env::temp_dir().join(format!("cullproof-domain-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut tried = 0;
+    for f in &files {
+        let mut cf = CaseFile::load(f).unwrap();
+        let Some(w) = cf.witness.as_mut() else { continue };
+        if cf.expected != Verdict::Violation {
+            continue;
+        }
+        // Step one coordinate of the lens or shutter just outside the domain.
+        let k = 2 + tried % 3;
+        w.sample[k] = if k == 4 { 1.0 + f32::EPSILON as f64 } else { -1.0 - f32::EPSILON as f64 };
+        let p = dir.join(format!("{tried}.json"));
+        std::fs::write(&p, serde_json::to_string(&cf).unwrap()).unwrap();
+        let r = replay(&p, &cfg).unwrap();
+        assert!(!r.ok, "{}: a witness outside the domain replayed as ok", f.display());
+        match &r.witness {
+            Some(Err(why)) => assert!(why.contains("domain"), "{why}"),
+            other => panic!("{}: {other:?}", f.display()),
+        }
+        tried += 1;
+        if tried == 6 {
+            break;
+        }
+    }
+    assert_eq!(tried, 6);
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -2,9 +2,21 @@
 //! the gate and the search catch them (tests, and `cullproof search --method
 //! broken/...` to measure the time to the first counterexample). Never in the registry.
 //!
+//! Each is a slip planted into any method at run time (no rebuild), so the gate's
+//! power can be measured over every method x slip in one run (`cullproof power`):
+//!
 //! - `broken/shrink/<id>`: the method's u^, v^, t^ pulled in by 1e-3 at both ends.
+//! - `broken/shrink-rel/<id>`: each narrowed end pulled in by 1e-5 of its interval's
+//!   width (a slip as small as a rounding, far from the origin as near it).
 //! - `broken/no-coc-pad/<id>`: the method run on the triangle with its circles of
 //!   confusion dropped (the lens padding term forgotten), so defocus is ignored.
+//! - `broken/t0-only/<id>`: the method run on the triangle frozen at its t = 0
+//!   positions (the motion forgotten).
+//! - `broken/swap-coc/<id>`: the CoCs at t = 0 and t = 1 swapped.
+//! - `broken/half-tile/<id>`: the method asked about the tile shrunk by half its size
+//!   around its centre (a dropped tile half-size).
+//! - `broken/loose/<id>`: every narrowed end moved out by 1e-3 (not a violation: a
+//!   loss of tightness, which the baseline comparison must see).
 
 use super::{by_id, Method, MethodInfo, Prepared, TileResult};
 use crate::model::{Tile, Triangle};
@@ -55,6 +67,98 @@ impl Method for NoCoc {
     }
 }
 
+/// Moves each narrowed end of the answer: `f(lo, hi, domain_lo, domain_hi)` gives
+/// the new ends.
+struct Moved {
+    inner: &'static dyn Method,
+    info: &'static MethodInfo,
+    f: fn([f32; 2], f32, f32) -> [f32; 2],
+}
+struct MovedP(Box<dyn Prepared>, fn([f32; 2], f32, f32) -> [f32; 2]);
+impl Prepared for MovedP {
+    fn tile(&self, t: &Tile) -> TileResult {
+        match self.0.tile(t) {
+            TileResult::Empty => TileResult::Empty,
+            TileResult::Bounds(mut b) => {
+                b.u = (self.1)(b.u, -1.0, 1.0);
+                b.v = (self.1)(b.v, -1.0, 1.0);
+                b.t = (self.1)(b.t, 0.0, 1.0);
+                TileResult::Bounds(b)
+            }
+        }
+    }
+}
+impl Method for Moved {
+    fn info(&self) -> &'static MethodInfo {
+        self.info
+    }
+    fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
+        Box::new(MovedP(self.inner.setup(tri), self.f))
+    }
+}
+
+fn shrink_rel(r: [f32; 2], lo: f32, hi: f32) -> [f32; 2] {
+    let d = 1e-5 * (r[1] - r[0]).max(0.0);
+    [if r[0] > lo { r[0] + d } else { r[0] }, if r[1] < hi { r[1] - d } else { r[1] }]
+}
+
+fn loosen(r: [f32; 2], lo: f32, hi: f32) -> [f32; 2] {
+    [if r[0] > lo { (r[0] - 1e-3).max(lo) } else { r[0] }, if r[1] < hi { (r[1] + 1e-3).min(hi) } else { r[1] }]
+}
+
+/// Runs the method on a changed triangle.
+struct OnTriangle {
+    inner: &'static dyn Method,
+    info: &'static MethodInfo,
+    f: fn(&Triangle) -> Triangle,
+}
+impl Method for OnTriangle {
+    fn info(&self) -> &'static MethodInfo {
+        self.info
+    }
+    fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
+        self.inner.setup(&(self.f)(tri))
+    }
+}
+
+fn t0_only(t: &Triangle) -> Triangle {
+    Triangle { r: t.q, c1: t.c0, ..*t }
+}
+
+fn swap_coc(t: &Triangle) -> Triangle {
+    Triangle { c0: t.c1, c1: t.c0, ..*t }
+}
+
+/// Asks the method about the tile shrunk by half around its centre.
+struct HalfTile {
+    inner: &'static dyn Method,
+    info: &'static MethodInfo,
+}
+struct HalfTileP(Box<dyn Prepared>);
+impl Prepared for HalfTileP {
+    fn tile(&self, t: &Tile) -> TileResult {
+        let (qx, qy) = (0.25 * (t.x1 - t.x0), 0.25 * (t.y1 - t.y0));
+        self.0.tile(&Tile { x0: t.x0 + qx, x1: t.x1 - qx, y0: t.y0 + qy, y1: t.y1 - qy })
+    }
+}
+impl Method for HalfTile {
+    fn info(&self) -> &'static MethodInfo {
+        self.info
+    }
+    fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
+        Box::new(HalfTileP(self.inner.setup(tri)))
+    }
+}
+
+/// The slips `parse` knows, in the order `cullproof power` tries them.
+pub const KINDS: [&str; 7] = ["shrink", "shrink-rel", "no-coc-pad", "t0-only", "swap-coc", "half-tile", "loose"];
+
+/// The id of the method a broken variant breaks ("la2011" for "broken/shrink/la2011");
+/// any other id is returned as it is.
+pub fn inner_id(id: &str) -> &str {
+    id.strip_prefix("broken/").and_then(|r| r.split_once('/')).map_or(id, |(_, inner)| inner)
+}
+
 /// The broken variant named `id` ("broken/shrink/la2011"), if it is one.
 pub fn parse(id: &str) -> Option<&'static dyn Method> {
     let rest = id.strip_prefix("broken/")?;
@@ -65,6 +169,11 @@ pub fn parse(id: &str) -> Option<&'static dyn Method> {
     let m: &'static dyn Method = match kind {
         "shrink" => Box::leak(Box::new(Shrunk { inner, info })),
         "no-coc-pad" => Box::leak(Box::new(NoCoc { inner, info })),
+        "shrink-rel" => Box::leak(Box::new(Moved { inner, info, f: shrink_rel })),
+        "loose" => Box::leak(Box::new(Moved { inner, info, f: loosen })),
+        "t0-only" => Box::leak(Box::new(OnTriangle { inner, info, f: t0_only })),
+        "swap-coc" => Box::leak(Box::new(OnTriangle { inner, info, f: swap_coc })),
+        "half-tile" => Box::leak(Box::new(HalfTile { inner, info })),
         _ => return None,
     };
     Some(m)

@@ -43,7 +43,7 @@ pub struct Settings {
     pub side_budget: usize,
     pub side_stall: usize,
     pub constraint_budget: usize,
-    pub limit_methods: usize,
+    pub limit_every: u64,
 }
 
 impl Settings {
@@ -59,7 +59,7 @@ impl Settings {
             side_budget: cfg.side_budget,
             side_stall: cfg.side_stall,
             constraint_budget: cfg.constraint_budget,
-            limit_methods: cfg.limit_methods,
+            limit_every: cfg.limit_every,
         })
     }
 }
@@ -185,7 +185,9 @@ pub fn apply(r: &mut CheckReport, cfg: &CheckConfig, file: &BaselineFile) {
     let mut compared = 0;
     let mut worse = 0;
     for row in &mut r.rows {
-        let Some(br) = b.rows.iter().find(|x| x.method == row.method && x.regime == row.regime) else { continue };
+        // A deliberately broken variant is compared with the method it breaks.
+        let id = crate::bounds::broken::inner_id(&row.method);
+        let Some(br) = b.rows.iter().find(|x| x.method == id && x.regime == row.regime) else { continue };
         compared += 1;
         let diffs = compare(row, br);
         if !diffs.is_empty() {
@@ -200,4 +202,96 @@ pub fn apply(r: &mut CheckReport, cfg: &CheckConfig, file: &BaselineFile) {
         "seed {} x {} cases: {compared} rows compared, {worse} worse than stored",
         settings.seed, settings.cases
     ));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::report::Row;
+
+    fn row(violations: u64, bounds: &[(&str, f64)], pass: f64) -> Row {
+        Row {
+            method: "m".into(),
+            regime: "static".into(),
+            cases: 600,
+            proven: 600 - violations,
+            violations,
+            unproven: 0,
+            unproven_by: BTreeMap::new(),
+            bounds: bounds.iter().map(|(k, m)| (k.to_string(), BoundStat { cases: 1, max_margin: *m })).collect(),
+            boundary_only: 0,
+            f32_witnessed: 0,
+            limit_tiles: 0,
+            limit_violations: 0,
+            pass_fraction: pass,
+            margin_needed: 0.0,
+            expected: crate::check::Expected::Violation,
+            status: Status::KnownViolation,
+            problems: Vec::new(),
+            worst: None,
+            entry: None,
+        }
+    }
+
+    fn base(r: &Row) -> BaseRow {
+        BaseRow {
+            method: r.method.clone(),
+            regime: r.regime.clone(),
+            cases: r.cases,
+            violations: r.violations,
+            unproven: r.unproven,
+            bounds: r.bounds.clone(),
+            pass_fraction: r.pass_fraction,
+        }
+    }
+
+    #[test]
+    fn a_row_is_compared_kind_by_kind_and_by_rate_and_looseness() {
+        let b = base(&row(20, &[("u min", 1e-5)], 0.5));
+        assert!(compare(&row(20, &[("u min", 1e-5)], 0.5), &b).is_empty());
+        // within noise: 1.5x the margin, a few more violations, a tighter answer
+        assert!(compare(&row(30, &[("u min", 1.5e-5)], 0.4), &b).is_empty());
+        let d = compare(&row(20, &[("u min", 1e-5), ("t max", 1e-9)], 0.5), &b);
+        assert!(d.len() == 1 && d[0].contains("new kind") && d[0].contains("t max"), "{d:?}");
+        let d = compare(&row(20, &[("u min", 3e-5)], 0.5), &b);
+        assert!(d.len() == 1 && d[0].contains("margin"), "{d:?}");
+        let d = compare(&row(40, &[("u min", 1e-5)], 0.5), &b);
+        assert!(d.len() == 1 && d[0].contains("violations 20 -> 40"), "{d:?}");
+        let d = compare(&row(20, &[("u min", 1e-5)], 0.5000001), &b);
+        assert!(d.len() == 1 && d[0].contains("looser"), "{d:?}");
+    }
+
+    #[test]
+    fn saving_replaces_only_the_entry_of_the_same_settings() {
+        let dir = std::env::temp_dir().join(format!("cullproof-base-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("baseline.json");
+        let mut cfg = CheckConfig::default_with(vec![]);
+        cfg.cases = 10;
+        let rep = |n: u64| CheckReport {
+            seed: 1,
+            cases: 10,
+            shard: "0/1".into(),
+            rows: vec![row(n, &[], 0.5)],
+            cross_check: vec![],
+            solver_boxes: 0,
+            seconds: 0.0,
+            baseline: None,
+        };
+        let mut f = BaselineFile::default();
+        f.record(&cfg, &rep(1)).unwrap();
+        let other = CheckConfig { seed: 2, ..cfg.clone() };
+        f.record(&other, &rep(2)).unwrap();
+        f.record(&cfg, &rep(3)).unwrap();
+        f.save(&p).unwrap();
+        let g = BaselineFile::load(&p).unwrap();
+        assert_eq!(g.baselines.len(), 2);
+        assert_eq!(g.find(&Settings::of(&cfg).unwrap()).unwrap().rows[0].violations, 3);
+        assert_eq!(g.find(&Settings::of(&other).unwrap()).unwrap().rows[0].violations, 2);
+        let timed = CheckConfig { time: Some(1.0), ..cfg.clone() };
+        assert!(f.record(&timed, &rep(1)).is_err());
+        std::fs::write(&p, r#"{"format": "nope", "baselines": []}"#).unwrap();
+        assert!(BaselineFile::load(&p).unwrap_err().to_string().contains("format"));
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }

@@ -97,14 +97,6 @@ impl Entry {
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Expectations(pub BTreeMap<String, BTreeMap<String, Entry>>);
 
-/// An entry as written: a bare status or the whole object.
-#[derive(Deserialize)]
-#[serde(untagged)]
-enum Raw {
-    Plain(Expected),
-    Full(Entry),
-}
-
 impl Expectations {
     /// Load from a file; an error names the file, the method, the regime and the field.
     /// `known` says which method ids exist.
@@ -124,10 +116,17 @@ impl Expectations {
                 if r != "*" && !Regime::ALL.iter().any(|x| x.name() == r) {
                     anyhow::bail!("{at}: `{r}` is not a known regime");
                 }
-                let e = match serde_path_to_error::deserialize::<_, Raw>(v) {
-                    Ok(Raw::Plain(e)) => Entry { expect: e, ..Entry::conservative() },
-                    Ok(Raw::Full(e)) => e,
-                    Err(err) => anyhow::bail!("{at}: field `{}`: {}", err.path(), err.inner()),
+                // A bare status, or the whole object (whose errors name the field).
+                let e = if v.is_string() {
+                    match serde_json::from_value::<Expected>(v) {
+                        Ok(e) => Entry { expect: e, ..Entry::conservative() },
+                        Err(err) => anyhow::bail!("{at}: {err}"),
+                    }
+                } else {
+                    match serde_path_to_error::deserialize::<_, Entry>(v) {
+                        Ok(e) => e,
+                        Err(err) => anyhow::bail!("{at}: field `{}`: {}", err.path(), err.inner()),
+                    }
                 };
                 Self::validate(&e).map_err(|why| anyhow::anyhow!("{at}: {why}"))?;
                 rows.insert(r, e);
@@ -178,12 +177,84 @@ impl Expectations {
         }
     }
 
-    /// The entry for a method in a regime (expected conservative when not listed).
+    /// The entry for a method in a regime (expected conservative when not listed). A
+    /// deliberately broken variant is held to the expectations of the method it breaks.
     pub fn entry(&self, method: &str, regime: &str) -> Entry {
+        let method = crate::bounds::broken::inner_id(method);
         self.0.get(method).and_then(|m| m.get(regime).or_else(|| m.get("*"))).cloned().unwrap_or_else(Entry::conservative)
     }
 
     pub fn get(&self, method: &str, regime: &str) -> Expected {
         self.entry(method, regime).expect
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn write(text: &str) -> std::path::PathBuf {
+        let p = std::env::temp_dir().join(format!("cullproof-ex-{}-{}.json", std::process::id(), text.len()));
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    fn load(text: &str) -> anyhow::Result<Expectations> {
+        let p = write(text);
+        let r = Expectations::load_with(&p, &|m| m == "m");
+        std::fs::remove_file(&p).ok();
+        r
+    }
+
+    #[test]
+    fn an_expected_violation_needs_its_signature() {
+        let e = load(r#"{"m": {"*": {"expect": "violation", "why": "w", "max_rate": 0.1}}}"#).unwrap_err().to_string();
+        assert!(e.contains("`bounds`") && e.contains("regime `*`"), "{e}");
+        let e = load(r#"{"m": {"*": {"expect": "violation", "why": "w", "bounds": {"u min": 1e-4}}}}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("max_rate"), "{e}");
+        let e = load(r#"{"m": {"*": {"expect": "violation", "why": "w", "bounds": {"u min": "inf"}, "max_rate": 0.1}}}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("bounds.u min") && e.contains("inf"), "{e}");
+        let e = load(r#"{"m": {"*": {"expect": "violation", "bounds": {"u min": 1e-4}, "max_rate": 0.1}}}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`why`"), "{e}");
+        let e = load(r#"{"m": {"static": {"expect": "conservative", "unproven": {"max_rate": 2, "why": "x"}}}}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("unproven.max_rate") && e.contains("regime `static`"), "{e}");
+        let e = load(r#"{"m": {"static": {"expect": "conservative", "bogus": 1}}}"#).unwrap_err().to_string();
+        assert!(e.contains("bogus") || e.contains("unknown"), "{e}");
+        let e = load(r#"{"q": {"*": "conservative"}}"#).unwrap_err().to_string();
+        assert!(e.contains("`q`"), "{e}");
+        let ok = load(
+            r#"{"m": {"*": "conservative", "tiny": {"expect": "violation", "why": "w", "bounds": {"tile culled": "inf", "u min": 1e-4}, "max_rate": 0.1}}}"#,
+        )
+        .unwrap();
+        assert_eq!(ok.get("m", "tiny"), Expected::Violation);
+        assert_eq!(ok.get("m", "static"), Expected::Conservative);
+        assert_eq!(ok.get("other", "static"), Expected::Conservative);
+    }
+
+    #[test]
+    fn breaches_name_the_kind_the_margin_and_the_rate() {
+        let e = Entry {
+            expect: Expected::Violation,
+            why: "w".into(),
+            bounds: [("u min".to_string(), Cap(1e-4)), ("tile culled".to_string(), Cap(f64::INFINITY))].into(),
+            max_rate: Some(0.1),
+            unproven: None,
+        };
+        let stats = |v: &[(&str, u64, f64)]| v.iter().map(|(k, n, m)| (k.to_string(), (*n, *m))).collect();
+        assert!(e.breaches(&stats(&[("u min", 3, 5e-5), ("tile culled", 1, f64::INFINITY)]), 4, 100).is_empty());
+        let b = e.breaches(&stats(&[("u min", 3, 2e-4)]), 3, 100);
+        assert!(b.len() == 1 && b[0].contains("above the cap"), "{b:?}");
+        let b = e.breaches(&stats(&[("t max", 1, 1e-9)]), 1, 100);
+        assert!(b.len() == 1 && b[0].contains("`t max`"), "{b:?}");
+        let b = e.breaches(&stats(&[("u min", 11, 1e-5)]), 11, 100);
+        assert!(b.len() == 1 && b[0].contains("rate"), "{b:?}");
     }
 }

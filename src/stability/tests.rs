@@ -4,6 +4,7 @@
 
 use super::families::{centroid_distance, double_root_parts, pixel_aspect, tangency};
 use super::*;
+use crate::bounds;
 use crate::gen::rng_for;
 use oracles::{classify, Coverage};
 
