@@ -245,9 +245,11 @@ pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
     let j = &js[0];
     let judged = judged_word(j);
     let ok = match cf.expected {
-        // The stored witness must still hold, and the fresh judgement must find a
-        // violation too (it may find a worse one).
-        Verdict::Violation => matches!(witness, Some(Ok(_))) && j.violation.is_some(),
+        // The stored witness must still hold, and the fresh judgement must not
+        // contradict it: a proof of conservativeness next to a witness that holds
+        // would mean the judge is wrong. (Unproven is no contradiction: the fresh
+        // search may run out of budget before it finds the stored sample again.)
+        Verdict::Violation => matches!(witness, Some(Ok(_))) && j.verdict() != crate::check::Verdict::Proven,
         // A conservative case must be proven afresh, and its stored witness (if any)
         // must not hold.
         Verdict::Conservative => {

@@ -44,6 +44,7 @@ pub struct Settings {
     pub side_stall: usize,
     pub constraint_budget: usize,
     pub limit_every: u64,
+    pub limit_budget: usize,
 }
 
 impl Settings {
@@ -60,6 +61,7 @@ impl Settings {
             side_stall: cfg.side_stall,
             constraint_budget: cfg.constraint_budget,
             limit_every: cfg.limit_every,
+            limit_budget: cfg.limit_budget,
         })
     }
 }

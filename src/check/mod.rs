@@ -78,6 +78,9 @@ pub struct CheckConfig {
     /// case out of this many (0: never), in turn over the regimes, at an offset fixed by
     /// its id: a method's rows do not depend on which other methods run with it.
     pub limit_every: u64,
+    /// Boxes the occupancy search of a culled limit tile may use (its edge lies within a
+    /// rounding of the covered set, so a sliver may stay undecided: unproven).
+    pub limit_budget: usize,
     /// Screen shifts of the case tried when placing a limit tile (the one whose flip
     /// lies farthest inside the footprint's extreme is judged).
     pub limit_shifts: usize,
@@ -105,6 +108,7 @@ impl CheckConfig {
             constraint_min_width: 1e-9,
             limit_every: 12,
             limit_shifts: 8,
+            limit_budget: 4000,
         }
     }
 }
@@ -245,9 +249,13 @@ pub fn judge_limit_tiles(cfg: &CheckConfig, m: &dyn Method, case: &Case, i: u64,
     let p = m.setup(&lc.triangle);
     let mut out = Judgement::default();
     let mut boxes = 0;
+    let lcfg = CheckConfig {
+        extents: ExtentsConfig { max_boxes: cfg.limit_budget.min(cfg.extents.max_boxes), ..cfg.extents },
+        ..cfg.clone()
+    };
     for t in [culled, kept] {
         let uni = uniform_samples(cfg, &t, LIMIT_STREAM, i, cfg.samples / 4);
-        let mut lj = TileJudge::new(cfg, lc, t, i, &tri, embree.as_ref(), &uni);
+        let mut lj = TileJudge::new(&lcfg, lc, t, i, &tri, embree.as_ref(), &uni);
         let mut jj = lj.judge(&p.tile(&t));
         boxes += lj.solver.boxes;
         jj.adversarial_tiles = 1;
