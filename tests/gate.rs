@@ -229,3 +229,19 @@ fn stalled_side_searches_give_up_early() {
     assert!(sum(&stalled, |x| x.proven) <= sum(&full, |x| x.proven));
     assert!(!stalled.failed(), "{}", render(&stalled));
 }
+
+/// The stored baseline covers the default gate and the 960-case run of `power`, and
+/// the 960-case run of every method matches it: no row worse than stored, no row
+/// failing its expectations.
+#[test]
+fn the_stored_baseline_holds_at_960_cases() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let file = BaselineFile::load(&root.join("corpus/baseline.json")).unwrap();
+    let mut cfg = CheckConfig::default_with(cullproof::bounds::registry());
+    let default = cullproof::check::baseline::Settings::of(&cfg).unwrap();
+    assert!(file.find(&default).is_some(), "no baseline for the default gate");
+    cfg.cases = 960;
+    let r = run_with_baseline(&cfg, &expectations(), Some(&file), false);
+    assert!(r.baseline.as_deref().is_some_and(|b| b.contains("0 worse")), "{:?}\n{}", r.baseline, render(&r));
+    assert!(!r.failed(), "{}", render(&r));
+}
