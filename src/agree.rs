@@ -209,33 +209,73 @@ fn run_case(seed: u64, index: u64, per_case: usize) -> (Regime, AgreeCounts, Vec
     (regime, c, worst)
 }
 
+/// Disagreements kept for the report.
+const WORST_KEPT: usize = 20;
+
+/// The running sums of a run: counts in all and per regime, and the disagreements
+/// farthest from an edge. Cases are folded in as they are judged (nothing is held per
+/// case, so a run of any length needs the same memory).
+#[derive(Default)]
+struct Acc {
+    total: AgreeCounts,
+    by_regime: BTreeMap<&'static str, AgreeCounts>,
+    worst: Vec<Disagreement>,
+}
+
+impl Acc {
+    /// Keep the `WORST_KEPT` farthest disagreements, ties by case index; the sort is
+    /// stable, so equal ones keep the order of the cases (and of the samples in a case).
+    fn keep_worst(&mut self) {
+        self.worst
+            .sort_by(|a, b| b.distance_px.total_cmp(&a.distance_px).then(a.case_index.cmp(&b.case_index)));
+        self.worst.truncate(WORST_KEPT);
+    }
+    fn add(mut self, (regime, c, w): (Regime, AgreeCounts, Vec<Disagreement>)) -> Acc {
+        self.total = std::mem::take(&mut self.total).merge(&c);
+        let e = self.by_regime.entry(regime.name()).or_default();
+        *e = std::mem::take(e).merge(&c);
+        if !w.is_empty() {
+            self.worst.extend(w);
+            self.keep_worst();
+        }
+        self
+    }
+    /// `self` holds earlier cases than `o` (rayon's reduce keeps the order).
+    fn merge(mut self, o: Acc) -> Acc {
+        self.total = std::mem::take(&mut self.total).merge(&o.total);
+        for (k, c) in o.by_regime {
+            let e = self.by_regime.entry(k).or_default();
+            *e = std::mem::take(e).merge(&c);
+        }
+        if !o.worst.is_empty() {
+            self.worst.extend(o.worst);
+            self.keep_worst();
+        }
+        self
+    }
+}
+
 /// Judge `samples` samples (rounded up to whole cases) from `seed`. Identical results
 /// at any thread count: each case draws from its own stream and the merge is in order.
+/// The cases are folded into running sums as they are judged: memory does not grow
+/// with `samples` (the command line bounds it, see `cullproof::args::AGREE_MAX_SAMPLES`).
 pub fn run(seed: u64, samples: u64, progress: bool) -> AgreeReport {
     let per = SAMPLES_PER_CASE as u64;
     let cases = samples.div_ceil(per).max(1);
     let pb = if progress { ProgressBar::new(cases) } else { ProgressBar::hidden() };
     pb.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} cases {elapsed_precise} eta {eta}").unwrap());
-    let results: Vec<_> = (0..cases)
+    let acc = (0..cases)
         .into_par_iter()
         .map(|i| {
             let r = run_case(seed, i, SAMPLES_PER_CASE);
             pb.inc(1);
             r
         })
-        .collect();
+        .fold(Acc::default, Acc::add)
+        .reduce(Acc::default, Acc::merge);
     pb.finish_and_clear();
-    let mut total = AgreeCounts::default();
-    let mut by_regime: BTreeMap<&'static str, AgreeCounts> = BTreeMap::new();
-    let mut worst = Vec::new();
-    for (regime, c, w) in &results {
-        total = total.merge(c);
-        let e = by_regime.entry(regime.name()).or_default();
-        *e = std::mem::take(e).merge(c);
-        worst.extend(w.iter().cloned());
-    }
-    worst.sort_by(|a, b| b.distance_px.partial_cmp(&a.distance_px).unwrap().then(a.case_index.cmp(&b.case_index)));
-    worst.truncate(20);
+    let Acc { total, by_regime, mut worst } = acc;
+    worst.truncate(WORST_KEPT);
     AgreeReport { seed, total, by_regime, worst }
 }
 

@@ -10,6 +10,7 @@
 //! The ground truth lives in the separate `oracles` crate, which never imports this one.
 
 pub mod agree;
+pub mod args;
 pub mod bounds;
 pub mod check;
 pub mod corpus;

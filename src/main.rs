@@ -18,8 +18,9 @@ enum Cmd {
     /// triangle edges. Every
     /// disagreement is settled exactly; the run fails (exit 1) if one lies farther from
     /// an edge than the documented f32 band.
+    #[command(allow_negative_numbers = true)]
     OracleAgree {
-        /// Number of samples (rounded up to whole cases of 2000 samples).
+        /// Number of samples (rounded up to whole cases of 2000 samples; 1 to 10^12).
         #[arg(long, default_value_t = 1_000_000)]
         samples: u64,
         /// Seed of the case and sample streams.
@@ -28,17 +29,23 @@ enum Cmd {
         /// Write the JSON report to this file ("-" for standard output) instead of the table.
         #[arg(long)]
         json: Option<PathBuf>,
-        /// Worker threads (default: all cores). Results do not depend on it.
+        /// Worker threads (default: all cores; at most 4 per core). Results do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,
     },
-    /// The conservativeness gate: random thin-lens cases of every regime, a tile on
-    /// each footprint's boundary, every method's tile answer judged against certified
-    /// tile extents (intervals, culled tiles) and exactly judged samples (per-sample
-    /// constraints). Prints a verdict table per method x regime; exit 1 when a method
-    /// violates where corpus/expectations.json expects it to be conservative.
+    /// The conservativeness gate: random thin-lens cases of every regime, each method
+    /// judged on a tile on the footprint's boundary and (one case in --limit-every) on the
+    /// two tiles at its own tile-reject limit. Every case gets a verdict: proven (every
+    /// claim certified, no gap left), violated (an interior sample, confirmed exactly,
+    /// in the tile and the lens/shutter domain, that the answer culls) or unproven (by
+    /// reason). Prints a table per method x regime and a summary per method; exit 1 when
+    /// a row fails corpus/expectations.json (a violation where conservative is expected,
+    /// unproven cases beyond the stated allowance, a violation outside its signature of
+    /// bound kinds, margin caps and rate cap) or is worse than the stored baseline for
+    /// the same settings.
+    #[command(allow_negative_numbers = true)]
     Check {
-        /// A method id (see `cullproof methods`) or `all`.
+        /// `all`, a method id (see `cullproof methods`) or ids separated by commas.
         #[arg(long, default_value = "all")]
         method: String,
         /// A regime or `all`: static, motion, defocus, both, focal-crossing, behind-lens,
@@ -46,20 +53,21 @@ enum Cmd {
         /// far-from-origin, degenerate, screen-parallel.
         #[arg(long, default_value = "all")]
         regime: String,
-        /// Number of cases (spread over the regimes in turn).
+        /// Number of cases (spread over the regimes in turn): 1 to 10^9, and at most
+        /// 10^6 per shard (every judgement is held until the report).
         #[arg(long, default_value_t = 9600, conflicts_with = "time")]
         cases: u64,
         /// Run for about this many seconds instead (whole batches of cases; the report
-        /// says how many, and `--cases N` repeats the run exactly).
+        /// says how many, and `--cases N` repeats the run exactly). At most 3600.
         #[arg(long)]
         time: Option<f64>,
         /// Seed of the case streams.
         #[arg(long, default_value_t = 1)]
         seed: u64,
-        /// Tile size in pixels (default: drawn from 1, 2, 4, 8, 16 per case).
+        /// Tile size in pixels, at most 4096 (default: drawn from 1, 2, 4, 8, 16 per case).
         #[arg(long)]
         tile: Option<f32>,
-        /// Worker threads (default: all cores). Results do not depend on it.
+        /// Worker threads (default: all cores; at most 4 per core). Results do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,
         /// Run only shard K of N ("K/N"): shards of one seed partition the cases.
@@ -68,7 +76,7 @@ enum Cmd {
         /// Write the JSON report to this file ("-" for standard output) as well.
         #[arg(long)]
         json: Option<PathBuf>,
-        /// The expectations file.
+        /// The expectations file (it must exist).
         #[arg(long, default_value = "corpus/expectations.json")]
         expectations: PathBuf,
         /// Boxes per certified interval-side search (more: fewer undecided sides and
@@ -85,6 +93,20 @@ enum Cmd {
         /// cases for the per-sample methods, slower).
         #[arg(long, default_value_t = 2000)]
         constraint_budget: usize,
+        /// Judge each method also on the two tiles at its own tile-reject limit (found
+        /// by bisecting the method's tile test) in one case out of this many (0: never).
+        #[arg(long, default_value_t = 12)]
+        limit_every: u64,
+        /// The baseline file: a run whose settings have an entry there fails on a row
+        /// that got worse (a new kind of violated bound, a margin more than 2x, more
+        /// violations, a looser answer).
+        #[arg(long, default_value = "corpus/baseline.json")]
+        baseline: PathBuf,
+        /// Rewrite the baseline entry for this run's settings with this run's rows
+        /// (after a deliberate change, once the table is understood). The rest of
+        /// the file is kept.
+        #[arg(long)]
+        write_baseline: bool,
     },
     /// Randomized counterexample search for one method: random cases of every regime
     /// (or one), each judged like `check`; every violation is shrunk (freeze the motion,
@@ -92,13 +114,15 @@ enum Cmd {
     /// smaller tiles)
     /// while it stays a violation at least half as large, then written to corpus/cases/<method>/<hash>.json
     /// (an existing file is never overwritten). One file per regime and bound.
+    #[command(allow_negative_numbers = true)]
     Search {
-        /// The method id (see `cullproof methods`), or a deliberately broken variant:
-        /// broken/shrink/ID (intervals pulled in by 1e-3), broken/no-coc-pad/ID (the
-        /// circles of confusion dropped).
+        /// The method id (see `cullproof methods`), or a deliberately broken variant
+        /// broken/KIND/ID with KIND one of shrink (intervals pulled in by 1e-3),
+        /// shrink-rel (by 1e-5 of their width), no-coc-pad (the CoC dropped), t0-only
+        /// (the motion dropped), swap-coc, half-tile, loose (see `power`).
         #[arg(long)]
         method: String,
-        /// Search for about this many seconds.
+        /// Search for about this many seconds (at most a week).
         #[arg(long, default_value_t = 30.0)]
         time: f64,
         /// Stop after this many violations.
@@ -114,7 +138,7 @@ enum Cmd {
         /// Only this regime.
         #[arg(long, default_value = "all")]
         regime: String,
-        /// Tile size in pixels (default: drawn from 1, 2, 4, 8, 16 per case).
+        /// Tile size in pixels, at most 4096 (default: drawn from 1, 2, 4, 8, 16 per case).
         #[arg(long)]
         tile: Option<f32>,
         /// Where to write the shrunk cases.
@@ -126,6 +150,7 @@ enum Cmd {
         /// Write the JSON report to this file ("-" for standard output).
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Worker threads (default: all cores; at most 4 per core). Results do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,
     },
@@ -164,6 +189,7 @@ enum Cmd {
     /// MISSED (culled although covered), a certified ceiling on a few tiles, and the time
     /// of an end-to-end software rasterizer per method relative to bbox on static (as
     /// Munkberg 2012 Table 2). Writes ste.md, ste.json and ste_vs_cost.svg into --out.
+    #[command(allow_negative_numbers = true)]
     Tightness(cullproof::tightness::TightnessArgs),
     /// Sweep one parameter towards a method's singularity, on a log scale, and report
     /// per step and method: the certified violation rate (the gate's own judge), the
@@ -189,7 +215,37 @@ enum Cmd {
     /// <out>/<family>.md (the same with how the cases are built and the parameter
     /// measured back from the f32 cases); --json FILE writes every row. Identical at any
     /// thread count.
+    #[command(allow_negative_numbers = true)]
     Stability(cullproof::stability::StabilityArgs),
+    /// Measure the gate's power: plant each slip of `broken/` (shrink, shrink-rel,
+    /// no-coc-pad, t0-only, swap-coc, half-tile, loose) into each method and run the
+    /// gate on it with the real expectations and the stored baseline; a slip is killed
+    /// when the gate fails. Prints a table method x slip and the score (slips whose
+    /// answers equal the method's on every case are "no effect" and left out).
+    Power {
+        /// Method ids (comma-separated) or `all`.
+        #[arg(long, default_value = "all")]
+        method: String,
+        /// Cases per gate run (the baseline applies when a stored entry has the same
+        /// settings: `check --cases N --write-baseline` records one).
+        #[arg(long, default_value_t = 960)]
+        cases: u64,
+        /// Seed of the case streams.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// The expectations file.
+        #[arg(long, default_value = "corpus/expectations.json")]
+        expectations: PathBuf,
+        /// The baseline file.
+        #[arg(long, default_value = "corpus/baseline.json")]
+        baseline: PathBuf,
+        /// Write the JSON report to this file ("-" for standard output) as well.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Worker threads (default: all cores). Results do not depend on it.
+        #[arg(long)]
+        jobs: Option<usize>,
+    },
     /// List the culling methods under test: id, source, reconstruction flag, dimensions, outputs.
     Methods {
         /// Print JSON instead of a table.
@@ -198,17 +254,19 @@ enum Cmd {
     },
 }
 
+/// Check `--jobs` (see [`cullproof::args::jobs`]) and size the global pool.
 fn set_jobs(jobs: Option<usize>) -> Result<()> {
-    if let Some(j) = jobs {
-        rayon::ThreadPoolBuilder::new().num_threads(j.max(1)).build_global().context("setting the thread count")?;
+    if let Some(j) = cullproof::args::jobs(jobs)? {
+        rayon::ThreadPoolBuilder::new().num_threads(j).build_global().context("setting the thread count")?;
     }
     Ok(())
 }
 
-fn parse_regime(name: &str) -> Result<cullproof::gen::Regime> {
-    cullproof::gen::Regime::ALL.into_iter().find(|r| r.name() == name).with_context(|| {
-        let all: Vec<_> = cullproof::gen::Regime::ALL.iter().map(|r| r.name()).collect();
-        format!("--regime {name}: no such regime (one of: {}, all)", all.join(", "))
+/// The regimes of `--regime` (`all`: every one).
+fn parse_regimes(name: &str) -> Result<Vec<cullproof::gen::Regime>> {
+    Ok(match cullproof::args::regime(name)? {
+        Some(r) => vec![r],
+        None => cullproof::gen::Regime::ALL.to_vec(),
     })
 }
 
@@ -221,10 +279,21 @@ fn write_json(path: &PathBuf, text: &str) -> Result<()> {
     }
 }
 
-fn main() -> Result<()> {
+/// Exit codes: 0 done (and passed), 1 a run that judged a failure (`check`,
+/// `oracle-agree`, `replay`), 2 an error (a bad flag value, an unreadable file; the
+/// message names the flag or the file and the value). clap's own usage errors exit 2 too.
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("error: {e:#}");
+        std::process::exit(2);
+    }
+}
+
+fn run() -> Result<()> {
     let cli = Cli::parse();
     match cli.cmd {
         Cmd::OracleAgree { samples, seed, json, jobs } => {
+            cullproof::args::count("--samples", samples, cullproof::args::AGREE_MAX_SAMPLES, "samples")?;
             set_jobs(jobs)?;
             let r = cullproof::agree::run(seed, samples, json.is_none());
             match &json {
@@ -249,29 +318,34 @@ fn main() -> Result<()> {
             side_budget,
             side_stall,
             constraint_budget,
+            limit_every,
+            baseline,
+            write_baseline,
         } => {
-            set_jobs(jobs)?;
-            let methods: Vec<_> = if method == "all" {
-                cullproof::bounds::registry()
-            } else {
-                vec![cullproof::bounds::by_id(&method)
-                    .with_context(|| format!("--method {method}: no such method (see `cullproof methods`)"))?]
-            };
+            use cullproof::args;
+            let methods = args::methods("--method", &method, false)?;
             let mut cfg = cullproof::check::CheckConfig::default_with(methods);
-            if regime != "all" {
-                cfg.regimes = vec![parse_regime(&regime)?];
-            }
+            cfg.regimes = parse_regimes(&regime)?;
             if let Some(t) = tile {
-                anyhow::ensure!(
-                    t.is_finite() && t > 0.0,
-                    "--tile {t}: the tile size must be a positive number of pixels"
-                );
+                args::tile("--tile", t)?;
             }
-            let (k, n) = shard
-                .split_once('/')
-                .and_then(|(a, b)| Some((a.parse::<u64>().ok()?, b.parse::<u64>().ok()?)))
-                .filter(|(k, n)| *n > 0 && k < n)
-                .with_context(|| format!("--shard {shard}: expected K/N with 0 <= K < N"))?;
+            let (k, n) = args::shard(&shard)?;
+            args::count("--cases", cases, args::CHECK_MAX_CASES, "cases (in all)")?;
+            anyhow::ensure!(
+                cases.div_ceil(n) <= args::CHECK_MAX_CASES_PER_SHARD,
+                "--cases {cases}: at most {} cases per shard (every judgement is held until the report, \
+                 about 7 KB a case); split the run with --shard K/N",
+                args::CHECK_MAX_CASES_PER_SHARD
+            );
+            if let Some(t) = time {
+                args::time("--time", t, args::CHECK_MAX_TIME)?;
+            }
+            set_jobs(jobs)?;
+            anyhow::ensure!(
+                expectations.is_file(),
+                "--expectations {}: no such file (the expectations file is required)",
+                expectations.display()
+            );
             cfg.cases = cases;
             cfg.time = time;
             cfg.seed = seed;
@@ -282,14 +356,21 @@ fn main() -> Result<()> {
             cfg.side_budget = side_budget;
             cfg.side_stall = side_stall;
             cfg.constraint_budget = constraint_budget;
-            let ex = if expectations.exists() {
-                cullproof::check::Expectations::load(&expectations)?
+            let ex = cullproof::check::Expectations::load(&expectations)?;
+            cfg.limit_every = limit_every;
+            let base = if baseline.exists() {
+                Some(cullproof::check::baseline::BaselineFile::load(&baseline)?)
             } else {
-                eprintln!("note: {} not found: every method is expected conservative", expectations.display());
-                Default::default()
+                None
             };
-            let r = cullproof::check::run(&cfg, &ex, true);
+            let r = cullproof::check::run_with_baseline(&cfg, &ex, base.as_ref(), true);
             print!("{}", cullproof::check::render(&r));
+            if write_baseline {
+                let mut f = base.unwrap_or_default();
+                f.record(&cfg, &r)?;
+                f.save(&baseline)?;
+                println!("wrote the baseline for these settings to {}", baseline.display());
+            }
             if let Some(p) = &json {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
@@ -298,17 +379,19 @@ fn main() -> Result<()> {
             }
         }
         Cmd::Search { method, time, max, min_margin, seed, regime, tile, out, dry_run, json, jobs } => {
-            set_jobs(jobs)?;
-            let m = cullproof::bounds::by_id(&method).or_else(|| cullproof::bounds::broken::parse(&method)).with_context(|| {
-                format!("--method {method}: no such method (see `cullproof methods`; or broken/shrink/ID, broken/no-coc-pad/ID)")
-            })?;
+            use cullproof::args;
+            let m = args::method("--method", &method, true)?;
             let mut cfg = cullproof::check::CheckConfig::default_with(vec![m]);
-            if regime != "all" {
-                cfg.regimes = vec![parse_regime(&regime)?];
+            cfg.regimes = parse_regimes(&regime)?;
+            if let Some(t) = tile {
+                args::tile("--tile", t)?;
             }
+            args::time("--time", time, args::SEARCH_MAX_TIME)?;
+            args::count("--max", max as u64, u64::MAX, "violation to stop at")?;
+            args::margin("--min-margin", min_margin)?;
+            set_jobs(jobs)?;
             cfg.seed = seed;
             cfg.tile = tile;
-            anyhow::ensure!(min_margin >= 0.0, "--min-margin {min_margin}: a margin is a non-negative padding");
             let r =
                 cullproof::corpus::search(&cfg, m, time, max, min_margin, (!dry_run).then_some(out.as_path()), true)?;
             println!(
@@ -396,6 +479,26 @@ fn main() -> Result<()> {
         }
         Cmd::Tightness(args) => cullproof::tightness::run_cli(&args)?,
         Cmd::Stability(args) => cullproof::stability::run_cli(&args)?,
+        Cmd::Power { method, cases, seed, expectations, baseline, json, jobs } => {
+            set_jobs(jobs)?;
+            let methods = cullproof::args::methods("--method", &method, false)?;
+            let cases = cullproof::args::count("--cases", cases, 1_000_000, "cases")?;
+            let ex = cullproof::check::Expectations::load(&expectations)?;
+            let base = if baseline.exists() {
+                Some(cullproof::check::baseline::BaselineFile::load(&baseline)?)
+            } else {
+                None
+            };
+            let mut cfg = cullproof::check::CheckConfig::default_with(methods);
+            cfg.cases = cases;
+            cfg.seed = seed;
+            let slips = cullproof::bounds::broken::KINDS;
+            let r = cullproof::check::power::run(&cfg, &ex, base.as_ref(), &slips, true);
+            print!("{}", cullproof::check::power::render(&r, &slips));
+            if let Some(p) = &json {
+                write_json(p, &serde_json::to_string_pretty(&r)?)?;
+            }
+        }
         Cmd::Methods { json } => {
             let ms: Vec<_> = cullproof::bounds::registry().iter().map(|m| *m.info()).collect();
             if json {

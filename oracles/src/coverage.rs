@@ -23,6 +23,12 @@
 //! error); when the signs they prove do not settle the class, every value is recomputed
 //! in exact dyadic arithmetic. There is no epsilon anywhere: a sign is taken from the
 //! fast path only when the enclosure excludes zero.
+//!
+//! Input outside the model (a NaN or infinite number in the triangle or the sample)
+//! never panics and is never judged by arithmetic: [`try_classify`] answers None, and
+//! [`classify`] answers [`Coverage::Outside`] (such a triangle covers nothing: there is
+//! no point to cover). Finite input of any size is judged exactly: a value whose f64
+//! enclosure overflows simply goes to the exact path.
 
 use crate::dyadic::Dyadic;
 use crate::filter::Fe;
@@ -110,8 +116,16 @@ impl CoverageStats {
     }
 }
 
-fn check_sample(s: &[f64; 5]) {
-    debug_assert!(s.iter().all(|v| v.is_finite()), "sample {s:?} is not finite");
+/// True when every number of the triangle and of the sample is finite (the input the
+/// model admits; see [`crate::tri::Tri::check_finite`] for which one is not).
+#[inline]
+pub fn finite_input(tri: &Tri, s: &[f64; 5]) -> bool {
+    let all = |v: &[f64]| v.iter().all(|x| x.is_finite());
+    all(s)
+        && tri.q.iter().chain(tri.r.iter()).all(|p| all(p))
+        && all(&tri.c0)
+        && all(&tri.c1)
+        && tri.k.is_finite()
 }
 
 /// Certified signs, if they settle the class: `None` means go exact.
@@ -129,7 +143,9 @@ fn fast_class(ev: &EdgeValues<Fe>) -> Option<Coverage> {
     None
 }
 
-/// Exact signs of the four values at a point sample.
+/// Exact signs of the four values at a point sample (finite input: see
+/// [`finite_input`]; a non-finite number would take the stand-in of
+/// [`Dyadic::from_f64`]).
 pub fn exact_signs(tri: &Tri, s: [f64; 5]) -> [i8; 4] {
     let c = Dyadic::from_f64;
     let ev = edge_values(tri, &c(s[0]), &c(s[1]), &c(s[2]), &c(s[3]), &c(s[4]));
@@ -137,35 +153,51 @@ pub fn exact_signs(tri: &Tri, s: [f64; 5]) -> [i8; 4] {
 }
 
 /// Classify one sample `[x, y, u, v, t]`; also says whether the exact path was needed.
+/// Non-finite input is [`Coverage::Outside`] (see the module documentation).
 #[inline]
 pub fn classify_traced(tri: &Tri, s: [f64; 5]) -> (Coverage, bool) {
+    // The fast path never decides on a value that overflowed or is NaN (see
+    // [`Fe::sign`]), so non-finite input always reaches the check below, which keeps
+    // it from the exact path; finite input pays nothing for it on the fast path.
     if let Some(c) = fast_path(tri, s) {
         return (c, false);
+    }
+    if !finite_input(tri, &s) {
+        return (Coverage::Outside, false);
     }
     (class_of_signs(exact_signs(tri, s)), true)
 }
 
 /// True when the fast path alone certifies the sample interior (false: outside, on the
-/// boundary, or too close to tell without the exact path). A cheap test for searches
-/// that only want certified interior points and can do without the rest.
+/// boundary, too close to tell without the exact path, or non-finite input). A cheap
+/// test for searches that only want certified interior points and can do without the
+/// rest.
 #[inline]
 pub fn certainly_interior(tri: &Tri, s: [f64; 5]) -> bool {
-    fast_path(tri, s) == Some(Coverage::Interior)
+    finite_input(tri, &s) && fast_path(tri, s) == Some(Coverage::Interior)
 }
 
-/// The class from the fast path alone (None: go exact).
+/// The class from the fast path alone (None: go exact). A value that overflows or is
+/// NaN never decides (see [`Fe::sign`]).
 #[inline]
 fn fast_path(tri: &Tri, s: [f64; 5]) -> Option<Coverage> {
-    check_sample(&s);
     let p = Fe::c;
     let ev = edge_values(tri, &p(s[0]), &p(s[1]), &p(s[2]), &p(s[3]), &p(s[4]));
     fast_class(&ev)
 }
 
-/// Classify one sample `[x, y, u, v, t]` exactly.
+/// Classify one sample `[x, y, u, v, t]` exactly. Non-finite input is
+/// [`Coverage::Outside`]; [`try_classify`] tells it apart.
 #[inline]
 pub fn classify(tri: &Tri, s: [f64; 5]) -> Coverage {
     classify_traced(tri, s).0
+}
+
+/// Classify one sample, or None when a number of the triangle or the sample is NaN or
+/// infinite (input outside the model, which no verdict fits).
+#[inline]
+pub fn try_classify(tri: &Tri, s: [f64; 5]) -> Option<Coverage> {
+    finite_input(tri, &s).then(|| classify(tri, s))
 }
 
 /// Classify many samples, counting exact fallbacks.
@@ -193,27 +225,41 @@ pub enum DepthCheck {
 }
 
 /// The class of a sample and, if interior, where its exact hit depth lies against
-/// the closed interval `[z0, z1]`.
+/// the closed interval `[z0, z1]`. Non-finite triangle or sample: NotInterior (as
+/// [`classify`]). A bound that is not finite is taken as the comparison `z0 <= depth
+/// <= z1` takes it: -inf below and +inf above every depth, and no depth is within a
+/// NaN bound (NaN z0: Below; NaN z1: Above).
 pub fn classify_depth(tri: &Tri, s: [f64; 5], z0: f64, z1: f64) -> DepthCheck {
     if classify(tri, s) != Coverage::Interior {
         return DepthCheck::NotInterior;
     }
+    // The sign of depth - z0 (lower) or z1 - depth (upper) for a bound that is not finite.
+    let limit = |z: f64, lower: bool| -> Option<i8> {
+        if z.is_nan() {
+            Some(-1)
+        } else if z.is_infinite() {
+            Some(if (z < 0.0) == lower { 1 } else { -1 })
+        } else {
+            None
+        }
+    };
+    let (a_lim, b_lim) = (limit(z0, true), limit(z1, false));
     // depth >= z0  <=>  sign(D) * (N - z0 D) >= 0; likewise for z1.
     let p = Interval::point;
     let ev = edge_values(tri, &p(s[0]), &p(s[1]), &p(s[2]), &p(s[3]), &p(s[4]));
-    let lo = ev.nz - p(z0) * ev.d;
-    let hi = p(z1) * ev.d - ev.nz;
     let sd = ev.d.strict_sign();
     let fast = |x: Interval| -> Option<i8> { Some(sd? * x.strict_sign()?) };
-    let (a, b) = match (fast(lo), fast(hi)) {
+    let fa = a_lim.or_else(|| fast(ev.nz - p(z0) * ev.d));
+    let fb = b_lim.or_else(|| fast(p(z1) * ev.d - ev.nz));
+    let (a, b) = match (fa, fb) {
         (Some(a), Some(b)) => (a, b),
         _ => {
             let c = Dyadic::from_f64;
             let ev = edge_values(tri, &c(s[0]), &c(s[1]), &c(s[2]), &c(s[3]), &c(s[4]));
             let sd = ev.d.signum();
-            let lo = &ev.nz - &(&c(z0) * &ev.d);
-            let hi = &(&c(z1) * &ev.d) - &ev.nz;
-            (lo.signum() * sd, hi.signum() * sd)
+            let a = a_lim.unwrap_or_else(|| (&ev.nz - &(&c(z0) * &ev.d)).signum() * sd);
+            let b = b_lim.unwrap_or_else(|| (&(&c(z1) * &ev.d) - &ev.nz).signum() * sd);
+            (a, b)
         }
     };
     if a < 0 {
@@ -286,6 +332,37 @@ mod tests {
         let q = [mk([0.0, 0.0]), mk([4.0, 0.0]), mk([0.0, 4.0])];
         let t = Tri { q, r: q, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 };
         assert_eq!(classify(&t, [1.0, 1.0, 0.0, 0.0, 0.0]), Coverage::Outside);
+    }
+
+    #[test]
+    fn non_finite_input_is_outside_and_huge_input_is_exact() {
+        let t = flat([[0.0, 0.0], [4.0, 0.0], [0.0, 4.0]]);
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for i in 0..5 {
+                let mut s = [1.0, 1.0, 0.0, 0.0, 0.5];
+                s[i] = bad;
+                assert_eq!(classify(&t, s), Coverage::Outside, "{s:?}");
+                assert_eq!(try_classify(&t, s), None);
+                assert_eq!(classify_depth(&t, s, 0.0, 1.0), DepthCheck::NotInterior);
+                assert!(!certainly_interior(&t, s));
+            }
+            let mut u = t;
+            u.q[1][0] = bad;
+            assert_eq!(classify_traced(&u, [1.0, 1.0, 0.0, 0.0, 0.0]), (Coverage::Outside, false));
+            assert_eq!(try_classify(&u, [1.0, 1.0, 0.0, 0.0, 0.0]), None);
+        }
+        // Finite but huge: the f64 enclosures overflow, the exact path decides.
+        let big = flat([[0.0, 0.0], [1e300, 0.0], [0.0, 1e300]]);
+        assert_eq!(classify_traced(&big, [1e299, 1e299, 0.0, 0.0, 0.5]), (Coverage::Interior, true));
+        assert_eq!(classify(&big, [1e300, 1e300, 0.0, 0.0, 0.5]), Coverage::Outside);
+        assert_eq!(try_classify(&big, [5e299, 5e299, 0.0, 0.0, 0.5]), Some(Coverage::Boundary));
+        // Bounds that are not finite: the comparison's limits.
+        let s = [1.0, 1.0, 0.0, 0.0, 0.0];
+        assert_eq!(classify_depth(&t, s, f64::NEG_INFINITY, f64::INFINITY), DepthCheck::Inside);
+        assert_eq!(classify_depth(&t, s, f64::INFINITY, f64::INFINITY), DepthCheck::Below);
+        assert_eq!(classify_depth(&t, s, 0.0, f64::NEG_INFINITY), DepthCheck::Above);
+        assert_eq!(classify_depth(&t, s, f64::NAN, 1.0), DepthCheck::Below);
+        assert_eq!(classify_depth(&t, s, 0.0, f64::NAN), DepthCheck::Above);
     }
 
     #[test]

@@ -24,10 +24,26 @@ impl Dyadic {
     pub fn one() -> Self {
         Dyadic { m: BigInt::one(), e: 0 }
     }
-    /// The exact value of a finite double. Panics on NaN or infinity: callers validate
-    /// their inputs first (the oracle never receives non-finite numbers).
+    /// The exact value of a finite double; None for NaN and the infinities (which no
+    /// dyadic equals). The checked form: the coverage entry points test their input
+    /// with it (see [`crate::coverage::try_classify`]).
+    pub fn try_from_f64(x: f64) -> Option<Self> {
+        x.is_finite().then(|| Dyadic::from_f64(x))
+    }
+    /// The exact value of a finite double. Never panics: a non-finite `x` (outside the
+    /// model: the oracles judge finite numbers only, and their entry points check
+    /// before they get here) takes a stand-in so that no entry point can panic on
+    /// hostile input: `+-inf` is `+-2^1024` (beyond every finite double, so an infinite
+    /// coordinate acts as one larger than any finite one) and NaN is 0. A verdict
+    /// computed from a stand-in means nothing; use [`Dyadic::try_from_f64`] to tell.
     pub fn from_f64(x: f64) -> Self {
-        assert!(x.is_finite(), "Dyadic::from_f64 of a non-finite value {x}");
+        if !x.is_finite() {
+            return if x.is_nan() {
+                Dyadic::zero()
+            } else {
+                Dyadic { m: BigInt::from(if x > 0.0 { 1 } else { -1 }), e: 1024 }
+            };
+        }
         if x == 0.0 {
             return Dyadic::zero();
         }
@@ -176,6 +192,18 @@ mod tests {
             let d = Dyadic::from_f64(x);
             assert_eq!(d.to_f64(), x, "{x}");
         }
+    }
+
+    #[test]
+    fn non_finite_values_never_panic() {
+        assert!(Dyadic::try_from_f64(f64::NAN).is_none());
+        assert!(Dyadic::try_from_f64(f64::INFINITY).is_none());
+        assert_eq!(Dyadic::try_from_f64(-2.5).unwrap().to_f64(), -2.5);
+        // The stand-ins: +-2^1024 lies beyond every double, NaN is 0.
+        let big = Dyadic::from_f64(f64::INFINITY);
+        assert_eq!(big.cmp_exact(&Dyadic::from_f64(f64::MAX)), Ordering::Greater);
+        assert_eq!(Dyadic::from_f64(f64::NEG_INFINITY).cmp_exact(&Dyadic::from_f64(f64::MIN)), Ordering::Less);
+        assert!(Dyadic::from_f64(f64::NAN).is_zero());
     }
 
     #[test]

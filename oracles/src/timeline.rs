@@ -69,7 +69,10 @@ pub fn roots_in_unit(p: &RatPoly, width: f64) -> Vec<Enclosure> {
             continue;
         }
         let mid = lo + 0.5 * (hi - lo);
-        if n == 1 && (hi - lo <= width || mid <= lo || mid >= hi) {
+        // An interval no f64 can split is kept as it is, even when it holds several
+        // roots (distinct roots closer than one f64 step): splitting it again would
+        // never end.
+        if (n == 1 && hi - lo <= width) || mid <= lo || mid >= hi {
             out.push(Enclosure { lo, hi });
             continue;
         }

@@ -11,8 +11,13 @@
 //! - **more violations**, by more than `3 sqrt(n) + 3` for n before (the counting noise
 //!   of a solver change);
 //! - a **looser answer**: the mean share of the lens/shutter domain the intervals let
-//!   through grows by more than 1e-9 of itself (the answers do not depend on the judge,
-//!   so any growth is the method's).
+//!   through, or the mean share of the tile's uniform samples the answer admits
+//!   (constraints included), grows by more than 1e-9 of itself (the answers do not
+//!   depend on the judge, so any growth is the method's);
+//! - a **looser tile reject**: the method culls a tile near the footprint in fewer
+//!   cases, or its reject limit lies farther beyond the footprint's extreme on average;
+//! - **proven cases** up or down beyond that noise: a weaker judge, or one that proves
+//!   more, must be looked at before the baseline is rewritten.
 //!
 //! `cullproof check --write-baseline` rewrites the entry for the run's settings: right
 //! after a deliberate change (a method fixed, the judge made stronger) once the new
@@ -73,10 +78,14 @@ pub struct BaseRow {
     pub method: String,
     pub regime: String,
     pub cases: u64,
+    pub proven: u64,
     pub violations: u64,
     pub unproven: u64,
     pub bounds: BTreeMap<String, BoundStat>,
     pub pass_fraction: f64,
+    pub admit_fraction: f64,
+    pub limit_found: u64,
+    pub limit_slack: f64,
 }
 
 /// The rows of one setting.
@@ -122,10 +131,14 @@ impl BaselineFile {
                 method: x.method.clone(),
                 regime: x.regime.clone(),
                 cases: x.cases,
+                proven: x.proven,
                 violations: x.violations,
                 unproven: x.unproven,
                 bounds: x.bounds.clone(),
                 pass_fraction: x.pass_fraction,
+                admit_fraction: x.admit_fraction,
+                limit_found: x.limit_found,
+                limit_slack: x.limit_slack,
             })
             .collect();
         self.format = FORMAT.into();
@@ -164,10 +177,39 @@ pub fn compare(row: &super::Row, base: &BaseRow) -> Vec<String> {
     if row.cases == base.cases && row.violations as f64 > n0 + 3.0 * n0.sqrt() + 3.0 {
         out.push(format!("violations {} -> {} of {} cases", base.violations, row.violations, row.cases));
     }
-    if row.cases == base.cases && row.pass_fraction > base.pass_fraction * (1.0 + 1e-9) + 1e-300 {
+    if row.cases != base.cases {
+        return out;
+    }
+    let grew = |now: f64, was: f64| now > was + 1e-9 * was.abs() + 1e-300;
+    if grew(row.pass_fraction, base.pass_fraction) {
         out.push(format!(
             "looser: the intervals let {:.6} of the domain through on average (was {:.6})",
             row.pass_fraction, base.pass_fraction
+        ));
+    }
+    if grew(row.admit_fraction, base.admit_fraction) {
+        out.push(format!(
+            "looser: the answer admits {:.6} of the tile's uniform samples on average (was {:.6})",
+            row.admit_fraction, base.admit_fraction
+        ));
+    }
+    let beyond_noise = |now: u64, was: u64| (now as f64 - was as f64).abs() > 3.0 * (was as f64).sqrt() + 3.0;
+    if row.limit_found < base.limit_found && beyond_noise(row.limit_found, base.limit_found) {
+        out.push(format!(
+            "looser tile reject: it culls a tile near the footprint in {} cases (was {})",
+            row.limit_found, base.limit_found
+        ));
+    } else if row.limit_found == base.limit_found && grew(row.limit_slack, base.limit_slack) {
+        out.push(format!(
+            "looser tile reject: its limit lies {:.3e} tile sizes beyond the footprint on average (was {:.3e})",
+            row.limit_slack, base.limit_slack
+        ));
+    }
+    if beyond_noise(row.proven, base.proven) {
+        out.push(format!(
+            "proven {} -> {} of {} cases (the method or the judge changed: a judge that proves more must \
+             be shown sound before the baseline is rewritten)",
+            base.proven, row.proven, row.cases
         ));
     }
     out
@@ -225,6 +267,9 @@ mod tests {
             f32_witnessed: 0,
             limit_tiles: 0,
             limit_violations: 0,
+            limit_found: 0,
+            limit_slack: 0.0,
+            admit_fraction: pass,
             pass_fraction: pass,
             margin_needed: 0.0,
             expected: crate::check::Expected::Violation,
@@ -240,10 +285,14 @@ mod tests {
             method: r.method.clone(),
             regime: r.regime.clone(),
             cases: r.cases,
+            proven: r.proven,
             violations: r.violations,
             unproven: r.unproven,
             bounds: r.bounds.clone(),
             pass_fraction: r.pass_fraction,
+            admit_fraction: r.admit_fraction,
+            limit_found: r.limit_found,
+            limit_slack: r.limit_slack,
         }
     }
 
@@ -260,7 +309,21 @@ mod tests {
         let d = compare(&row(40, &[("u min", 1e-5)], 0.5), &b);
         assert!(d.len() == 1 && d[0].contains("violations 20 -> 40"), "{d:?}");
         let d = compare(&row(20, &[("u min", 1e-5)], 0.5000001), &b);
-        assert!(d.len() == 1 && d[0].contains("looser"), "{d:?}");
+        assert!(!d.is_empty() && d.iter().all(|x| x.contains("looser")), "{d:?}");
+        let mut fewer = row(20, &[("u min", 1e-5)], 0.5);
+        let mut b2 = b.clone();
+        b2.limit_found = 40;
+        fewer.limit_found = 10;
+        let d = compare(&fewer, &b2);
+        assert!(d.len() == 1 && d[0].contains("looser tile reject"), "{d:?}");
+        fewer.limit_found = 40;
+        fewer.limit_slack = 1e-3;
+        let d = compare(&fewer, &b2);
+        assert!(d.len() == 1 && d[0].contains("beyond the footprint"), "{d:?}");
+        let mut more = row(20, &[("u min", 1e-5)], 0.5);
+        more.proven = 300;
+        let d = compare(&more, &b);
+        assert!(d.len() == 1 && d[0].contains("proven 580 -> 300"), "{d:?}");
     }
 
     #[test]

@@ -85,6 +85,9 @@ pub struct Judgement {
     /// many of them showed a violation.
     pub adversarial_tiles: u32,
     pub adversarial_violations: u32,
+    /// When the method's limit tiles were placed: how far its reject limit lies beyond
+    /// the footprint's extreme, in tile sizes ([`super::tiles::Limit::slack`]).
+    pub limit_slack: Option<f64>,
 }
 
 #[cfg(test)]
@@ -192,6 +195,7 @@ impl Judgement {
         self.f32_witness |= o.f32_witness;
         self.adversarial_tiles += o.adversarial_tiles;
         self.adversarial_violations += o.adversarial_violations;
+        self.limit_slack = self.limit_slack.or(o.limit_slack);
         if self.violation.is_some() {
             self.boundary_only = false;
         }

@@ -175,8 +175,9 @@ struct CaseResult {
     regime: Regime,
     judgements: Vec<Judgement>,
     /// Per method: the share of the (u, v, t) domain its answer on the boundary tile
-    /// lets through (0 for a culled tile).
-    pass: Vec<f64>,
+    /// lets through (0 for a culled tile), and the share of the tile's uniform samples
+    /// it admits (intervals and constraints).
+    pass: Vec<(f64, f64)>,
     boxes: u64,
     cross: CrossCheck,
 }
@@ -211,7 +212,12 @@ fn judge_case(cfg: &CheckConfig, i: u64) -> CaseResult {
     let mut tj = TileJudge::new(cfg, case, tile, i, &tri, embree.as_ref(), &uniform);
     let mut judgements: Vec<Judgement> = answers.iter().map(|a| tj.judge(a)).collect();
     let mut boxes = tj.solver.boxes;
-    let pass = answers.iter().map(pass_fraction).collect();
+    let admit = |a: &TileResult| match a {
+        TileResult::Empty => 0.0,
+        TileResult::Bounds(_) if uniform.is_empty() => pass_fraction(a),
+        TileResult::Bounds(b) => uniform.iter().filter(|s| b.admits(s)).count() as f64 / uniform.len() as f64,
+    };
+    let pass = answers.iter().map(|a| (pass_fraction(a), admit(a))).collect();
     let round = i / cfg.regimes.len() as u64;
     for (mi, m) in cfg.methods.iter().enumerate() {
         let salt = method_salt(m.info().id);
@@ -241,13 +247,16 @@ pub fn judge_limit_tiles(cfg: &CheckConfig, m: &dyn Method, case: &Case, i: u64,
     let mut rng = rng_for(cfg.seed ^ LIMIT_STREAM, i.wrapping_mul(64).wrapping_add(salt));
     let size = tile_size(cfg, &mut rng);
     let setup = |c: &Case| m.setup(&c.triangle);
-    let Some((lc, kept, culled)) = tiles::limit_tiles(&setup, case, &mut rng, size, cfg.limit_shifts) else {
+    let Some(tiles::Limit { case: lc, kept, culled, slack }) =
+        tiles::limit_tiles(&setup, case, &mut rng, size, cfg.limit_shifts)
+    else {
         return (None, 0);
     };
     let tri = lc.triangle.to_oracle();
     let embree = embree_for(&lc);
     let p = m.setup(&lc.triangle);
     let mut out = Judgement::default();
+    out.limit_slack = Some(slack);
     let mut boxes = 0;
     let lcfg = CheckConfig {
         extents: ExtentsConfig { max_boxes: cfg.limit_budget.min(cfg.extents.max_boxes), ..cfg.extents },

@@ -82,6 +82,14 @@ pub struct Row {
     /// Tiles judged at the method's own tile-reject limit, and those with a violation.
     pub limit_tiles: u64,
     pub limit_violations: u64,
+    /// Cases in which the method culled a tile near the footprint (its limit tiles were
+    /// placed), and the mean slack of its reject limit there (tile sizes beyond the
+    /// footprint's extreme; larger: looser).
+    pub limit_found: u64,
+    pub limit_slack: f64,
+    /// Mean share of the boundary tile's uniform samples the answer admits (intervals
+    /// and constraints; 0 for a culled tile).
+    pub admit_fraction: f64,
     /// Mean share of the (u, v, t) domain the intervals let through on the boundary
     /// tile (0 for a culled tile): the row's looseness, compared with the baseline.
     pub pass_fraction: f64,
@@ -142,7 +150,8 @@ pub struct CrossCheck {
 pub(crate) struct Accumulator<'a> {
     ex: &'a Expectations,
     rows: BTreeMap<(usize, usize), Row>,
-    pass_sum: BTreeMap<(usize, usize), f64>,
+    /// Sums of the pass fraction, the admit fraction and the limit slack.
+    pass_sum: BTreeMap<(usize, usize), (f64, f64, f64)>,
     cross: BTreeMap<usize, CrossCheck>,
     boxes: u64,
 }
@@ -152,7 +161,15 @@ impl<'a> Accumulator<'a> {
         Accumulator { ex, rows: BTreeMap::new(), pass_sum: BTreeMap::new(), cross: BTreeMap::new(), boxes: 0 }
     }
 
-    pub fn add_with(&mut self, cfg: &CheckConfig, regime: Regime, js: Vec<Judgement>, pass: &[f64], boxes: u64, cc: CrossCheck) {
+    pub fn add_with(
+        &mut self,
+        cfg: &CheckConfig,
+        regime: Regime,
+        js: Vec<Judgement>,
+        pass: &[(f64, f64)],
+        boxes: u64,
+        cc: CrossCheck,
+    ) {
         self.boxes += boxes;
         let ri = cfg.regimes.iter().position(|r| *r == regime).unwrap();
         let x = self.cross.entry(ri).or_insert_with(|| CrossCheck { regime: regime.name().into(), ..Default::default() });
@@ -178,6 +195,9 @@ impl<'a> Accumulator<'a> {
                     f32_witnessed: 0,
                     limit_tiles: 0,
                     limit_violations: 0,
+                    limit_found: 0,
+                    limit_slack: 0.0,
+                    admit_fraction: 0.0,
                     pass_fraction: 0.0,
                     margin_needed: 0.0,
                     expected: entry.expect,
@@ -187,7 +207,14 @@ impl<'a> Accumulator<'a> {
                     entry: Some(entry),
                 }
             });
-            *self.pass_sum.entry((mi, ri)).or_insert(0.0) += pass.get(mi).copied().unwrap_or(0.0);
+            let sums = self.pass_sum.entry((mi, ri)).or_insert((0.0, 0.0, 0.0));
+            let (p, a) = pass.get(mi).copied().unwrap_or((0.0, 0.0));
+            sums.0 += p;
+            sums.1 += a;
+            if let Some(sl) = j.limit_slack {
+                sums.2 += sl;
+                row.limit_found += 1;
+            }
             row.cases += 1;
             row.boundary_only += j.boundary_only as u64;
             row.limit_tiles += j.adversarial_tiles as u64;
@@ -221,7 +248,10 @@ impl<'a> Accumulator<'a> {
 
     pub fn finish(mut self, cfg: &CheckConfig, judged: u64, seconds: f64) -> CheckReport {
         for (key, row) in self.rows.iter_mut() {
-            row.pass_fraction = self.pass_sum[key] / row.cases.max(1) as f64;
+            let (p, a, sl) = self.pass_sum[key];
+            row.pass_fraction = p / row.cases.max(1) as f64;
+            row.admit_fraction = a / row.cases.max(1) as f64;
+            row.limit_slack = if row.limit_found > 0 { sl / row.limit_found as f64 } else { 0.0 };
             set_status(row);
         }
         let (k, n) = cfg.shard;

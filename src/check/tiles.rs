@@ -126,7 +126,21 @@ fn flip(p: &dyn Prepared, dir: Dir, along: f64, across0: f32, size: f32) -> Opti
     Some((unord(k_in), unord(k_out)))
 }
 
-/// The tiles at a method's tile-reject limit for a case: `(case, kept, culled)`, whose
+/// The tiles at a method's tile-reject limit.
+#[derive(Clone, Copy, Debug)]
+pub struct Limit {
+    /// The case, moved on screen by a fraction of a pixel.
+    pub case: Case,
+    /// The last tile kept and the first culled: their leading edges are adjacent f32
+    /// values.
+    pub kept: Tile,
+    pub culled: Tile,
+    /// How far the culled tile's edge lies beyond the footprint's extreme (computed in
+    /// f64), in tile sizes (negative: inside). A looser reject has a larger slack.
+    pub slack: f64,
+}
+
+/// The tiles at a method's tile-reject limit for a case ([`Limit`]), whose
 /// leading edges are adjacent f32 values. The case is moved on screen by a fraction
 /// of a pixel, `shifts` times at random; for each shift and each direction the flip
 /// is found, and the one that lies farthest inside the footprint's extreme (computed
@@ -138,8 +152,8 @@ pub fn limit_tiles(
     rng: &mut ChaCha8Rng,
     size: f32,
     shifts: usize,
-) -> Option<(Case, Tile, Tile)> {
-    let mut best: Option<(f64, Case, Tile, Tile)> = None;
+) -> Option<Limit> {
+    let mut best: Option<(f64, Case, Tile, Tile, f64)> = None;
     for k in 0..shifts.max(1) {
         let c = if k == 0 { *case } else { shifted(case, rng.gen_range(-0.5..0.5), rng.gen_range(-0.5..0.5)) };
         if c.validate().is_err() {
@@ -157,12 +171,12 @@ pub fn limit_tiles(
             let score = inside / ulp;
             if best.as_ref().is_none_or(|b| score > b.0) {
                 if let (Some(kt), Some(ct)) = (tile_at(dir, kept, across0, size), tile_at(dir, culled, across0, size)) {
-                    best = Some((score, c, kt, ct));
+                    best = Some((score, c, kt, ct, -inside / size as f64));
                 }
             }
         }
     }
-    best.map(|(_, c, k, t)| (c, k, t))
+    best.map(|(_, case, kept, culled, slack)| Limit { case, kept, culled, slack })
 }
 
 #[cfg(test)]

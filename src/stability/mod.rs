@@ -44,7 +44,7 @@ mod tests;
 
 pub use families::{Built, Family};
 
-use crate::bounds::{self, Method, TileResult};
+use crate::bounds::{Method, TileResult};
 use crate::check::{self, CheckConfig};
 use crate::gen::{rng_for, tile_sample};
 use crate::model::Sample;
@@ -90,7 +90,7 @@ pub struct StabilityArgs {
     /// Seed of the case streams.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Tile size in pixels. (double-root's construction keeps all of the tile but the
+    /// Tile size in pixels (at most 4096). (double-root's construction keeps all of the tile but the
     /// grazed corner uncovered for tiles up to about 12 px.)
     #[arg(long, default_value_t = 4.0)]
     pub tile: f32,
@@ -103,7 +103,7 @@ pub struct StabilityArgs {
     /// Also write every row as JSON to this file ("-": standard output).
     #[arg(long)]
     pub json: Option<PathBuf>,
-    /// Worker threads (default: all cores). Results do not depend on it.
+    /// Worker threads (default: all cores; at most 4 per core). Results do not depend on it.
     #[arg(long)]
     pub jobs: Option<usize>,
 }
@@ -259,8 +259,8 @@ fn eval_case(cfg: &Config, ccfg: &CheckConfig, family: Family, step: usize, para
         .zip(js)
         .map(|(m, j)| {
             let mut o = Outcome {
+                undecided: j.verdict() == check::Verdict::Unproven,
                 violation: j.violation,
-                undecided: j.undecided,
                 boundary_only: j.boundary_only,
                 ..Default::default()
             };
@@ -516,21 +516,10 @@ pub fn render(r: &FamilyReport, md: bool) -> String {
     s
 }
 
+/// `--method`: the shared method-list parser ([`crate::args::methods`]), broken
+/// variants allowed.
 fn parse_methods(s: &str) -> Result<Vec<&'static dyn Method>> {
-    if s.trim() == "all" {
-        return Ok(bounds::registry());
-    }
-    s.split(',')
-        .map(|id| {
-            let id = id.trim();
-            bounds::by_id(id).or_else(|| bounds::broken::parse(id)).with_context(|| {
-                format!(
-                    "--method {s}: `{id}` is not a method id (see `cullproof methods`; or broken/shrink/ID, \
-                     broken/no-coc-pad/ID)"
-                )
-            })
-        })
-        .collect()
+    crate::args::methods("--method", s, true)
 }
 
 fn write(path: &Path, text: &str) -> Result<()> {
@@ -542,17 +531,13 @@ pub fn run_cli(args: &StabilityArgs) -> Result<()> {
     let start = Instant::now();
     let families = Family::parse(&args.family)?;
     let methods = parse_methods(&args.method)?;
-    ensure!(
-        args.tile.is_finite() && args.tile > 0.0,
-        "--tile {}: the tile size must be a positive number of pixels",
-        args.tile
-    );
+    crate::args::tile("--tile", args.tile)?;
     ensure!((1..1_000_000).contains(&args.cases), "--cases {}: must be 1..999999", args.cases);
     if let Some(n) = args.steps {
         ensure!((1..=1000).contains(&n), "--steps {n}: must be 1..1000");
     }
     ensure!(args.samples <= 1 << 20, "--samples {}: at most 1048576", args.samples);
-    let threads = args.jobs.unwrap_or_else(rayon::current_num_threads).max(1);
+    let threads = crate::args::jobs(args.jobs)?.unwrap_or_else(rayon::current_num_threads);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().context("building the thread pool")?;
     let cfg = Config {
         methods: methods.clone(),

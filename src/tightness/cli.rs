@@ -4,7 +4,7 @@ use super::pattern::{Pattern, PatternKind};
 use super::raster::{self, TimingRow};
 use super::scene::{self, Scene, Setting};
 use super::{chart, measure, CeilingRow, CertifiedRow, Config, MethodRow, SettingSummary};
-use crate::bounds::{self, Method};
+use crate::bounds::Method;
 use anyhow::{bail, ensure, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
@@ -43,7 +43,8 @@ pub struct TightnessArgs {
     /// report.
     #[arg(long)]
     pub json: Option<PathBuf>,
-    /// Worker threads for the STE measurement (default: all cores). Results do not depend on it.
+    /// Worker threads for the STE measurement (default: all cores; at most 4 per core).
+    /// Results do not depend on it.
     #[arg(long)]
     pub jobs: Option<usize>,
     /// Screen size in pixels, WIDTHxHEIGHT.
@@ -59,7 +60,7 @@ pub struct TightnessArgs {
     /// Skip the timing pass (then there is no cost column and no chart).
     #[arg(long)]
     pub no_timing: bool,
-    /// Timing passes per method and setting (run round robin); the fastest is kept.
+    /// Timing passes per method and setting (run round robin; 1 to 1000); the fastest is kept.
     #[arg(long, default_value_t = 3)]
     pub repeats: u32,
 }
@@ -125,16 +126,27 @@ fn parse_settings(s: &str) -> Result<Vec<Setting>> {
     Ok(out)
 }
 
+/// `--method`: the shared method-list parser ([`crate::args::methods`]).
 fn parse_methods(s: &str) -> Result<Vec<&'static dyn Method>> {
-    if s == "all" {
-        return Ok(bounds::registry());
+    crate::args::methods("--method", s, false)
+}
+
+/// Refuse a scene whose clip-space triangles are not all finite in some setting (an
+/// OBJ mesh too large for f32 once it is fitted into the view): the oracles judge only
+/// finite numbers, and a method's answer for an infinite vertex means nothing.
+fn check_scene_finite(scene: &Scene, settings: &[Setting], name: &str) -> Result<()> {
+    for &s in settings {
+        for (i, t) in scene.triangles(s).iter().enumerate() {
+            if let Err(e) = t.validate() {
+                bail!(
+                    "--scene {name}: triangle {i} ({} setting) does not fit f32 clip space once the scene is \
+                     placed in front of the camera: {e}; scale the mesh down",
+                    s.name()
+                );
+            }
+        }
     }
-    s.split(',')
-        .map(|id| {
-            bounds::by_id(id.trim())
-                .with_context(|| format!("--method {s}: `{id}` is not a method id (see `cullproof methods`)"))
-        })
-        .collect()
+    Ok(())
 }
 
 /// Refuse to replace a file that is not an earlier report of this command.
@@ -423,6 +435,8 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
     let settings = parse_settings(&args.setting)?;
     let methods = parse_methods(&args.method)?;
     let (w, h) = parse_size(&args.size)?;
+    let jobs = crate::args::jobs(args.jobs)?;
+    ensure!((1..=1000).contains(&args.repeats), "--repeats {}: must be 1..1000", args.repeats);
     // The timing pass holds the whole screen's pattern (20 bytes a sample) and a framebuffer.
     let table = w as u64 * h as u64 * args.spp as u64;
     ensure!(
@@ -441,14 +455,15 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
         }
     }
     let scene: Scene = scene::by_name(&args.scene, args.seed, w, h)?;
+    check_scene_finite(&scene, &settings, &args.scene)?;
     let pattern = Pattern::new(args.pattern, args.spp, args.seed);
     let mut cfg = Config::new(tiles.clone(), pattern);
     cfg.certified_tiles = args.certified;
     cfg.seed = args.seed;
-    let threads = args.jobs.unwrap_or_else(rayon::current_num_threads).max(1);
+    let threads = jobs.unwrap_or_else(rayon::current_num_threads).max(1);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().context("building the thread pool")?;
     let timing_tile = if tiles.contains(&2) { 2 } else { tiles[0] };
-    let repeats = args.repeats.max(1);
+    let repeats = args.repeats;
     let total = (scene.triangle_count() * settings.len()) as u64
         + if args.no_timing { 0 } else { (methods.len() * settings.len()) as u64 * repeats as u64 };
     let pb = ProgressBar::new(total);

@@ -8,10 +8,30 @@
 //! or 3 colour values; `vt` 2 numbers; `vn` 3; each `f` index a non-zero integer that,
 //! after resolving negative (relative) indices, names an existing `v`, `vt` or `vn`) and
 //! the first offending line is reported. Coordinates that are not finite (`nan`, `inf`,
-//! which Rust's float parser accepts) are refused the same way.
+//! which Rust's float parser accepts) are refused the same way, and so are vertex
+//! positions beyond [`MAX_COORD`] in magnitude (finite in f32, but the scene built from
+//! them would overflow f32 once fitted into the view).
 
 use super::scene::V3;
 use std::path::Path;
+
+/// The largest vertex coordinate magnitude accepted: 10^15, far beyond any real mesh
+/// and far enough below f32's 3.4e38 that the fitted scene's clip-space coordinates
+/// (up to some 10^5 times the mesh size, with the camera's focal scale and screen
+/// offset) stay finite. A larger coordinate is refused with its file, line and value.
+pub const MAX_COORD: f32 = 1e15;
+
+/// Why a vertex coordinate `w` (the word as written) is refused, if it is.
+fn bad_coordinate(w: &str) -> Option<String> {
+    match w.parse::<f32>() {
+        Ok(x) if !x.is_finite() => Some(format!("`{w}` is not a finite number")),
+        Ok(x) if x.abs() > MAX_COORD => Some(format!(
+            "vertex coordinate `{w}` is too large: |x| must be at most {MAX_COORD:e} (the scene would overflow f32)"
+        )),
+        Ok(_) => None,
+        Err(_) => Some(format!("`{w}` is not a number")),
+    }
+}
 
 /// A problem found at one line of an OBJ file.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -54,10 +74,14 @@ pub fn load(path: &Path) -> anyhow::Result<Vec<[V3; 3]>> {
             tris.push([v(f[0]), v(f[1]), v(f[2])]);
         }
     }
-    if tris.iter().flatten().flatten().any(|x| !x.is_finite()) {
+    if let Some(x) = tris.iter().flatten().flatten().find(|x| !x.is_finite() || x.abs() > MAX_COORD) {
         return Err(match scan(path) {
             Ok(Some(le)) => anyhow::anyhow!("{file}:{}: {}: `{}`", le.line, le.why, le.text),
-            _ => anyhow::anyhow!("{file}: a vertex coordinate is not finite"),
+            // Only a position divided by a tiny weight w gets here.
+            _ => anyhow::anyhow!(
+                "{file}: a vertex coordinate is {x:e} (after dividing by its weight w): |x| must be finite and at \
+                 most {MAX_COORD:e}"
+            ),
         });
     }
     anyhow::ensure!(!tris.is_empty(), "{file}: no triangles (no `f` line with 3 or more vertices)");
@@ -101,6 +125,9 @@ pub fn scan(path: &Path) -> std::io::Result<Option<LineError>> {
         match key {
             "v" => {
                 if let Err(why) = numbers(3, "x y z") {
+                    return err(why);
+                }
+                if let Some(why) = rest[..3].iter().find_map(|w| bad_coordinate(w)) {
                     return err(why);
                 }
                 match rest.len() {
@@ -203,6 +230,15 @@ mod tests {
         let p = temp("nan.obj", "v 0 0 0\nv nan 0 0\nv 1 1 0\nf 1 2 3\n");
         let e = load(&p).unwrap_err().to_string();
         assert!(e.contains("nan.obj") && e.contains(":2:") && e.contains("finite"), "{e}");
+    }
+
+    #[test]
+    fn a_huge_coordinate_is_refused_with_its_line_and_value() {
+        let p = temp("huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1e36 0\nf 1 2 3\n");
+        let e = load(&p).unwrap_err().to_string();
+        assert!(e.contains("huge.obj") && e.contains(":3:") && e.contains("1e36") && e.contains("too large"), "{e}");
+        let p = temp("edge.obj", "v 0 0 0\nv -1e15 0 0\nv 0 1 0\nf 1 2 3\n");
+        assert_eq!(load(&p).unwrap()[0][1][0], -1e15);
     }
 
     #[test]
