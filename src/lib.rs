@@ -1,7 +1,7 @@
 //! cullproof: proves or breaks the conservativeness of culling bounds for stochastic
 //! rasterization (simultaneous motion blur and depth of field).
 //!
-//! - [`model`]: the one model of `shared/notes/model.md` (triangle, camera, tile, sample).
+//! - [`model`]: the one model of `docs/model.md` (triangle, camera, tile, sample).
 //! - [`bounds`]: the culling tests under test, one file per published method.
 //! - [`agree`]: the agreement run of the exact oracle against Embree.
 //! - [`tightness`]: sample test efficiency (STE) per method, tile size and scene.

@@ -2,7 +2,7 @@
 //!
 //! This crate takes plain numbers (`f64`, which every `f32` converts to exactly) and
 //! never imports the code under test, so one mistake cannot sit on both sides.
-//! See `shared/notes/model.md` for the model that every function here follows.
+//! See the repository's `docs/model.md` for the model that every function here follows.
 
 pub mod coverage;
 pub mod dyadic;

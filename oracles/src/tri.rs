@@ -1,4 +1,4 @@
-//! The oracle's view of a triangle: plain numbers, as in `shared/notes/model.md`.
+//! The oracle's view of a triangle: plain numbers, as in the repository's `docs/model.md`.
 
 /// A moving, defocused triangle in homogeneous clip space.
 ///

@@ -1,5 +1,5 @@
 //! The exact oracle against an independent, slow BigRational evaluation of the model,
-//! written out again here from model.md (translated vertices, 2x2 edge determinants,
+//! written out again here from `docs/model.md` (translated vertices, 2x2 edge determinants,
 //! a full 3x3 determinant by cofactors), on random inputs that include huge, tiny and
 //! denormal values.
 

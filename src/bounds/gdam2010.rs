@@ -2,9 +2,9 @@
 //! (motion-only) triangle, after Gribel, Doggett and Akenine-Möller, "Analytical
 //! Motion Blur Rasterization with Compression", HPG 2010 (cited by Nilsson et al. 2012,
 //! §2 and §4, where it gives the "exact time interval when the pixel is inside all
-//! three moving triangle edges"). The GDAM10 paper itself is not in `shared/papers/`:
-//! the edge-function coefficients are those of Munkberg et al. 2011 as restated in
-//! `reconstructions.md`; the rest is derived below from `model.md`.
+//! three moving triangle edges"). The GDAM10 paper itself is not available to this
+//! project: the edge-function coefficients are those of Munkberg et al. 2011 as restated in
+//! `docs/reconstructions.md` (§7); the rest is derived below from `docs/model.md`.
 //!
 //! # Equations (model notation)
 //! With no defocus (every `c = 0`), vertex i at time t is `p_i(t) = p_i0 + t dp_i`,
@@ -291,7 +291,7 @@ static INFO: MethodInfo = MethodInfo {
     id: "gdam2010",
     source: "Gribel, Doggett, Akenine-Möller 2010, Analytical Motion Blur Rasterization with Compression \
              (cited by Nilsson et al. 2012 §2, §4); quadratic moving edge functions of Munkberg et al. 2011 \
-             (reconstructions.md)",
+             (as restated in docs/reconstructions.md)",
     reconstruction: false,
     dims: &[Dims::Motion],
     outputs: Outputs { tile_reject: false, lens: false, time: false, depth: false, per_sample: true },

@@ -1,9 +1,9 @@
 //! `la2011` (**reconstruction**): per-tile time bounds in dual space and per-tile lens
 //! bounds, after Laine, Aila, Karras & Lehtinen 2011, "Clipless Dual-Space Bounds for
 //! Faster Stochastic Rasterization" (LAKL11, ACM TOG 30(4) 106). That paper is not
-//! available to this project; this file follows `shared/notes/reconstructions.md`
-//! ("The dual-space quantity", "Clipless column test", "LA time bounds", "LA lens
-//! bounds"), built on what the available papers say about LA: Munkberg &
+//! available to this project; this file follows `docs/reconstructions.md` (§2 "The
+//! dual-space quantity" with its clipless column test, §3 "la2011" with LA's time and
+//! lens bounds), built on what the available papers say about LA: Munkberg &
 //! Akenine-Möller 2012 §1 (LA culls "by clipping down the extents of u, v, and t
 //! individually", Figure 1; cost in Table 3) and Wu 2013 ch. 2 (the motion part uses
 //! `delta = x - w gamma`, linear in t, and bounds time "by linear interpolation"; the
@@ -13,7 +13,7 @@
 //! # The dual-space quantity
 //! For a screen column X, vertex i, lens coordinate u and time t,
 //! `delta_i(X, u, t) = x_i(t) + u c_i(t) - X w_i(t)`: the x of the sheared vertex
-//! after translating column X to the origin (model.md's `P_i.x`). It is affine in each
+//! after translating column X to the origin (`P_i.x` of `docs/model.md`). It is affine in each
 //! of X, u, t separately (the `u t` term comes from `c_i(t)`). In y:
 //! `eps_i(Y, v, t) = y_i(t) + k v c_i(t) - Y w_i(t)`. Everything below is said for x;
 //! y is the same with (Y, v, k c_i) in place of (X, u, c_i).
@@ -93,7 +93,7 @@
 //!   AABB side `min_i (x_i + u c_i) / w_i` is a concave min of lines in u). Linear
 //!   interpolation between AABBs at two lens positions replaces that min by its chord,
 //!   which is below it: also conservative, never tighter. We implement the thresholds
-//!   that reconstructions.md specifies; LAKL11 may be looser here.
+//!   that `docs/reconstructions.md` specifies; LAKL11 may be looser here.
 //! - The reconstruction asks for the full lens when some `w_i <= 0` in the shutter. The
 //!   derivation above (both columns, the lemma) never uses the sign of w, so we keep
 //!   the lens bounds then; with every w > 0 the thresholds at the other column are
@@ -318,7 +318,7 @@ static INFO: MethodInfo = MethodInfo {
     id: "la2011",
     source: "reconstruction of Laine, Aila, Karras, Lehtinen 2011, Clipless Dual-Space \
              Bounds (LAKL11), as described in Munkberg & Akenine-Möller 2012 §1, Fig. 1, \
-             Table 3 and Wu 2013 ch. 2; formulas per shared/notes/reconstructions.md \
+             Table 3 and Wu 2013 ch. 2; formulas per docs/reconstructions.md \
              (dual-space delta = x + u c - X w, chord time bounds, per-vertex lens thresholds)",
     reconstruction: true,
     dims: &[Dims::Motion, Dims::Defocus, Dims::Both],

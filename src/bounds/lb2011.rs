@@ -2,8 +2,8 @@
 //! four bilinear patches evaluated per sample, after Laine & Karras 2011, "Improved
 //! Dual-Space Bounds for Simultaneous Motion and Defocus Blur", NVIDIA Technical
 //! Report NVR-2011-004 (LK11). The report is not available to this project; this file
-//! follows `shared/notes/reconstructions.md` ("The dual-space quantity", "LB
-//! per-sample test"), built on Munkberg & Akenine-Möller 2012: §1 (LK11 extends the
+//! follows `docs/reconstructions.md` (§2 "The dual-space quantity", §4 "lb2011", LB's
+//! per-sample patches), built on Munkberg & Akenine-Möller 2012: §1 (LK11 extends the
 //! dual-space motion blur test "to a trilinear equation that takes correlations
 //! between u&t and v&t into account", with "four bilinear patches ... evaluated for
 //! each sample"), §2.1 under Eq. 1 (moving the denominator of `u_ij(t)` to the left
@@ -11,8 +11,8 @@
 //! tile, 12 per sample). Every formula below is derived again here.
 //!
 //! # The trilinear quantity
-//! `delta_i(X, u, t) = x_i(t) + u c_i(t) - X w_i(t)` (model.md's `P_i.x` for the column
-//! X; affine in X, u, t separately) and in y `eps_i(Y, v, t) = y_i(t) + k v c_i(t) -
+//! `delta_i(X, u, t) = x_i(t) + u c_i(t) - X w_i(t)` (`P_i.x` of `docs/model.md` for the
+//! column X; affine in X, u, t separately) and in y `eps_i(Y, v, t) = y_i(t) + k v c_i(t) -
 //! Y w_i(t)`. Munkberg's Eq. 1 threshold `u_ij(t) = n_i^x . p_j(t) / c_j(t)` is the root
 //! in u of `delta_j(x_i, u, t) = 0` (their `n^x . p = x_i w - x = -delta` at u = 0).
 //!
@@ -267,7 +267,7 @@ static INFO: MethodInfo = MethodInfo {
     id: "lb2011",
     source: "reconstruction of Laine & Karras 2011, NVR-2011-004 (LK11), as described in \
              Munkberg & Akenine-Möller 2012 §1, §2.1 (under Eq. 1) and Table 3; per \
-             shared/notes/reconstructions.md: four bilinear patches in u-t / v-t of the \
+             docs/reconstructions.md: four bilinear patches in u-t / v-t of the \
              min / max of delta = x + u c - X w over a tile's columns, evaluated per sample",
     reconstruction: true,
     dims: &[Dims::Motion, Dims::Defocus, Dims::Both],

@@ -2,7 +2,8 @@
 //!
 //! Source: J. Munkberg and T. Akenine-Möller, "Hyperplane Culling for Stochastic
 //! Rasterization", Eurographics 2012 short paper: §2.1 (Eq. 1, Figure 3), Figure 5 and
-//! Appendix A. The text we work from is `shared/papers/munkberg2012-hyperplane-culling.txt`.
+//! Appendix A. The text we work from is that paper itself (Munkberg and Akenine-Möller
+//! 2012, "Hyperplane Culling for Stochastic Rasterization", §2.1, Figure 5, Appendix A).
 //!
 //! # The quantity bounded (Eq. 1 in the model's notation)
 //! For a screen column `X` (a tile side `x_i` in the paper), vertex j and time t let

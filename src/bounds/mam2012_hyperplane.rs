@@ -4,7 +4,8 @@
 //! Source: J. Munkberg and T. Akenine-Möller, "Hyperplane Culling for Stochastic
 //! Rasterization", Eurographics 2012 short paper: §2.2 (Eqs. 2, 3, the trivial reject,
 //! the refined bounds, the tile-centre evaluation, selective enabling) and Appendix B
-//! (Eqs. 4-9). Text: `shared/papers/munkberg2012-hyperplane-culling.txt`.
+//! (Eqs. 4-9). Text: Munkberg and Akenine-Möller 2012, "Hyperplane Culling for Stochastic
+//! Rasterization", §2.2 and Appendix B.
 //!
 //! # The edge function in the model's notation (Eqs. 2, 4-6)
 //! With `p = (x, y, w)` of a vertex (z is not used) and the model's shear

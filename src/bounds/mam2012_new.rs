@@ -4,8 +4,8 @@
 //! Source: J. Munkberg and T. Akenine-Möller, "Hyperplane Culling for Stochastic
 //! Rasterization", Eurographics 2012 short paper, §3: "we use three culling tests, namely
 //! Laine et al.'s motion blur test in dual space [LAKL11], the bilinear test from Section
-//! 2.1, and the hyperplane test (Section 2.2)". Text:
-//! `shared/papers/munkberg2012-hyperplane-culling.txt`.
+//! 2.1, and the hyperplane test (Section 2.2)". Text: Munkberg and Akenine-Möller 2012,
+//! "Hyperplane Culling for Stochastic Rasterization", §3.
 //!
 //! # What it computes
 //! The conjunction of three tests of the same triangle and tile, each set up on its own:

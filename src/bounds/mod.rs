@@ -1,7 +1,7 @@
 //! The culling tests under test: one trait, one registry, one file per published
-//! method (named by its id, see `shared/notes/model.md`, "Methods named in the papers").
+//! method (named by its id, see `docs/model.md`, §5 "The methods").
 //!
-//! # The contract (model.md)
+//! # The contract (`docs/model.md`, §4)
 //! For one triangle and one screen tile `T`, a test answers [`TileResult::Empty`] or
 //! [`TileBounds`]: intervals `u^`, `v^` (within [-1, 1]), `t^` (within [0, 1]), an optional
 //! depth interval `z^`, and optional per-sample constraints `g_m(s)`; a sample is culled
@@ -47,11 +47,11 @@ pub struct Outputs {
 /// Static description of a method.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct MethodInfo {
-    /// The id of model.md ("mam2012-hyperplane").
+    /// The id listed in `docs/model.md` ("mam2012-hyperplane").
     pub id: &'static str,
     /// Paper, section, equations.
     pub source: &'static str,
-    /// True when built from `reconstructions.md` rather than the paper itself.
+    /// True when built from a reconstruction (`docs/reconstructions.md`) rather than the paper itself.
     pub reconstruction: bool,
     /// The regimes it is designed for (others get the full domain or its best effort).
     pub dims: &'static [Dims],
@@ -157,7 +157,7 @@ pub trait Method: Send + Sync {
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared>;
 }
 
-/// Every method, in the order of model.md.
+/// Every method, in the order of `docs/model.md`.
 pub fn registry() -> Vec<&'static dyn Method> {
     vec![
         bbox::METHOD,

@@ -10,14 +10,14 @@
 //! evaluated by intersecting a tile corner's ray with the plane. Along the ray through
 //! pixel (X, Y) a point is `w (X, Y, 1)`, so what the paper bounds is **w** (camera-space
 //! depth, linear). The model's hit depth is `zeta = z_hit / w_hit`, the barycentric blend
-//! of the vertices' clip z over `w_hit` (model.md, "Hit depth"; the oracle's `N / D`).
+//! of the vertices' clip z over `w_hit` (`docs/model.md` §3.4; the oracle's `N / D`).
 //! We bound w as the paper does and convert at the end (see "Conversion" below).
 //!
 //! # The hit point
 //! For an interior sample (x, y, u, v, t) the barycentrics `b_k = E_k / sum E` are all
 //! positive and sum to 1, and the hit point is `H = sum b_k p'_k(t)` where
 //! `p'_k = p_k(t) + c_k(t) (u, k v, 0)` are the sheared vertices, with
-//! `H = w_hit (x, y, 1)` in (x', y', w) and `w_hit > 0` (model.md). Its depth is
+//! `H = w_hit (x, y, 1)` in (x', y', w) and `w_hit > 0` (`docs/model.md`). Its depth is
 //! `zeta = (sum b_k z_k(t)) / (sum b_k w_k(t))`. The shear moves x', y' only, never z, w.
 //!
 //! # Test 1: the moving bounding box (only its depth faces are used)

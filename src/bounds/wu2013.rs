@@ -5,7 +5,7 @@
 //! linear bounds of Figures 3.7 and 3.8) and §3.5 (controllable defocus).
 //!
 //! # Notation
-//! Model notation throughout (model.md): vertex i at time t is `p_i(t) = lerp(q_i, r_i)`,
+//! Model notation throughout (`docs/model.md`): vertex i at time t is `p_i(t) = lerp(q_i, r_i)`,
 //! CoC `c_i(t) = lerp(c_i0, c_i1)`; seen from lens u it sits at `x_i + u c_i` (and at
 //! `y_i + k v c_i`). Everything below is written for the x axis and u; the y axis is the
 //! same with `y`, v and the CoC `k c_i`. For a pixel column X define the dual-space

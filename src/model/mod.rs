@@ -1,4 +1,4 @@
-//! The 5D sample model (see `shared/notes/model.md`): a moving, defocused triangle in
+//! The 5D sample model (see `docs/model.md`): a moving, defocused triangle in
 //! clip space, an optional thin-lens camera it came from, screen tiles and samples.
 
 pub mod camera;

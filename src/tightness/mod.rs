@@ -202,7 +202,7 @@ fn ratio(a: u64, b: u64) -> Option<f64> {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct MethodRow {
     pub method: String,
-    /// Built from `reconstructions.md`, not from the paper itself.
+    /// Built from a reconstruction (`docs/reconstructions.md`), not from the paper itself.
     pub reconstruction: bool,
     /// The method has per-sample constraints (it is not an interval-only test).
     pub per_sample: bool,

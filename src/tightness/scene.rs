@@ -1,6 +1,6 @@
 //! Scenes for the tightness measurement: a thin-lens camera, a screen of `width x
 //! height` pixels, and objects whose triangles are given in camera space (+z forward,
-//! the lens at the origin, see `shared/notes/model.md`) in a rest pose, each object with
+//! the lens at the origin, see `docs/model.md`) in a rest pose, each object with
 //! a seeded rigid motion. The three settings of Munkberg & Akenine-Möller 2012 (Table 1)
 //! are derived from one scene:
 //!
