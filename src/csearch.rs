@@ -3,7 +3,7 @@
 //! Branch and bound over the sample boxes of one tile that pass a method's intervals:
 //! a box is dropped when the exact coverage enclosures of the `oracles` crate rule out
 //! every interior sample in it, or when every constraint's interval evaluation
-//! ([`SampleConstraint::eval_box`], f32 rounding included) is `>= 0` over it (nothing
+//! ([`SampleConstraint::eval_box`](crate::bounds::SampleConstraint::eval_box), f32 rounding included) is `>= 0` over it (nothing
 //! in it is culled). Boxes are taken most-culled first (the lowest constraint lower
 //! bound), so a violation surfaces early; in each, a few f32 samples are judged
 //! exactly (coverage by the exact oracle, the constraint by the method's own f32

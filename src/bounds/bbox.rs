@@ -3,7 +3,7 @@
 //! Munkberg & Akenine-Möller 2012, §3 and Tables 1-3: "a brute-force rasterizer
 //! (BBOX), which tests all samples within the triangle's bounding box"; Wu 2013 §3.2
 //! builds the same 2D box from the 6 vertex positions grown by the CoC; Nilsson et al.
-//! 2012 App. A uses a moving bounding box [MCH*11] for depth). It gives no u, v, t
+//! 2012 App. A uses a moving bounding box \[MCH*11\] for depth). It gives no u, v, t
 //! information: the tile is either Empty or gets the full domain.
 //!
 //! # The bound
@@ -51,7 +51,7 @@
 //! Wu 2013 §3.2 clips: "If the triangle passes the z = 0 plane, we find out the
 //! intersection point at the near plane from the 6 triangle edges and 3 moving point
 //! paths" (Figure 3.2), i.e. the box is built from near-plane intersections; Munkberg
-//! 2012 §3 takes the AABB from Laine & Karras 2011 [LK11] (not available) and does not
+//! 2012 §3 takes the AABB from Laine & Karras 2011 \[LK11\] (not available) and does not
 //! discuss w <= 0; Nilsson 2012 does not discuss it for the box. There is no near
 //! plane in our model (homogeneous rasterization covers points at any w > 0), so we
 //! do not clip: **if any `q_i.w <= 0` or `r_i.w <= 0` the AABB is unbounded, the test

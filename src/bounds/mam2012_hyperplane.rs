@@ -43,7 +43,7 @@
 //! `e_n >= n0.X + t ((n1 + n2).Xc - Z) - max(n2.Xc + |n2_x| hx + |n2_y| hy, 0) / 4`:
 //! the x, y coefficients are those of `n0` (exact), the t coefficient is taken at the
 //! tile centre and padded by the half-tile extents, and the constant is padded by the
-//! t^2 term. The paper only says it follows [MCH*11] and pads "with half of a tile's
+//! t^2 term. The paper only says it follows \[MCH*11\] and pads "with half of a tile's
 //! screen space extents"; this padding is our choice.
 //!
 //! **Eq. 8 (e_m).** `e_m = u d_x + k v d_y` with `d = X x m`: `d_x = y m_z - m_y`,

@@ -3,7 +3,7 @@
 //!
 //! Source: J. Munkberg and T. Akenine-Möller, "Hyperplane Culling for Stochastic
 //! Rasterization", Eurographics 2012 short paper, §3: "we use three culling tests, namely
-//! Laine et al.'s motion blur test in dual space [LAKL11], the bilinear test from Section
+//! Laine et al.'s motion blur test in dual space \[LAKL11\], the bilinear test from Section
 //! 2.1, and the hyperplane test (Section 2.2)". Text: Munkberg and Akenine-Möller 2012,
 //! "Hyperplane Culling for Stochastic Rasterization", §3.
 //!
@@ -35,7 +35,7 @@
 //!   registered hyperplane method is always enabled. This changes cost, and STE only in
 //!   the direction of culling more.
 //! - The triangle's screen AABB that NEW traverses ("computed using a previous technique
-//!   [LK11]") is not part of this test: the harness decides which tiles are asked.
+//!   \[LK11\]") is not part of this test: the harness decides which tiles are asked.
 //! - `disabled()` reports a reason only when all three components are disabled.
 
 use super::*;

@@ -3,7 +3,7 @@
 //! Every case is a physical (thin-lens) triangle of one regime. Every method is judged
 //! on a tile on the boundary of the footprint ([`make_case`]), and in turn each method
 //! also on the two tiles at its own tile-reject limit ([`tiles`]). Each answer gets one
-//! of three verdicts ([`judge`]): **proven** conservative (every claim certified, no gap
+//! of three verdicts ([`judge`](mod@judge)): **proven** conservative (every claim certified, no gap
 //! left), **violated** (an interior sample, confirmed exactly, inside the tile and the
 //! lens/shutter domain, that the answer culls) or **unproven** (counted by reason).
 //!

@@ -4,7 +4,7 @@
 //! For every step of a family (see [`Family`] and `families.rs` for how each builds its
 //! cases) and every method, over `cases` seeded cases:
 //!
-//! - **violations**: cases where the gate's own judge ([`crate::check::judge`], the
+//! - **violations**: cases where the gate's own judge ([`crate::check::judge()`], the
 //!   certified side search and constraint search of `check`, with the default
 //!   [`CheckConfig`]) found an interior sample, confirmed in exact arithmetic, that the
 //!   method culls. **undecided**: cases where some claim could be neither confirmed nor
@@ -16,7 +16,7 @@
 //! - **STE** (sample test efficiency): over `samples` uniform samples in the tile
 //!   ([`crate::gen::tile_sample`]: whole lens and shutter), `hits / tested` summed over
 //!   the step's cases, where tested = the method lets the sample through (tile not
-//!   empty and [`TileBounds::admits`]) and hits = tested and exactly interior
+//!   empty and [`TileBounds::admits`](crate::bounds::TileBounds::admits)) and hits = tested and exactly interior
 //!   ([`oracles::classify`]). Undefined ("-", `null` in JSON) when nothing was tested.
 //! - **first fails at**: per method, the first step (from the benign end) with a
 //!   certified violation; and the first step with a **gross** one, whose margin (the
@@ -97,7 +97,7 @@ pub struct StabilityArgs {
     /// Uniform samples per case for STE and the NaN/inf test.
     #[arg(long, default_value_t = 512)]
     pub samples: usize,
-    /// Output directory (created if missing): <family>.svg and <family>.md.
+    /// Output directory (created if missing): `<family>.svg` and `<family>.md`.
     #[arg(long, default_value = "target/stability")]
     pub out: PathBuf,
     /// Also write every row as JSON to this file ("-": standard output).
