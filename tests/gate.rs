@@ -245,3 +245,18 @@ fn the_stored_baseline_holds_at_960_cases() {
     assert!(r.baseline.as_deref().is_some_and(|b| b.contains("0 worse")), "{:?}\n{}", r.baseline, render(&r));
     assert!(!r.failed(), "{}", render(&r));
 }
+
+/// The default gate (`cullproof check`: seed 1, 9,600 cases, every method) passes its
+/// expectations and matches the stored baseline row by row: what CI runs on every
+/// change.
+#[test]
+fn the_default_gate_passes_and_matches_its_baseline() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let file = BaselineFile::load(&root.join("corpus/baseline.json")).unwrap();
+    let cfg = CheckConfig::default_with(cullproof::bounds::registry());
+    let r = run_with_baseline(&cfg, &expectations(), Some(&file), false);
+    assert!(r.baseline.as_deref().is_some_and(|b| b.contains("0 worse")), "{:?}\n{}", r.baseline, render(&r));
+    assert!(!r.failed(), "{}", render(&r));
+    let safe: Vec<_> = r.rows.iter().filter(|x| x.method == "bbox-safe").collect();
+    assert!(safe.iter().all(|x| x.proven == x.cases), "bbox-safe not proven on every case\n{}", render(&r));
+}
