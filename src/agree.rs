@@ -226,8 +226,7 @@ impl Acc {
     /// Keep the `WORST_KEPT` farthest disagreements, ties by case index; the sort is
     /// stable, so equal ones keep the order of the cases (and of the samples in a case).
     fn keep_worst(&mut self) {
-        self.worst
-            .sort_by(|a, b| b.distance_px.total_cmp(&a.distance_px).then(a.case_index.cmp(&b.case_index)));
+        self.worst.sort_by(|a, b| b.distance_px.total_cmp(&a.distance_px).then(a.case_index.cmp(&b.case_index)));
         self.worst.truncate(WORST_KEPT);
     }
     fn add(mut self, (regime, c, w): (Regime, AgreeCounts, Vec<Disagreement>)) -> Acc {

@@ -95,7 +95,8 @@ pub fn margin(flag: &str, x: f64) -> Result<f64> {
 
 /// Parse `--shard K/N` (0 <= K < N).
 pub fn shard(s: &str) -> Result<(u64, u64)> {
-    let parsed = s.split_once('/').and_then(|(a, b)| Some((a.trim().parse::<u64>().ok()?, b.trim().parse::<u64>().ok()?)));
+    let parsed =
+        s.split_once('/').and_then(|(a, b)| Some((a.trim().parse::<u64>().ok()?, b.trim().parse::<u64>().ok()?)));
     match parsed {
         Some((k, n)) if n > 0 && k < n => Ok((k, n)),
         Some((_, 0)) => bail!("--shard {s}: N must be at least 1 (expected K/N with 0 <= K < N)"),

@@ -252,9 +252,7 @@ pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
         Verdict::Violation => matches!(witness, Some(Ok(_))) && j.verdict() != crate::check::Verdict::Proven,
         // A conservative case must be proven afresh, and its stored witness (if any)
         // must not hold.
-        Verdict::Conservative => {
-            j.verdict() == crate::check::Verdict::Proven && !matches!(witness, Some(Ok(_)))
-        }
+        Verdict::Conservative => j.verdict() == crate::check::Verdict::Proven && !matches!(witness, Some(Ok(_))),
     };
     Ok(Replay {
         path: path.display().to_string(),

@@ -358,11 +358,8 @@ fn run() -> Result<()> {
             cfg.constraint_budget = constraint_budget;
             let ex = cullproof::check::Expectations::load(&expectations)?;
             cfg.limit_every = limit_every;
-            let base = if baseline.exists() {
-                Some(cullproof::check::baseline::BaselineFile::load(&baseline)?)
-            } else {
-                None
-            };
+            let base =
+                if baseline.exists() { Some(cullproof::check::baseline::BaselineFile::load(&baseline)?) } else { None };
             let r = cullproof::check::run_with_baseline(&cfg, &ex, base.as_ref(), true);
             print!("{}", cullproof::check::render(&r));
             if write_baseline {
@@ -484,11 +481,8 @@ fn run() -> Result<()> {
             let methods = cullproof::args::methods("--method", &method, false)?;
             let cases = cullproof::args::count("--cases", cases, 1_000_000, "cases")?;
             let ex = cullproof::check::Expectations::load(&expectations)?;
-            let base = if baseline.exists() {
-                Some(cullproof::check::baseline::BaselineFile::load(&baseline)?)
-            } else {
-                None
-            };
+            let base =
+                if baseline.exists() { Some(cullproof::check::baseline::BaselineFile::load(&baseline)?) } else { None };
             let mut cfg = cullproof::check::CheckConfig::default_with(methods);
             cfg.cases = cases;
             cfg.seed = seed;

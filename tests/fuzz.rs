@@ -208,11 +208,8 @@ impl Fuzz {
             short(&self.slowest_at, 300),
             self.panics
         );
-        let per: Vec<String> = self
-            .per_call
-            .iter()
-            .map(|(k, (n, d))| format!("{k} {n} calls {:.2} s", d.as_secs_f64()))
-            .collect();
+        let per: Vec<String> =
+            self.per_call.iter().map(|(k, (n, d))| format!("{k} {n} calls {:.2} s", d.as_secs_f64())).collect();
         println!("fuzz {}: per entry point: {}", self.part, per.join("; "));
         if let Some(p) = &self.first_panic {
             panic!("fuzz {}: {} of {} calls panicked; the first:\n{p}", self.part, self.panics, self.calls);
@@ -724,8 +721,11 @@ const HOSTILE_STRINGS: [&str; 10] = [
     "\"é\u{1F600}\"",
 ];
 
+/// Byte ranges `(start, end)` in a text.
+type Spans = Vec<(usize, usize)>;
+
 /// Byte ranges of the number and string tokens of a JSON text (roughly).
-fn tokens(text: &str) -> (Vec<(usize, usize)>, Vec<(usize, usize)>) {
+fn tokens(text: &str) -> (Spans, Spans) {
     let b = text.as_bytes();
     let (mut nums, mut strs) = (Vec::new(), Vec::new());
     let mut i = 0;
@@ -866,9 +866,23 @@ fn obj_number(rng: &mut ChaCha8Rng) -> String {
     match rng.gen_range(0..6) {
         0..=2 => format!("{}", rng.gen_range(-10.0f32..10.0)),
         3 => format!("{:e}", extreme_f32(rng)),
-        4 => ["1e36", "-1e36", "1e15", "-1e15", "1.0000001e15", "nan", "inf", "-inf", "1e-45", "0x10", "--1", "1e", "", "1,5"]
-            [rng.gen_range(0..14)]
-            .to_string(),
+        4 => [
+            "1e36",
+            "-1e36",
+            "1e15",
+            "-1e15",
+            "1.0000001e15",
+            "nan",
+            "inf",
+            "-inf",
+            "1e-45",
+            "0x10",
+            "--1",
+            "1e",
+            "",
+            "1,5",
+        ][rng.gen_range(0..14)]
+        .to_string(),
         _ => format!("{}", rng.gen::<i64>()),
     }
 }
@@ -879,7 +893,7 @@ fn obj_index(rng: &mut ChaCha8Rng, nv: i64) -> String {
         5 => (-rng.gen_range(1..=nv.max(1))).to_string(),
         6 => ["0", "99999999999999999999", "-99999999999999999999", "a", "", "1.5", "9223372036854775807"]
             [rng.gen_range(0..7)]
-            .to_string(),
+        .to_string(),
         _ => rng.gen::<i32>().to_string(),
     };
     match rng.gen_range(0..6) {
@@ -939,7 +953,7 @@ fn obj_text(rng: &mut ChaCha8Rng) -> Vec<u8> {
             9 => format!("vn {} {} {}", obj_number(rng), obj_number(rng), obj_number(rng)),
             10 => ["o thing", "g group", "s 1", "usemtl none", "mtllib missing.mtl", "# comment", "l 1 2", "p 1", ""]
                 [rng.gen_range(0..9)]
-                .to_string(),
+            .to_string(),
             _ => {
                 let bytes: Vec<u8> = (0..rng.gen_range(0..20)).map(|_| rng.gen_range(0x20u8..0x7f)).collect();
                 String::from_utf8(bytes).unwrap()
@@ -995,7 +1009,6 @@ fn obj_files_take_any_text() {
     let _ = std::fs::remove_dir_all(&dir);
     fz.finish();
 }
-
 
 // ---------------------------------------------------------------------------
 // A known hang outside this test's reach (see `oracles_take_any_numbers`)

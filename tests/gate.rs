@@ -45,7 +45,10 @@ fn gate_passes_on_a_fixed_budget() {
     for m in &cfg.methods {
         assert!(summary.lines().any(|l| l.starts_with(&format!("{} ", m.info().id))), "{}", m.info().id);
     }
-    assert!(summary.lines().any(|l| l.starts_with("bbox-safe ") && l.contains("proven conservative on 140 cases")), "{summary}");
+    assert!(
+        summary.lines().any(|l| l.starts_with("bbox-safe ") && l.contains("proven conservative on 140 cases")),
+        "{summary}"
+    );
     // every method x every regime got cases
     for m in &cfg.methods {
         for g in cullproof::gen::Regime::ALL {
@@ -102,7 +105,14 @@ fn budgets_that_run_out_leave_cases_unproven() {
     assert!(sum(&starved, |x| x.unproven) > sum(&full, |x| x.unproven));
     assert!(starved.rows.iter().any(|x| x.unproven_by.contains_key("constraint-budget")), "{}", render(&starved));
     for (a, b) in full.rows.iter().zip(&starved.rows) {
-        assert!(b.proven <= a.proven, "{} {}: {} proven with 1 box, {} with 2000", a.method, a.regime, b.proven, a.proven);
+        assert!(
+            b.proven <= a.proven,
+            "{} {}: {} proven with 1 box, {} with 2000",
+            a.method,
+            a.regime,
+            b.proven,
+            a.proven
+        );
     }
 }
 

@@ -72,7 +72,14 @@ impl Run {
     /// A usage error: exit 2 and every `needle` on stderr.
     fn usage_error(&self, needles: &[&str]) -> &Self {
         self.no_panic();
-        assert_eq!(self.code, Some(2), "{}: expected exit 2, stderr:\n{}\nstdout:\n{}", self.what, self.stderr, self.stdout);
+        assert_eq!(
+            self.code,
+            Some(2),
+            "{}: expected exit 2, stderr:\n{}\nstdout:\n{}",
+            self.what,
+            self.stderr,
+            self.stdout
+        );
         // Case aside: Rust writes NaN for `nan` and inf for `Infinity`.
         let low = self.stderr.to_lowercase();
         for n in needles {
@@ -107,15 +114,34 @@ fn scratch(name: &str) -> PathBuf {
 fn an_obj_coordinate_too_large_for_the_scene_is_refused_with_file_line_and_value() {
     let dir = scratch("obj");
     let obj = dir.join("huge.obj");
-    std::fs::write(&obj, "# finite in f32, but the scene would overflow\nv 0 0 0\nv 1e36 0 0\nv 0 1 0\nv 1 1 1\nf 1 2 3\nf 1 3 4\n")
-        .unwrap();
+    std::fs::write(
+        &obj,
+        "# finite in f32, but the scene would overflow\nv 0 0 0\nv 1e36 0 0\nv 0 1 0\nv 1 1 1\nf 1 2 3\nf 1 3 4\n",
+    )
+    .unwrap();
     let out = dir.join("out");
     let p = obj.to_str().unwrap();
     let o = out.to_str().unwrap();
     for setting in ["static", "blur", "all"] {
         run(&[
-            "tightness", "--scene", p, "--setting", setting, "--spp", "1", "--tile", "8", "--size", "16x16",
-            "--method", "bbox", "--certified", "0", "--no-timing", "--out", o,
+            "tightness",
+            "--scene",
+            p,
+            "--setting",
+            setting,
+            "--spp",
+            "1",
+            "--tile",
+            "8",
+            "--size",
+            "16x16",
+            "--method",
+            "bbox",
+            "--certified",
+            "0",
+            "--no-timing",
+            "--out",
+            o,
         ])
         .usage_error(&["huge.obj", ":3:", "1e36", "too large"]);
     }
@@ -125,8 +151,22 @@ fn an_obj_coordinate_too_large_for_the_scene_is_refused_with_file_line_and_value
     let ok = dir.join("edge.obj");
     std::fs::write(&ok, "v 0 0 0\nv 1e15 0 0\nv 0 1e15 0\nv 1 1 1e15\nf 1 2 3\nf 1 3 4\n").unwrap();
     run(&[
-        "tightness", "--scene", ok.to_str().unwrap(), "--spp", "1", "--tile", "4", "--size", "16x16", "--method",
-        "bbox,lc", "--certified", "2", "--no-timing", "--out", o,
+        "tightness",
+        "--scene",
+        ok.to_str().unwrap(),
+        "--spp",
+        "1",
+        "--tile",
+        "4",
+        "--size",
+        "16x16",
+        "--method",
+        "bbox,lc",
+        "--certified",
+        "2",
+        "--no-timing",
+        "--out",
+        o,
     ])
     .ran();
     assert!(out.join("ste.json").exists());
@@ -147,10 +187,12 @@ fn a_bad_tile_size_is_refused_by_every_command() {
     // The value is named as written where it is a number.
     run(&["search", "--method", "bbox", "--time", "1", "--dry-run", "--tile", "0"]).usage_error(&["--tile 0"]);
     run(&["check", "--method", "bbox", "--cases", "1", "--tile", "nan"]).usage_error(&["--tile NaN"]);
-    run(&["search", "--method", "bbox", "--time", "1", "--dry-run", "--tile", "5000"]).usage_error(&["--tile 5000", "4096"]);
+    run(&["search", "--method", "bbox", "--time", "1", "--dry-run", "--tile", "5000"])
+        .usage_error(&["--tile 5000", "4096"]);
     // tightness takes whole pixels 1..256.
     for t in ["0", "300", "-1", "nan"] {
-        run(&["tightness", "--scene", "forest", "--tile", t, "--no-timing", "--size", "16x16"]).usage_error(&["--tile"]);
+        run(&["tightness", "--scene", "forest", "--tile", t, "--no-timing", "--size", "16x16"])
+            .usage_error(&["--tile"]);
     }
 }
 
@@ -257,7 +299,8 @@ fn every_command_takes_method_lists_through_one_parser() {
     }
     run(&["check", "--method", "bbox,,lc", "--cases", "1"]).usage_error(&["--method", "empty"]);
     // search takes exactly one, through the same parser.
-    run(&["search", "--method", "bbox,lc", "--time", "1", "--dry-run"]).usage_error(&["--method bbox,lc", "exactly one"]);
+    run(&["search", "--method", "bbox,lc", "--time", "1", "--dry-run"])
+        .usage_error(&["--method bbox,lc", "exactly one"]);
     run(&["search", "--method", "all", "--time", "1", "--dry-run"]).usage_error(&["exactly one"]);
     // Broken variants: search and stability take them, check does not.
     let r = run(&["search", "--method", "broken/shrink/bbox", "--time", "0.2", "--dry-run"]);
@@ -293,7 +336,8 @@ fn seeds_shards_regimes_and_margins() {
             .usage_error(&["--min-margin", m.trim_start_matches('-')]);
     }
     // (clap takes `-inf` after a space for a flag; with `=` it is the value.)
-    run(&["search", "--method", "bbox", "--time", "1", "--dry-run", "--min-margin=-inf"]).usage_error(&["--min-margin -inf"]);
+    run(&["search", "--method", "bbox", "--time", "1", "--dry-run", "--min-margin=-inf"])
+        .usage_error(&["--min-margin -inf"]);
     run(&["check", "--method", "bbox", "--cases", "1", "--regime", "static"]).ran();
 }
 

@@ -121,11 +121,7 @@ impl CoverageStats {
 #[inline]
 pub fn finite_input(tri: &Tri, s: &[f64; 5]) -> bool {
     let all = |v: &[f64]| v.iter().all(|x| x.is_finite());
-    all(s)
-        && tri.q.iter().chain(tri.r.iter()).all(|p| all(p))
-        && all(&tri.c0)
-        && all(&tri.c1)
-        && tri.k.is_finite()
+    all(s) && tri.q.iter().chain(tri.r.iter()).all(|p| all(p)) && all(&tri.c0) && all(&tri.c1) && tri.k.is_finite()
 }
 
 /// Certified signs, if they settle the class: `None` means go exact.

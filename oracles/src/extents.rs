@@ -965,7 +965,7 @@ fn uvt_open(b: &Box5, init: &Box5, min_w: &[f64; 5], active: &[bool; 5]) -> bool
 pub fn search(tri: &Tri, init: Box5, obj: Objective, cfg: &ExtentsConfig, opts: Search) -> ObjectiveResult {
     // A box with a NaN or reversed side, or a triangle with a non-finite number, is
     // outside what the solver answers: one undecided box, never a certificate.
-    if init.iter().any(|i| !(i.lo <= i.hi)) || tri.check_finite().is_err() {
+    if init.iter().any(|i| i.lo.is_nan() || i.hi.is_nan() || i.lo > i.hi) || tri.check_finite().is_err() {
         return ObjectiveResult { extreme: None, undecided: 1, boxes: 0, open: f64::NAN };
     }
     let active = active_dims(tri);

@@ -162,10 +162,9 @@ pub fn compare(row: &super::Row, base: &BaseRow) -> Vec<String> {
     let mut out = Vec::new();
     for (k, b) in &row.bounds {
         match base.bounds.get(k) {
-            None => out.push(format!(
-                "new kind of violated bound `{k}` ({} cases, margin {:.3e})",
-                b.cases, b.max_margin
-            )),
+            None => {
+                out.push(format!("new kind of violated bound `{k}` ({} cases, margin {:.3e})", b.cases, b.max_margin))
+            }
             Some(o) if b.max_margin > o.max_margin * MARGIN_FACTOR => out.push(format!(
                 "`{k}` margin {:.3e} -> {:.3e} (more than {MARGIN_FACTOR}x)",
                 o.max_margin, b.max_margin

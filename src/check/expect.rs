@@ -68,17 +68,22 @@ pub struct Entry {
 
 impl Entry {
     pub fn conservative() -> Self {
-        Entry { expect: Expected::Conservative, why: String::new(), bounds: BTreeMap::new(), max_rate: None, unproven: None }
+        Entry {
+            expect: Expected::Conservative,
+            why: String::new(),
+            bounds: BTreeMap::new(),
+            max_rate: None,
+            unproven: None,
+        }
     }
     /// Where this row's violations leave the signature: one line per breach.
     pub fn breaches(&self, violated: &BTreeMap<String, (u64, f64)>, violations: u64, cases: u64) -> Vec<String> {
         let mut out = Vec::new();
         for (kind, &(n, m)) in violated {
             match self.bounds.get(kind) {
-                None => out.push(format!("violates `{kind}` ({n} cases, margin {m:.3e}), which the signature does not list")),
-                Some(Cap(cap)) if m > *cap => {
-                    out.push(format!("`{kind}` margin {m:.3e} above the cap {cap:.3e}"))
-                }
+                None => out
+                    .push(format!("violates `{kind}` ({n} cases, margin {m:.3e}), which the signature does not list")),
+                Some(Cap(cap)) if m > *cap => out.push(format!("`{kind}` margin {m:.3e} above the cap {cap:.3e}")),
                 Some(_) => {}
             }
         }
@@ -186,7 +191,11 @@ impl Expectations {
     /// deliberately broken variant is held to the expectations of the method it breaks.
     pub fn entry(&self, method: &str, regime: &str) -> Entry {
         let method = crate::bounds::broken::inner_id(method);
-        self.0.get(method).and_then(|m| m.get(regime).or_else(|| m.get("*"))).cloned().unwrap_or_else(Entry::conservative)
+        self.0
+            .get(method)
+            .and_then(|m| m.get(regime).or_else(|| m.get("*")))
+            .cloned()
+            .unwrap_or_else(Entry::conservative)
     }
 
     pub fn get(&self, method: &str, regime: &str) -> Expected {
@@ -219,9 +228,10 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("max_rate"), "{e}");
-        let e = load(r#"{"m": {"*": {"expect": "violation", "why": "w", "bounds": {"u min": "inf"}, "max_rate": 0.1}}}"#)
-            .unwrap_err()
-            .to_string();
+        let e =
+            load(r#"{"m": {"*": {"expect": "violation", "why": "w", "bounds": {"u min": "inf"}, "max_rate": 0.1}}}"#)
+                .unwrap_err()
+                .to_string();
         assert!(e.contains("bounds.u min") && e.contains("inf"), "{e}");
         let e = load(r#"{"m": {"*": {"expect": "violation", "bounds": {"u min": 1e-4}, "max_rate": 0.1}}}"#)
             .unwrap_err()

@@ -90,70 +90,6 @@ pub struct Judgement {
     pub limit_slack: Option<f64>,
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn bound_kinds_drop_instances() {
-        assert_eq!(bound_kind("edge 2 hyperplane"), "edge # hyperplane");
-        assert_eq!(bound_kind("wu2013 x upper line: t <= -0.5 u + 0.25"), "wu2013 x upper line");
-        assert_eq!(bound_kind("u min"), "u min");
-    }
-
-    #[test]
-    fn the_domain_is_closed_and_bounded() {
-        let t = Tile::square(2.0, 3.0, 1.0);
-        assert!(in_domain(&t, [2.0, 4.0, -1.0, 1.0, 0.0]));
-        assert!(in_domain(&t, [3.0, 3.0, 1.0, -1.0, 1.0]));
-        for k in 2..5 {
-            let mut p = [2.5, 3.5, 0.0, 0.0, 0.5];
-            p[k] = if k == 4 { 1.0 + f32::EPSILON as f64 } else { 1.0 + f32::EPSILON as f64 };
-            assert!(!in_domain(&t, p), "{p:?}");
-            p[k] = if k == 4 { -1e-30 } else { -1.0 - 1e-12 };
-            assert!(!in_domain(&t, p), "{p:?}");
-        }
-        assert!(!in_domain(&t, [1.9999999, 3.5, 0.0, 0.0, 0.5]));
-    }
-
-    #[test]
-    fn f32_candidates_stay_in_the_domain() {
-        let t = Tile::square(0.0, 0.0, 1.0);
-        // A point at the lens corner, beyond a u max of 0.5: neighbours past u = 1 or
-        // v = -1 or t = 1 would be outside the domain.
-        let c = f32_candidates([0.5, 0.5, 1.0, -1.0, 1.0], 2, 0.5, true, &t);
-        assert!(!c.is_empty());
-        assert!(c.iter().all(|s| in_domain(&t, s.to_oracle())), "{c:?}");
-        assert!(c.iter().all(|s| s.u > 0.5));
-    }
-
-    #[test]
-    fn verdicts_follow_violation_then_unproven() {
-        let mut j = Judgement::default();
-        assert_eq!(j.verdict(), Verdict::Proven);
-        j.add_unproven(Unproven::SideGap);
-        assert_eq!(j.verdict(), Verdict::Unproven);
-        assert_eq!(j.unproven(), vec![Unproven::SideGap]);
-        let mut k = Judgement::default();
-        k.violated.insert("u min".into(), 1e-3);
-        k.violation = Some(Witness {
-            case_index: 0,
-            case: crate::model::Case {
-                triangle: crate::model::Triangle::fixed([[0.0, 0.0, 0.5, 1.0], [1.0, 0.0, 0.5, 1.0], [0.0, 1.0, 0.5, 1.0]]),
-                lens: None,
-            },
-            tile: Tile::square(0.0, 0.0, 1.0),
-            sample: [0.1, 0.1, 0.0, 0.0, 0.5],
-            bound: "u min".into(),
-            margin: 1e-3,
-            embree_hit: None,
-        });
-        j.merge(k);
-        assert_eq!(j.verdict(), Verdict::Violated);
-        assert_eq!(j.violated["u min"], 1e-3);
-    }
-}
-
 impl Judgement {
     pub fn verdict(&self) -> Verdict {
         if self.violation.is_some() {
@@ -208,10 +144,7 @@ impl Judgement {
 /// kind).
 pub fn bound_kind(label: &str) -> String {
     let head = label.split(':').next().unwrap_or(label);
-    head.split_whitespace()
-        .map(|w| if w.parse::<f64>().is_ok() { "#" } else { w })
-        .collect::<Vec<_>>()
-        .join(" ")
+    head.split_whitespace().map(|w| if w.parse::<f64>().is_ok() { "#" } else { w }).collect::<Vec<_>>().join(" ")
 }
 
 /// True when the point lies in the tile and in the lens/shutter domain
@@ -345,7 +278,8 @@ impl<'a> TileJudge<'a> {
         match self.solver.occupancy() {
             Occupancy::Covered(w) => {
                 let s = f32_sample(w);
-                j.f32_witness |= in_domain(&self.tile, s.to_oracle()) && classify(self.tri, s.to_oracle()) == Coverage::Interior;
+                j.f32_witness |=
+                    in_domain(&self.tile, s.to_oracle()) && classify(self.tri, s.to_oracle()) == Coverage::Interior;
                 j.consider(self.witness(w, label.into(), f64::INFINITY))
             }
             Occupancy::Unknown => j.add_unproven(Unproven::TileUnknown),
@@ -410,7 +344,8 @@ impl<'a> TileJudge<'a> {
                     if n < 6 {
                         found.extend(cands);
                     } else {
-                        j.f32_witness |= cands.iter().any(|s| oracles::classify_depth(self.tri, s.to_oracle(), z0, z1) == want);
+                        j.f32_witness |=
+                            cands.iter().any(|s| oracles::classify_depth(self.tri, s.to_oracle(), z0, z1) == want);
                     }
                 }
                 // Proven only when nothing beyond the claim is left open.
@@ -447,5 +382,73 @@ impl<'a> TileJudge<'a> {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bound_kinds_drop_instances() {
+        assert_eq!(bound_kind("edge 2 hyperplane"), "edge # hyperplane");
+        assert_eq!(bound_kind("wu2013 x upper line: t <= -0.5 u + 0.25"), "wu2013 x upper line");
+        assert_eq!(bound_kind("u min"), "u min");
+    }
+
+    #[test]
+    fn the_domain_is_closed_and_bounded() {
+        let t = Tile::square(2.0, 3.0, 1.0);
+        assert!(in_domain(&t, [2.0, 4.0, -1.0, 1.0, 0.0]));
+        assert!(in_domain(&t, [3.0, 3.0, 1.0, -1.0, 1.0]));
+        for k in 2..5 {
+            let mut p = [2.5, 3.5, 0.0, 0.0, 0.5];
+            p[k] = 1.0 + f32::EPSILON as f64;
+            assert!(!in_domain(&t, p), "{p:?}");
+            p[k] = if k == 4 { -1e-30 } else { -1.0 - 1e-12 };
+            assert!(!in_domain(&t, p), "{p:?}");
+        }
+        assert!(!in_domain(&t, [1.9999999, 3.5, 0.0, 0.0, 0.5]));
+    }
+
+    #[test]
+    fn f32_candidates_stay_in_the_domain() {
+        let t = Tile::square(0.0, 0.0, 1.0);
+        // A point at the lens corner, beyond a u max of 0.5: neighbours past u = 1 or
+        // v = -1 or t = 1 would be outside the domain.
+        let c = f32_candidates([0.5, 0.5, 1.0, -1.0, 1.0], 2, 0.5, true, &t);
+        assert!(!c.is_empty());
+        assert!(c.iter().all(|s| in_domain(&t, s.to_oracle())), "{c:?}");
+        assert!(c.iter().all(|s| s.u > 0.5));
+    }
+
+    #[test]
+    fn verdicts_follow_violation_then_unproven() {
+        let mut j = Judgement::default();
+        assert_eq!(j.verdict(), Verdict::Proven);
+        j.add_unproven(Unproven::SideGap);
+        assert_eq!(j.verdict(), Verdict::Unproven);
+        assert_eq!(j.unproven(), vec![Unproven::SideGap]);
+        let mut k = Judgement::default();
+        k.violated.insert("u min".into(), 1e-3);
+        k.violation = Some(Witness {
+            case_index: 0,
+            case: crate::model::Case {
+                triangle: crate::model::Triangle::fixed([
+                    [0.0, 0.0, 0.5, 1.0],
+                    [1.0, 0.0, 0.5, 1.0],
+                    [0.0, 1.0, 0.5, 1.0],
+                ]),
+                lens: None,
+            },
+            tile: Tile::square(0.0, 0.0, 1.0),
+            sample: [0.1, 0.1, 0.0, 0.0, 0.5],
+            bound: "u min".into(),
+            margin: 1e-3,
+            embree_hit: None,
+        });
+        j.merge(k);
+        assert_eq!(j.verdict(), Verdict::Violated);
+        assert_eq!(j.violated["u min"], 1e-3);
     }
 }

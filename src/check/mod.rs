@@ -221,7 +221,7 @@ fn judge_case(cfg: &CheckConfig, i: u64) -> CaseResult {
     let round = i / cfg.regimes.len() as u64;
     for (mi, m) in cfg.methods.iter().enumerate() {
         let salt = method_salt(m.info().id);
-        if cfg.limit_every == 0 || (round + salt) % cfg.limit_every != 0 {
+        if cfg.limit_every == 0 || !(round + salt).is_multiple_of(cfg.limit_every) {
             continue;
         }
         let (jl, b) = judge_limit_tiles(cfg, *m, &case, i, salt);
@@ -243,7 +243,13 @@ pub fn method_salt(id: &str) -> u64 {
 /// Judge one method on the two tiles at its own tile-reject limit ([`tiles`]); `salt`
 /// picks the stream ([`method_salt`]). None when the method culls no
 /// tile near the footprint. Also returns the solver's box count.
-pub fn judge_limit_tiles(cfg: &CheckConfig, m: &dyn Method, case: &Case, i: u64, salt: u64) -> (Option<Judgement>, u64) {
+pub fn judge_limit_tiles(
+    cfg: &CheckConfig,
+    m: &dyn Method,
+    case: &Case,
+    i: u64,
+    salt: u64,
+) -> (Option<Judgement>, u64) {
     let mut rng = rng_for(cfg.seed ^ LIMIT_STREAM, i.wrapping_mul(64).wrapping_add(salt));
     let size = tile_size(cfg, &mut rng);
     let setup = |c: &Case| m.setup(&c.triangle);

@@ -172,7 +172,8 @@ impl<'a> Accumulator<'a> {
     ) {
         self.boxes += boxes;
         let ri = cfg.regimes.iter().position(|r| *r == regime).unwrap();
-        let x = self.cross.entry(ri).or_insert_with(|| CrossCheck { regime: regime.name().into(), ..Default::default() });
+        let x =
+            self.cross.entry(ri).or_insert_with(|| CrossCheck { regime: regime.name().into(), ..Default::default() });
         x.samples += cc.samples;
         x.interior += cc.interior;
         x.embree_over += cc.embree_over;

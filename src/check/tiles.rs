@@ -48,7 +48,7 @@ pub fn footprint_extreme(case: &Case, dir: Dir, rng: &mut ChaCha8Rng) -> Option<
             let p = if e == 0 { tri.q[i] } else { tri.r[i] };
             let c = if e == 0 { tri.c0[i] } else { tri.c1[i] };
             let w = p[3];
-            if !(w > 0.0) {
+            if w.is_nan() || w <= 0.0 {
                 return None;
             }
             for s in [-1.0f64, 1.0] {
@@ -167,7 +167,8 @@ pub fn limit_tiles(
             // How far the culled tile's edge lies inside the extreme, in units of the
             // edge's ulp (positive: inside).
             let ulp = (culled.abs().next_up() - culled.abs()).max(f32::MIN_POSITIVE) as f64;
-            let inside = if matches!(dir, Dir::Right | Dir::Up) { along - culled as f64 } else { culled as f64 - along };
+            let inside =
+                if matches!(dir, Dir::Right | Dir::Up) { along - culled as f64 } else { culled as f64 - along };
             let score = inside / ulp;
             if best.as_ref().is_none_or(|b| score > b.0) {
                 if let (Some(kt), Some(ct)) = (tile_at(dir, kept, across0, size), tile_at(dir, culled, across0, size)) {
