@@ -122,7 +122,11 @@
 
 use super::*;
 
-struct BBox;
+/// bbox, or bbox-safe: the same box with another corner-value setup.
+struct BBox {
+    info: &'static MethodInfo,
+    setup: fn(&Triangle) -> Option<[f32; 4]>,
+}
 
 /// The AABB of the triangle over lens and shutter, or `None` when it is unbounded.
 #[derive(Clone, Copy, Debug)]
@@ -145,8 +149,11 @@ fn extent(vals: impl Iterator<Item = f32>) -> Option<[f32; 2]> {
     Some([lo, hi])
 }
 
-/// Setup of the AABB (f32).
-fn aabb(tri: &Triangle) -> Option<[f32; 4]> {
+/// The box over every corner value: `corner(n, s, w)` encloses the corner value
+/// computed from `n = fl(a ± s)` (`a` the vertex's x or y, `s` its shear `c` or
+/// `fl(k c)`, `w` its depth) as `[lo, hi]`. None when some vertex has w <= 0 at a shutter
+/// end; an axis with a non-finite value is NaN (it never culls).
+fn aabb_with(tri: &Triangle, corner: impl Fn(f32, f32, f32) -> [f32; 2] + Copy) -> Option<[f32; 4]> {
     let ends = [(&tri.q, &tri.c0), (&tri.r, &tri.c1)];
     // Every w_i(t) > 0 on [0, 1] iff at both ends (w is linear in t); NaN counts as <= 0.
     if ends.iter().any(|(p, _)| p.iter().any(|v| v[3] <= 0.0 || v[3].is_nan())) {
@@ -155,49 +162,38 @@ fn aabb(tri: &Triangle) -> Option<[f32; 4]> {
     let corners = |axis: usize, scale: f32| {
         ends.iter().flat_map(move |(p, c)| {
             (0..3).flat_map(move |i| {
-                let sc = scale * c[i];
-                [(p[i][axis] - sc) / p[i][3], (p[i][axis] + sc) / p[i][3]]
+                let (a, w, s) = (p[i][axis], p[i][3], scale * c[i]);
+                [a - s, a + s].into_iter().flat_map(move |n| corner(n, s, w))
             })
         })
     };
     // x: u = ±1 shears by ±c; y: v = ±1 shears by ±k c.
     let (kx, ky) = (1.0f32, tri.k);
-    let x = extent(corners(0, kx));
-    let y = extent(corners(1, ky));
-    let nan = f32::NAN;
-    let [x0, x1] = x.unwrap_or([nan, nan]);
-    let [y0, y1] = y.unwrap_or([nan, nan]);
-    Some([x0, x1, y0, y1])
-}
-
-/// Setup of the outward-rounded AABB of `bbox-safe` (f32; see the module's error
-/// analysis).
-fn aabb_safe(tri: &Triangle) -> Option<[f32; 4]> {
-    let ends = [(&tri.q, &tri.c0), (&tri.r, &tri.c1)];
-    if ends.iter().any(|(p, _)| p.iter().any(|v| v[3] <= 0.0 || v[3].is_nan())) {
-        return None;
-    }
-    const PAD: f32 = 1.0 / (1u32 << 21) as f32; // 2^-21 = 8u
-    const FLOOR: f32 = 1.0 / (1u128 << 120) as f32; // 2^-120: covers the underflow of k c and n / w
-    let corners = |axis: usize, scale: f32| {
-        ends.iter().flat_map(move |(p, c)| {
-            (0..3).flat_map(move |i| {
-                let (a, w) = (p[i][axis], p[i][3]);
-                let s = scale * c[i];
-                [a - s, a + s].into_iter().flat_map(move |n| {
-                    let q = n / w;
-                    let pad = ((s.abs() + n.abs() + FLOOR) / w) * PAD;
-                    let (lo, hi) = (q - pad, q + pad);
-                    [lo.next_down().next_down().next_down().next_down(), hi.next_up().next_up().next_up().next_up()]
-                })
-            })
-        })
-    };
-    let (kx, ky) = (1.0f32, tri.k);
     let nan = f32::NAN;
     let [x0, x1] = extent(corners(0, kx)).unwrap_or([nan, nan]);
     let [y0, y1] = extent(corners(1, ky)).unwrap_or([nan, nan]);
     Some([x0, x1, y0, y1])
+}
+
+/// Setup of the AABB (f32): each corner value `fl(n / w)`.
+fn aabb(tri: &Triangle) -> Option<[f32; 4]> {
+    aabb_with(tri, |n, _, w| {
+        let q = n / w;
+        [q, q]
+    })
+}
+
+/// Setup of the outward-rounded AABB of `bbox-safe` (f32; see the module's error
+/// analysis): each corner value padded by `p` and four f32 steps.
+fn aabb_safe(tri: &Triangle) -> Option<[f32; 4]> {
+    const PAD: f32 = 1.0 / (1u32 << 21) as f32; // 2^-21 = 8u
+    const FLOOR: f32 = 1.0 / (1u128 << 120) as f32; // 2^-120: covers the underflow of k c and n / w
+    aabb_with(tri, |n, s, w| {
+        let q = n / w;
+        let pad = ((s.abs() + n.abs() + FLOOR) / w) * PAD;
+        let (lo, hi) = (q - pad, q + pad);
+        [lo.next_down().next_down().next_down().next_down(), hi.next_up().next_up().next_up().next_up()]
+    })
 }
 
 impl Prepared for Prep {
@@ -233,16 +229,14 @@ static INFO: MethodInfo = MethodInfo {
 
 impl Method for BBox {
     fn info(&self) -> &'static MethodInfo {
-        &INFO
+        self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(Prep { bx: aabb(tri) })
+        Box::new(Prep { bx: (self.setup)(tri) })
     }
 }
 
-pub static METHOD: &dyn Method = &BBox;
-
-struct BBoxSafe;
+pub static METHOD: &dyn Method = &BBox { info: &INFO, setup: aabb };
 
 static INFO_SAFE: MethodInfo = MethodInfo {
     id: "bbox-safe",
@@ -253,17 +247,8 @@ static INFO_SAFE: MethodInfo = MethodInfo {
     outputs: Outputs { tile_reject: true, lens: false, time: false, depth: false, per_sample: false },
 };
 
-impl Method for BBoxSafe {
-    fn info(&self) -> &'static MethodInfo {
-        &INFO_SAFE
-    }
-    fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(Prep { bx: aabb_safe(tri) })
-    }
-}
-
 /// `bbox-safe`: the box rounded outward (see the module's error analysis).
-pub static METHOD_SAFE: &dyn Method = &BBoxSafe;
+pub static METHOD_SAFE: &dyn Method = &BBox { info: &INFO_SAFE, setup: aabb_safe };
 
 #[cfg(test)]
 mod tests {

@@ -485,6 +485,34 @@ mod tests {
         cam.triangle(q, r)
     }
 
+    /// A random thin-lens triangle (lens radius from `min_radius` to 0.4) with every
+    /// vertex on one side of the focal plane over the shutter, rigidly translated.
+    fn one_side_translated(rng: &mut ChaCha8Rng, min_radius: f32) -> Triangle {
+        let focus = rng.gen_range(2.0f32..10.0);
+        let c = ThinLens {
+            fx: 100.0,
+            fy: rng.gen_range(80.0..140.0),
+            cx: 32.0,
+            cy: 32.0,
+            radius: rng.gen_range(min_radius..0.4),
+            focus,
+            near: 0.5,
+            far: 50.0,
+        };
+        let behind = rng.gen_bool(0.5);
+        let (zlo, zhi) = if behind { (focus * 1.05, focus * 3.0) } else { (0.8, focus * 0.95) };
+        let cen = [rng.gen_range(-1.0f32..1.0), rng.gen_range(-1.0f32..1.0)];
+        let q: [[f32; 3]; 3] = std::array::from_fn(|_| {
+            let z = rng.gen_range(zlo..zhi);
+            [cen[0] * z * 0.2 + rng.gen_range(-0.5..0.5), cen[1] * z * 0.2 + rng.gen_range(-0.5..0.5), z]
+        });
+        let mut d = [rng.gen_range(-0.6f32..0.6), rng.gen_range(-0.6f32..0.6), rng.gen_range(-0.3f32..0.3)];
+        if !q.iter().all(|p| p[2] + d[2] > zlo && p[2] + d[2] < zhi) {
+            d[2] = 0.0;
+        }
+        translated(&c, q, d)
+    }
+
     #[test]
     fn static_triangle_keeps_whole_time_range() {
         let tri = Triangle::fixed([[0.0, 0.0, 0.5, 1.0], [100.0, 0.0, 0.5, 1.0], [0.0, 100.0, 0.5, 1.0]]);
@@ -699,29 +727,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(77);
         let (mut covered, mut admitted, mut total) = (0, 0, 0);
         for _ in 0..150 {
-            let focus = rng.gen_range(2.0f32..10.0);
-            let c = ThinLens {
-                fx: 100.0,
-                fy: rng.gen_range(80.0..140.0),
-                cx: 32.0,
-                cy: 32.0,
-                radius: rng.gen_range(0.0..0.4),
-                focus,
-                near: 0.5,
-                far: 50.0,
-            };
-            let behind = rng.gen_bool(0.5);
-            let (zlo, zhi) = if behind { (focus * 1.05, focus * 3.0) } else { (0.8, focus * 0.95) };
-            let cen = [rng.gen_range(-1.0f32..1.0), rng.gen_range(-1.0f32..1.0)];
-            let q: [[f32; 3]; 3] = std::array::from_fn(|_| {
-                let z = rng.gen_range(zlo..zhi);
-                [cen[0] * z * 0.2 + rng.gen_range(-0.5..0.5), cen[1] * z * 0.2 + rng.gen_range(-0.5..0.5), z]
-            });
-            let mut d = [rng.gen_range(-0.6f32..0.6), rng.gen_range(-0.6f32..0.6), rng.gen_range(-0.3f32..0.3)];
-            if !q.iter().all(|p| p[2] + d[2] > zlo && p[2] + d[2] < zhi) {
-                d[2] = 0.0;
-            }
-            let tri = translated(&c, q, d);
+            let tri = one_side_translated(&mut rng, 0.0);
             for _ in 0..4 {
                 let size = [1.0f32, 2.0, 4.0, 0.7][rng.gen_range(0..4)];
                 let tile = tile_on(&tri, &mut rng, size);
@@ -887,29 +893,7 @@ mod tests {
         }
         // Rigidly translated, all vertices on one side of the focal plane.
         while tris.len() < 300 {
-            let focus = rng.gen_range(2.0f32..10.0);
-            let c = ThinLens {
-                fx: 100.0,
-                fy: rng.gen_range(80.0..140.0),
-                cx: 32.0,
-                cy: 32.0,
-                radius: rng.gen_range(0.02..0.4),
-                focus,
-                near: 0.5,
-                far: 50.0,
-            };
-            let behind = rng.gen_bool(0.5);
-            let (zlo, zhi) = if behind { (focus * 1.05, focus * 3.0) } else { (0.8, focus * 0.95) };
-            let cen = [rng.gen_range(-1.0f32..1.0), rng.gen_range(-1.0f32..1.0)];
-            let q: [[f32; 3]; 3] = std::array::from_fn(|_| {
-                let z = rng.gen_range(zlo..zhi);
-                [cen[0] * z * 0.2 + rng.gen_range(-0.5..0.5), cen[1] * z * 0.2 + rng.gen_range(-0.5..0.5), z]
-            });
-            let mut d = [rng.gen_range(-0.6f32..0.6), rng.gen_range(-0.6f32..0.6), rng.gen_range(-0.3f32..0.3)];
-            if !q.iter().all(|p| p[2] + d[2] > zlo && p[2] + d[2] < zhi) {
-                d[2] = 0.0;
-            }
-            let t = translated(&c, q, d);
+            let t = one_side_translated(&mut rng, 0.02);
             let cs = || t.c0.iter().chain(t.c1.iter());
             if cs().all(|&c| c > 0.0) || cs().all(|&c| c < 0.0) {
                 tris.push(t);
