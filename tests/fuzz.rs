@@ -79,7 +79,9 @@ fn install_hook() {
                 let frames: Vec<&str> = bt
                     .lines()
                     .map(str::trim)
-                    .filter(|l| l.contains("oracles::") || l.contains("cullproof::") || l.contains("/work/"))
+                    .filter(|l| {
+                        l.contains("oracles::") || l.contains("cullproof::") || l.contains(env!("CARGO_MANIFEST_DIR"))
+                    })
                     .take(16)
                     .collect();
                 CAUGHT.with(|c| *c.borrow_mut() = Some(format!("{info}\n  {}", frames.join("\n  "))));

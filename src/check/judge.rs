@@ -83,8 +83,8 @@ pub struct Judgement {
     pub f32_witness: bool,
     /// Tiles placed at this method's own tile-reject limit that were judged, and how
     /// many of them showed a violation.
-    pub adversarial_tiles: u32,
-    pub adversarial_violations: u32,
+    pub limit_tiles: u32,
+    pub limit_violations: u32,
     /// When the method's limit tiles were placed: how far its reject limit lies beyond
     /// the footprint's extreme, in tile sizes ([`super::tiles::Limit::slack`]).
     pub limit_slack: Option<f64>,
@@ -129,8 +129,8 @@ impl Judgement {
         self.unproven |= o.unproven;
         self.boundary_only |= o.boundary_only;
         self.f32_witness |= o.f32_witness;
-        self.adversarial_tiles += o.adversarial_tiles;
-        self.adversarial_violations += o.adversarial_violations;
+        self.limit_tiles += o.limit_tiles;
+        self.limit_violations += o.limit_violations;
         self.limit_slack = self.limit_slack.or(o.limit_slack);
         if self.violation.is_some() {
             self.boundary_only = false;
@@ -276,6 +276,7 @@ impl<'a> TileJudge<'a> {
     /// is certified empty.
     fn culls_everything(&mut self, j: &mut Judgement, label: &str) {
         match self.solver.occupancy() {
+            Occupancy::Covered(w) if !in_domain(&self.tile, w) => j.add_unproven(Unproven::TileUnknown),
             Occupancy::Covered(w) => {
                 let s = f32_sample(w);
                 j.f32_witness |=
@@ -333,7 +334,12 @@ impl<'a> TileJudge<'a> {
                     let want = if is_max { DepthCheck::Above } else { DepthCheck::Below };
                     let (z0, z1) = b.z.map(|z| (z[0] as f64, z[1] as f64)).unwrap_or((f64::MIN, f64::MAX));
                     let confirmed = n < 6 || oracles::classify_depth(self.tri, w, z0, z1) == want;
-                    debug_assert!(in_domain(&tile, w), "the solver searches only the tile and the domain");
+                    // The solver searches only the tile and the domain; a witness
+                    // elsewhere would prove nothing about this answer.
+                    if !in_domain(&tile, w) {
+                        j.add_unproven(Unproven::SideGap);
+                        continue;
+                    }
                     if !confirmed {
                         j.add_unproven(Unproven::DepthUnconfirmed);
                         continue;

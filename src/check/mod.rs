@@ -253,14 +253,13 @@ pub fn judge_limit_tiles(
     let mut rng = rng_for(cfg.seed ^ LIMIT_STREAM, i.wrapping_mul(64).wrapping_add(salt));
     let size = tile_size(cfg, &mut rng);
     let setup = |c: &Case| m.setup(&c.triangle);
-    let Some(tiles::Limit { case: lc, kept, culled, slack }) =
+    let Some(tiles::Limit { case: lc, prepared: p, kept, culled, slack }) =
         tiles::limit_tiles(&setup, case, &mut rng, size, cfg.limit_shifts)
     else {
         return (None, 0);
     };
     let tri = lc.triangle.to_oracle();
     let embree = embree_for(&lc);
-    let p = m.setup(&lc.triangle);
     let mut out = Judgement::default();
     out.limit_slack = Some(slack);
     let mut boxes = 0;
@@ -273,8 +272,8 @@ pub fn judge_limit_tiles(
         let mut lj = TileJudge::new(&lcfg, lc, t, i, &tri, embree.as_ref(), &uni);
         let mut jj = lj.judge(&p.tile(&t));
         boxes += lj.solver.boxes;
-        jj.adversarial_tiles = 1;
-        jj.adversarial_violations = jj.violation.is_some() as u32;
+        jj.limit_tiles = 1;
+        jj.limit_violations = jj.violation.is_some() as u32;
         out.merge(jj);
     }
     (Some(out), boxes)
@@ -368,9 +367,9 @@ pub fn run_with_baseline(
         }
     }
     let judged = results.len() as u64;
-    let mut acc = report::Accumulator::new(cfg, ex);
+    let mut acc = report::Accumulator::new(ex);
     for r in results {
-        acc.add_with(cfg, r.regime, r.judgements, &r.pass, r.boxes, r.cross);
+        acc.add(cfg, r.regime, r.judgements, &r.pass, r.boxes, r.cross);
     }
     let mut rep = acc.finish(cfg, judged, start.elapsed().as_secs_f64());
     if let Some(b) = base {

@@ -157,11 +157,11 @@ pub(crate) struct Accumulator<'a> {
 }
 
 impl<'a> Accumulator<'a> {
-    pub fn new(_cfg: &CheckConfig, ex: &'a Expectations) -> Self {
+    pub fn new(ex: &'a Expectations) -> Self {
         Accumulator { ex, rows: BTreeMap::new(), pass_sum: BTreeMap::new(), cross: BTreeMap::new(), boxes: 0 }
     }
 
-    pub fn add_with(
+    pub fn add(
         &mut self,
         cfg: &CheckConfig,
         regime: Regime,
@@ -218,8 +218,8 @@ impl<'a> Accumulator<'a> {
             }
             row.cases += 1;
             row.boundary_only += j.boundary_only as u64;
-            row.limit_tiles += j.adversarial_tiles as u64;
-            row.limit_violations += j.adversarial_violations as u64;
+            row.limit_tiles += j.limit_tiles as u64;
+            row.limit_violations += j.limit_violations as u64;
             match j.verdict() {
                 Verdict::Proven => row.proven += 1,
                 Verdict::Unproven => {

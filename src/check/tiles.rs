@@ -127,10 +127,11 @@ fn flip(p: &dyn Prepared, dir: Dir, along: f64, across0: f32, size: f32) -> Opti
 }
 
 /// The tiles at a method's tile-reject limit.
-#[derive(Clone, Copy, Debug)]
 pub struct Limit {
     /// The case, moved on screen by a fraction of a pixel.
     pub case: Case,
+    /// The method's setup of that case.
+    pub prepared: Box<dyn Prepared>,
     /// The last tile kept and the first culled: their leading edges are adjacent f32
     /// values.
     pub kept: Tile,
@@ -154,12 +155,14 @@ pub fn limit_tiles(
     shifts: usize,
 ) -> Option<Limit> {
     let mut best: Option<(f64, Case, Tile, Tile, f64)> = None;
+    let mut best_p: Option<Box<dyn Prepared>> = None;
     for k in 0..shifts.max(1) {
         let c = if k == 0 { *case } else { shifted(case, rng.gen_range(-0.5..0.5), rng.gen_range(-0.5..0.5)) };
         if c.validate().is_err() {
             continue;
         }
         let p = setup(&c);
+        let mut improved = false;
         for dir in Dir::ALL {
             let Some((along, across)) = footprint_extreme(&c, dir, rng) else { continue };
             let across0 = ((across / size as f64).floor() * size as f64) as f32;
@@ -173,11 +176,16 @@ pub fn limit_tiles(
             if best.as_ref().is_none_or(|b| score > b.0) {
                 if let (Some(kt), Some(ct)) = (tile_at(dir, kept, across0, size), tile_at(dir, culled, across0, size)) {
                     best = Some((score, c, kt, ct, -inside / size as f64));
+                    improved = true;
                 }
             }
         }
+        if improved {
+            best_p = Some(p);
+        }
     }
-    best.map(|(_, case, kept, culled, slack)| Limit { case, kept, culled, slack })
+    let (_, case, kept, culled, slack) = best?;
+    Some(Limit { case, prepared: best_p?, kept, culled, slack })
 }
 
 #[cfg(test)]
