@@ -155,7 +155,10 @@ pub fn methods(flag: &str, s: &str, broken: bool) -> Result<Vec<&'static dyn Met
         let m = bounds::by_id(id).or_else(|| if broken { bounds::broken::parse(id) } else { None });
         match m {
             Some(m) => push(m, &mut out),
-            None => bail!("{flag} {s}: `{id}` is not a method id (known ids: {}, all)", known_ids(broken)),
+            None => bail!(
+                "{flag} {s}: `{id}` is not a method id (known ids: {}, all; a plugin's id needs `--plugin LIB.so`)",
+                known_ids(broken)
+            ),
         }
     }
     Ok(out)

@@ -121,7 +121,7 @@ impl CaseFile {
         }
         if by_id(&cf.method).is_none() {
             bail!(
-                "{}: field `method` = {:?} is not a known method id (see `cullproof methods`)",
+                "{}: field `method` = {:?} is not a known method id (see `cullproof methods`; a plugin's id needs `--plugin LIB.so`)",
                 path.display(),
                 cf.method
             );

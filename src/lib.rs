@@ -18,6 +18,7 @@ pub mod csearch;
 pub mod explain;
 pub mod gen;
 pub mod model;
+pub mod plugin;
 pub mod stability;
 pub mod tightness;
 

@@ -9,6 +9,11 @@ use std::path::PathBuf;
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
+    /// Load a culling bound from a shared library (the C interface of
+    /// include/cullproof.h) and use it by its own id with --method, in every command;
+    /// repeat for several.
+    #[arg(long = "plugin", global = true, value_name = "LIB.so")]
+    plugins: Vec<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -291,6 +296,9 @@ fn main() {
 
 fn run() -> Result<()> {
     let cli = Cli::parse();
+    for p in &cli.plugins {
+        cullproof::plugin::load_and_plug(p)?;
+    }
     match cli.cmd {
         Cmd::OracleAgree { samples, seed, json, jobs } => {
             cullproof::args::count("--samples", samples, cullproof::args::AGREE_MAX_SAMPLES, "samples")?;

@@ -157,9 +157,9 @@ pub trait Method: Send + Sync {
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared>;
 }
 
-/// Every method, in the order of `docs/model.md`.
+/// Every method, in the order of `docs/model.md`, then those added with [`plug`].
 pub fn registry() -> Vec<&'static dyn Method> {
-    vec![
+    let mut v: Vec<&'static dyn Method> = vec![
         bbox::METHOD,
         bbox::METHOD_SAFE,
         la2011::METHOD,
@@ -172,7 +172,28 @@ pub fn registry() -> Vec<&'static dyn Method> {
         wu2013::METHOD,
         nilsson2012_depth::METHOD,
         gdam2010::METHOD,
-    ]
+    ];
+    v.extend(plugged());
+    v
+}
+
+/// Methods added at run time ([`plug`]), in the order they were added.
+static PLUGGED: std::sync::Mutex<Vec<&'static dyn Method>> = std::sync::Mutex::new(Vec::new());
+
+fn plugged() -> Vec<&'static dyn Method> {
+    PLUGGED.lock().unwrap_or_else(|e| e.into_inner()).clone()
+}
+
+/// Make a method known by its id to every command ([`registry`], [`by_id`], the
+/// expectations, case files): how a plugin or a process-protocol bound joins the
+/// built-in ones. An id already taken is an error.
+pub fn plug(m: &'static dyn Method) -> Result<(), String> {
+    let id = m.info().id;
+    if registry().iter().any(|x| x.info().id == id) {
+        return Err(format!("method id `{id}` is already taken (see `cullproof methods`)"));
+    }
+    PLUGGED.lock().unwrap_or_else(|e| e.into_inner()).push(m);
+    Ok(())
 }
 
 /// The method with this id.

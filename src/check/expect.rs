@@ -118,7 +118,7 @@ impl Expectations {
         let mut out = BTreeMap::new();
         for (m, regimes) in raw {
             if !known(&m) {
-                anyhow::bail!("{}: method `{m}` is not a known method id (see `cullproof methods`)", path.display());
+                anyhow::bail!("{}: method `{m}` is not a known method id (see `cullproof methods`; a plugin's id needs `--plugin LIB.so`)", path.display());
             }
             let mut rows = BTreeMap::new();
             for (r, v) in regimes {

@@ -4,7 +4,10 @@
 //! (`MethodInfo::reconstruction`) as hollow triangles; a method that culled covered
 //! samples gets a red cross over its marker and is left out of the Pareto front; the
 //! front (no other conservative method is both faster and tighter) is joined by a black
-//! line and ringed. The legend is a column of its own at the right, drawn in pixel
+//! line and ringed. A conservative variant `<id>-safe` takes the colour of its original,
+//! is drawn as a hollow square, and is joined to the original by a thin line in that
+//! colour: the segment is the price of safety (its length along x the time added, its
+//! drop in y the STE lost). The legend is a column of its own at the right, drawn in pixel
 //! coordinates (plotters' series legend would sit over the points).
 //!
 //! Drawn with `plotters` and only its SVG backend: without a font feature plotters
@@ -96,6 +99,11 @@ pub fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
     best
 }
 
+/// The published method a variant belongs to: `bbox-safe` -> `bbox`.
+pub fn base(m: &str) -> &str {
+    m.strip_suffix("-safe").unwrap_or(m)
+}
+
 /// The palette shared by the charts (method i gets colour i, cycling).
 pub fn colour(i: usize) -> RGBColor {
     const C: [(u8, u8, u8); 12] = [
@@ -125,6 +133,15 @@ pub fn svg(panels: &[(Setting, Vec<Point>)], methods: &[String], title: &str) ->
     let tri = |r: i32| vec![(0, -r), (r, r * 3 / 4), (-r, r * 3 / 4), (0, -r)];
     let recon_of =
         |m: &str| panels.iter().flat_map(|(_, v)| v.iter()).find(|p| p.method == m).map(|p| p.reconstruction);
+    // One colour per published method; its -safe variant shares it.
+    let mut bases: Vec<&str> = Vec::new();
+    for m in methods {
+        if !bases.contains(&base(m)) {
+            bases.push(base(m));
+        }
+    }
+    let colour_of = |m: &str| colour(bases.iter().position(|b| *b == base(m)).unwrap_or(0));
+    let square = |r: i32| vec![(-r, -r), (r, -r), (r, r), (-r, r), (-r, -r)];
     let mut buf = String::new();
     {
         let root = SVGBackend::with_string(&mut buf, (w, h)).into_drawing_area();
@@ -134,8 +151,8 @@ pub fn svg(panels: &[(Setting, Vec<Point>)], methods: &[String], title: &str) ->
         // The legend, drawn by hand in pixel coordinates.
         let text = ("sans-serif", 12).into_font();
         let mut y = 40;
-        for (i, m) in methods.iter().enumerate() {
-            let c = colour(i);
+        for m in &bases {
+            let c = colour_of(m);
             if recon_of(m) == Some(true) {
                 legend
                     .draw(&(EmptyElement::at((16, y)) + PathElement::new(tri(5), c.stroke_width(2))))
@@ -143,13 +160,14 @@ pub fn svg(panels: &[(Setting, Vec<Point>)], methods: &[String], title: &str) ->
             } else {
                 legend.draw(&(EmptyElement::at((16, y)) + Circle::new((0, 0), 4, c.filled()))).map_err(|e| err(&e))?;
             }
-            legend.draw(&Text::new(m.clone(), (30, y - 7), text.clone())).map_err(|e| err(&e))?;
+            legend.draw(&Text::new(m.to_string(), (30, y - 7), text.clone())).map_err(|e| err(&e))?;
             y += 20;
         }
         y += 10;
-        let notes: [(&str, u8); 4] = [
+        let notes: [(&str, u8); 5] = [
             ("filled circle: published method", 0),
             ("hollow triangle: reconstruction", 1),
+            ("hollow square: its -safe variant", 4),
             ("ring + black line: Pareto front", 2),
             ("red cross: culled covered samples", 3),
         ];
@@ -159,6 +177,7 @@ pub fn svg(panels: &[(Setting, Vec<Point>)], methods: &[String], title: &str) ->
                 0 => legend.draw(&(at + Circle::new((0, 0), 4, BLACK.filled()))),
                 1 => legend.draw(&(at + PathElement::new(tri(5), BLACK.stroke_width(2)))),
                 2 => legend.draw(&(at + Circle::new((0, 0), 8, BLACK.stroke_width(1)))),
+                4 => legend.draw(&(at + PathElement::new(square(4), BLACK.stroke_width(2)))),
                 _ => legend.draw(&(at + Cross::new((0, 0), 5, RED.stroke_width(2)))),
             }
             .map_err(|e| err(&e))?;
@@ -199,10 +218,23 @@ pub fn svg(panels: &[(Setting, Vec<Point>)], methods: &[String], title: &str) ->
                     .draw_series(std::iter::once(Circle::new((pts[i].cost, pts[i].ste), 9, BLACK.stroke_width(1))))
                     .map_err(|e| err(&e))?;
             }
+            // Each -safe variant joined to its original.
+            for p in pts.iter().filter(|p| base(&p.method) != p.method) {
+                if let Some(q) = pts.iter().find(|q| q.method == base(&p.method)) {
+                    let line = [(q.cost, q.ste), (p.cost, p.ste)];
+                    chart
+                        .draw_series(LineSeries::new(line, colour_of(&p.method).stroke_width(1)))
+                        .map_err(|e| err(&e))?;
+                }
+            }
             for p in pts {
-                let c = colour(methods.iter().position(|m| *m == p.method).unwrap_or(0));
+                let c = colour_of(&p.method);
                 let xy = (p.cost, p.ste);
-                if p.reconstruction {
+                if base(&p.method) != p.method {
+                    chart.draw_series(std::iter::once(
+                        EmptyElement::at(xy) + PathElement::new(square(5), c.stroke_width(2)),
+                    ))
+                } else if p.reconstruction {
                     chart.draw_series(std::iter::once(
                         EmptyElement::at(xy) + PathElement::new(tri(6), c.stroke_width(2)),
                     ))
@@ -256,5 +288,21 @@ mod tests {
         for t in ["test chart", "blur", "bbox", "recon", "STE (%)"] {
             assert!(s.contains(t), "missing {t}");
         }
+    }
+
+    #[test]
+    fn a_safe_variant_shares_its_colour_and_is_joined_to_it() {
+        assert_eq!(base("bbox-safe"), "bbox");
+        assert_eq!(base("mam2012-hyperplane-ps"), "mam2012-hyperplane-ps");
+        let pts = vec![p("bbox", 1.0, 5.0, 0), p("bbox-safe", 1.2, 4.9, 0), p("other", 2.0, 9.0, 0)];
+        let names: Vec<String> = ["bbox", "bbox-safe", "other"].iter().map(|s| s.to_string()).collect();
+        let joined = svg(&[(Setting::Blur, pts.clone())], &names, "t").unwrap();
+        let alone = svg(&[(Setting::Blur, pts[..1].iter().chain(&pts[2..]).cloned().collect())], &names, "t").unwrap();
+        // The pair adds one line and one square in bbox's colour; the legend names bbox once.
+        let c = colour(0);
+        let stroke = format!("stroke=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        assert!(joined.matches(&stroke).count() >= alone.matches(&stroke).count() + 2, "{joined}");
+        assert_eq!(joined.matches("\nbbox\n").count(), 1, "{joined}");
+        assert_eq!(joined.matches("\nbbox-safe\n").count(), 0, "{joined}");
     }
 }

@@ -414,10 +414,84 @@ pub fn render(r: &TightnessReport, md: bool) -> String {
             }
         }
     }
+    s += &price_of_safety(r, &cols, md);
     for n in &r.notes {
         s += &format!("\nnote: {n}");
     }
     s += &format!("\n\nwall time {:.1} s on {} thread(s)\n", r.seconds, r.threads);
+    s
+}
+
+/// The price of safety: for every method run with its `-safe` variant, the STE the
+/// variant loses (points and share of the original's STE) per setting and tile size,
+/// and the time it adds where both were timed. Empty when no pair was run.
+fn price_of_safety(r: &TightnessReport, cols: &[(Setting, u32)], md: bool) -> String {
+    let mut pairs: Vec<(&str, &str)> = Vec::new();
+    for row in &r.rows {
+        if let Some(base) = row.method.strip_suffix("-safe") {
+            if r.rows.iter().any(|x| x.method == base) && !pairs.iter().any(|p| p.1 == row.method) {
+                pairs.push((base, row.method.as_str()));
+            }
+        }
+    }
+    if pairs.is_empty() {
+        return String::new();
+    }
+    let ste = |m: &str, st: Setting, t: u32| {
+        r.rows.iter().find(|x| x.method == m && x.setting == st && x.tile == t).and_then(|x| x.ste)
+    };
+    let time = |m: &str, st: Setting| r.timing.iter().find(|x| x.method == m && x.setting == st).map(|x| x.seconds);
+    let settings: Vec<Setting> = r.settings.iter().map(|x| x.setting).collect();
+    let mut s = format!(
+        "\n{}The price of safety: STE lost by each -safe variant, points (share of the original's STE), per \
+         setting:tile size; time added where timed\n\n",
+        if md { "## " } else { "" }
+    );
+    let mut hdr: Vec<String> = vec!["method".into()];
+    hdr.extend(cols.iter().map(|(st, t)| format!("{}:{t}", st.name())));
+    hdr.extend(
+        settings
+            .iter()
+            .filter(|&&st| pairs.iter().any(|p| time(p.0, st).is_some()))
+            .map(|st| format!("time {}", st.name())),
+    );
+    let fmt_row = |cells: &[String]| -> String {
+        if md {
+            format!("| {} |\n", cells.join(" | "))
+        } else {
+            let mut l = format!("{:<26}", cells[0]);
+            for c in &cells[1..] {
+                l += &format!(" {c:>16}");
+            }
+            l + "\n"
+        }
+    };
+    s += &fmt_row(&hdr);
+    if md {
+        s += &format!("|---|{}\n", "---:|".repeat(hdr.len() - 1));
+    }
+    for (base, safe) in pairs {
+        let mut cells = vec![safe.to_string()];
+        for &(st, t) in cols {
+            cells.push(match (ste(base, st, t), ste(safe, st, t)) {
+                (Some(a), Some(b)) if a > 0.0 => {
+                    format!("{:.3} ({:.1}%)", 100.0 * (a - b), 100.0 * (a - b) / a)
+                }
+                _ => "-".into(),
+            });
+        }
+        for &st in &settings {
+            if let (Some(a), Some(b)) = (time(base, st), time(safe, st)) {
+                cells.push(format!("{:+.1}%", 100.0 * (b - a) / a));
+            } else if hdr.iter().any(|h| *h == format!("time {}", st.name())) {
+                cells.push("-".into());
+            }
+        }
+        s += &fmt_row(&cells);
+    }
+    s += "A negative loss means the variant let through fewer samples (it is tighter there, e.g. because the \
+          original answered with full bounds where the variant applies a correction). Time: the rasterizer pass's \
+          wall time, one thread; differences of a few percent are within its noise.\n";
     s
 }
 
