@@ -15,6 +15,7 @@ pub mod bounds;
 pub mod check;
 pub mod corpus;
 pub mod csearch;
+pub mod exec;
 pub mod explain;
 pub mod gen;
 pub mod model;

@@ -14,6 +14,15 @@ struct Cli {
     /// repeat for several.
     #[arg(long = "plugin", global = true, value_name = "LIB.so")]
     plugins: Vec<PathBuf>,
+    /// Run a culling bound in another process (started with `sh -c COMMAND`, one per
+    /// worker thread) that answers the JSON-lines protocol of docs/protocol.md, and use
+    /// it by the id it announces with --method, in every command; repeat for several.
+    #[arg(long = "exec", global = true, value_name = "COMMAND")]
+    execs: Vec<String>,
+    /// Seconds a process started by --exec may take for one answer before the run
+    /// stops with an error naming the request.
+    #[arg(long, global = true, default_value_t = 30.0, value_name = "SECONDS")]
+    exec_timeout: f64,
 }
 
 #[derive(Subcommand)]
@@ -296,8 +305,26 @@ fn main() {
 
 fn run() -> Result<()> {
     let cli = Cli::parse();
+    // A bound in another process that fails (an error answer, a crash, silence) stops
+    // the run from whichever worker saw it: say so as an error, without a backtrace.
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let p = info.payload();
+        let msg = p.downcast_ref::<String>().map(String::as_str).or_else(|| p.downcast_ref::<&str>().copied());
+        if let Some(m) = msg.filter(|m| m.starts_with("exec bound ")) {
+            eprintln!("error: {m}");
+            std::process::exit(2);
+        }
+        default_hook(info)
+    }));
     for p in &cli.plugins {
         cullproof::plugin::load_and_plug(p)?;
+    }
+    if !cli.execs.is_empty() {
+        cullproof::args::time("--exec-timeout", cli.exec_timeout, 86400.0)?;
+    }
+    for c in &cli.execs {
+        cullproof::exec::start_and_plug(c, std::time::Duration::from_secs_f64(cli.exec_timeout))?;
     }
     match cli.cmd {
         Cmd::OracleAgree { samples, seed, json, jobs } => {
