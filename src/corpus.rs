@@ -8,7 +8,7 @@
 //! re-decided exactly (it must still be interior and still culled), and the method is
 //! judged afresh on the case.
 
-use crate::bounds::{by_id, Method, TileResult};
+use crate::bounds::{by_id, Method, MethodRef, TileResult};
 use crate::check::{culled_by, judge, make_case, CheckConfig, Judgement};
 use crate::gen::Regime;
 use crate::model::{Case, Tile};
@@ -241,7 +241,7 @@ pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
     let m = by_id(&cf.method).expect("checked at load");
     let witness = cf.witness.as_ref().map(|w| witness_holds(m, &cf.case, &cf.tile, w.sample));
     let cfg = CheckConfig { side_stall: 0, ..cfg.clone() };
-    let (js, _) = judge(&cfg, &[m], &cf.case, &cf.tile, cf.provenance.case_index);
+    let (js, _) = judge(&cfg, &[crate::bounds::shared(m)], &cf.case, &cf.tile, cf.provenance.case_index);
     let j = &js[0];
     let judged = judged_word(j);
     let ok = match cf.expected {
@@ -391,7 +391,7 @@ fn steps(case: &Case, tile: &Tile, witness: [f64; 5]) -> Vec<Step> {
 /// last case, tile and judgement, and the steps kept.
 pub fn shrink(
     cfg: &CheckConfig,
-    m: &'static dyn Method,
+    m: &MethodRef,
     case: Case,
     tile: Tile,
     first: Judgement,
@@ -406,7 +406,7 @@ pub fn shrink(
             if c.validate().is_err() {
                 continue;
             }
-            let (js, _) = judge(cfg, &[m], &c, &t, index);
+            let (js, _) = judge(cfg, std::slice::from_ref(m), &c, &t, index);
             if js[0].violation.as_ref().is_some_and(|v| v.margin >= floor) {
                 (case, tile, j) = (c, t, js[0].clone());
                 kept.push(name.to_string());
@@ -448,7 +448,7 @@ pub struct SearchReport {
 /// shrunk and written to `out` (never overwriting).
 pub fn search(
     cfg: &CheckConfig,
-    m: &'static dyn Method,
+    m: MethodRef,
     seconds: f64,
     max_found: usize,
     min_margin: f64,
@@ -469,12 +469,12 @@ pub fn search(
             .par_iter()
             .map(|&i| {
                 let (regime, case, tile) = make_case(cfg, i);
-                let (js, _) = judge(cfg, &[m], &case, &tile, i);
+                let (js, _) = judge(cfg, std::slice::from_ref(&m), &case, &tile, i);
                 let j = js.into_iter().next().unwrap();
                 // Also the tiles at the method's own tile-reject limit (the witness
                 // then carries the case, moved on screen, and the tile).
                 if j.violation.as_ref().is_none_or(|v| v.margin < min_margin) {
-                    if let (Some(l), _) = crate::check::judge_limit_tiles(cfg, m, &case, i, 0) {
+                    if let (Some(l), _) = crate::check::judge_limit_tiles(cfg, m.as_ref(), &case, i, 0) {
                         if l.violation.as_ref().is_some_and(|v| v.margin >= min_margin) {
                             let w = l.violation.as_ref().unwrap();
                             return (i, regime, w.case, w.tile, l);
@@ -495,7 +495,7 @@ pub fn search(
             if !seen.insert(key) {
                 continue;
             }
-            let (c, t, j, steps) = shrink(cfg, m, case, tile, j, i);
+            let (c, t, j, steps) = shrink(cfg, &m, case, tile, j, i);
             let w = j.violation.clone().unwrap();
             let cf = CaseFile {
                 format: FORMAT.into(),

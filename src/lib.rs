@@ -1,27 +1,79 @@
 //! cullproof: proves or breaks the conservativeness of culling bounds for stochastic
-//! rasterization (simultaneous motion blur and depth of field).
+//! rasterization (simultaneous motion blur and depth of field: every sample has five
+//! coordinates x, y, u, v, t).
 //!
-//! - [`model`]: the one model of `docs/model.md` (triangle, camera, tile, sample).
-//! - [`bounds`]: the culling tests under test, one file per published method.
-//! - [`agree`]: the agreement run of the exact oracle against Embree.
-//! - [`tightness`]: sample test efficiency (STE) per method, tile size and scene.
-//! - [`stability`]: one parameter swept towards a method's singularity (violations, NaN/inf, STE).
+//! # Gate your own bound
+//! Implement [`Method`] (the per-triangle setup) and [`Prepared`] (the tile test: a
+//! [`TileResult`] of intervals u^, v^, t^, an optional depth interval and optional
+//! per-sample constraints), then run the [`Gate`] on it, for instance in your own
+//! `cargo test`:
 //!
-//! The ground truth lives in the separate `oracles` crate, which never imports this one.
+//! ```
+//! use cullproof::{Gate, MethodVerdict};
+//! # let my_bound = cullproof::bounds::by_id("bbox-safe").unwrap();
+//! let report = Gate::new().method(my_bound).cases(160).seed(1).run();
+//! let mine = &report.methods[0];
+//! assert_eq!(mine.verdict, MethodVerdict::Proven, "{}", report.render());
+//! assert!(report.passed());
+//! ```
+//!
+//! A violation comes back as a [`Counterexample`]: the case, the tile and a covered
+//! sample confirmed in exact arithmetic, with the [`Bound`] it breaks. The example
+//! `examples/own_bound.rs` is a whole bound gated end to end; `include/cullproof.h`
+//! and `--plugin` take a bound written in C, `--exec` (docs/protocol.md) one in any
+//! language.
+//!
+//! # The contract
+//! A test may cull a sample only if the triangle cannot cover it; `docs/model.md` gives
+//! the camera, the clip space, the coverage rule and the contract, and [`bounds`] its
+//! Rust form. Bounds compute in f32 as hardware would; the judge is exact (outward
+//! rounded intervals, then exact dyadic arithmetic) and lives in the separate `oracles`
+//! crate, which never imports this one.
+//!
+//! # Modules
+//! - [`bounds`]: the contract and the published methods (one file each), with their
+//!   conservative `-safe` variants.
+//! - [`model`]: triangle, camera, tile, sample, case.
+//! - [`gate`]: the builder above and its typed report.
+//!
+//! The other modules serve the `cullproof` command line (the gate's judge, search,
+//! corpus, tightness, stability, plugins and the process protocol); they are public for
+//! the command and the tests, and not part of the library's stable surface.
 
-pub mod agree;
-pub mod args;
 pub mod bounds;
-pub mod check;
-pub mod corpus;
-pub mod csearch;
-pub mod exec;
-pub mod explain;
-pub mod gen;
+pub mod gate;
 pub mod model;
+
+#[doc(hidden)]
+pub mod agree;
+#[doc(hidden)]
+pub mod args;
+#[doc(hidden)]
+pub mod check;
+#[doc(hidden)]
+pub mod corpus;
+#[doc(hidden)]
+pub mod csearch;
+#[doc(hidden)]
+pub mod exec;
+#[doc(hidden)]
+pub mod explain;
+#[doc(hidden)]
+pub mod gen;
+#[doc(hidden)]
 pub mod plugin;
+#[doc(hidden)]
 pub mod stability;
+#[doc(hidden)]
 pub mod tightness;
+
+pub use bounds::{
+    Method, MethodInfo, MethodRef, Outputs, Prepared, SampleBox, SampleConstraint, TileBounds, TileResult,
+};
+pub use check::Expectations;
+pub use gate::{Bound, Counterexample, Gate, GateReport, MethodReport, MethodVerdict, Unproven};
+pub use gen::Regime;
+pub use model::{Case, Dims, Sample, Tile, Triangle};
 
 /// Outward-rounded interval arithmetic (the same small type the oracles use: it is
 /// plain arithmetic, not a coverage decision, so sharing it puts no verdict on both

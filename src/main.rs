@@ -424,8 +424,15 @@ fn run() -> Result<()> {
             set_jobs(jobs)?;
             cfg.seed = seed;
             cfg.tile = tile;
-            let r =
-                cullproof::corpus::search(&cfg, m, time, max, min_margin, (!dry_run).then_some(out.as_path()), true)?;
+            let r = cullproof::corpus::search(
+                &cfg,
+                cullproof::bounds::shared(m),
+                time,
+                max,
+                min_margin,
+                (!dry_run).then_some(out.as_path()),
+                true,
+            )?;
             println!(
                 "search {}: seed {}, {} cases in {:.1} s, {} violation(s)",
                 r.method,

@@ -155,7 +155,7 @@ fn a_dropped_lens_padding_term_is_caught_within_a_few_cases() {
     assert!(r.rows[0].violations > 0 && r.failed(), "{}", render(&r));
     // And bbox-safe passes the same cases, every one proven.
     let mut ok = cfg.clone();
-    ok.methods = vec![cullproof::bounds::by_id("bbox-safe").unwrap()];
+    ok.methods = cullproof::bounds::shared_all([cullproof::bounds::by_id("bbox-safe").unwrap()]);
     let r = run(&ok, &Expectations::default(), false);
     assert_eq!((r.rows[0].violations, r.rows[0].proven), (0, 8), "{}", render(&r));
 }
@@ -176,7 +176,7 @@ fn the_baseline_catches_a_looser_and_a_worse_method() {
     assert!(again.rows.iter().all(|x| x.status != Status::Regression), "{}", render(&again));
     for (slip, what) in [("loose", "looser"), ("shrink-rel", "")] {
         let b = cullproof::bounds::broken::parse(&format!("broken/{slip}/la2011")).unwrap();
-        let c = CheckConfig { methods: vec![b], ..cfg.clone() };
+        let c = CheckConfig { methods: cullproof::bounds::shared_all([b]), ..cfg.clone() };
         let r = run_with_baseline(&c, &ex, Some(&file), false);
         let reg: Vec<_> = r.rows.iter().filter(|x| x.status == Status::Regression || x.status.fails()).collect();
         assert!(!reg.is_empty(), "{slip}: not seen against the baseline\n{}", render(&r));

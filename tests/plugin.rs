@@ -121,7 +121,8 @@ fn the_broken_c_bound_is_caught_shrunk_and_replayed() {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plugin-cases");
     let _ = std::fs::remove_dir_all(&out);
     let cfg = CheckConfig::default_with(vec![broken]);
-    let s = cullproof::corpus::search(&cfg, broken, 30.0, 1, 0.0, Some(&out), false).unwrap();
+    let s =
+        cullproof::corpus::search(&cfg, cullproof::bounds::shared(broken), 30.0, 1, 0.0, Some(&out), false).unwrap();
     assert_eq!(s.found.len(), 1, "{s:?}");
     let file = PathBuf::from(s.found[0].file.as_ref().expect("a case file was written"));
     assert!(file.starts_with(out.join("c-bbox-broken")), "{}", file.display());

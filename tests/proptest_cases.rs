@@ -23,7 +23,7 @@ fn case_and_tile(regime: Regime) -> impl Strategy<Value = (Case, Tile)> {
 
 fn violates(m: &'static dyn Method, case: &Case, tile: &Tile) -> bool {
     let cfg = CheckConfig::default_with(vec![m]);
-    judge(&cfg, &[m], case, tile, 0).0[0].violation.is_some()
+    judge(&cfg, &cfg.methods, case, tile, 0).0[0].violation.is_some()
 }
 
 #[test]

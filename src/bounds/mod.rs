@@ -25,6 +25,8 @@ pub mod mam2012;
 pub mod mam2012_hyperplane;
 pub mod mam2012_new;
 pub mod nilsson2012_depth;
+mod shared;
+pub use shared::{shared, shared_all, MethodRef};
 #[cfg(test)]
 pub(crate) mod testkit;
 pub mod wu2013;

@@ -30,7 +30,7 @@ pub use judge::{bound_kind, culled_by, in_domain, Judgement, Unproven, Verdict};
 pub use report::{render, CheckReport, CrossCheck, Row, Status};
 
 use crate::agree::lens_tri;
-use crate::bounds::{Method, TileResult};
+use crate::bounds::{Method, MethodRef, TileResult};
 use crate::gen::{physical_case, rng_for, samples_for, tile_sample, Regime};
 use crate::model::{Case, Sample, Tile};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -46,7 +46,7 @@ use serde::Serialize;
 /// Settings of a run.
 #[derive(Clone)]
 pub struct CheckConfig {
-    pub methods: Vec<&'static dyn Method>,
+    pub methods: Vec<MethodRef>,
     pub regimes: Vec<Regime>,
     pub cases: u64,
     /// Run whole batches of cases for about this many seconds instead of `cases`.
@@ -87,8 +87,14 @@ pub struct CheckConfig {
 }
 
 impl CheckConfig {
-    /// The balanced default: every method and regime, about a minute on 2 cores.
+    /// The balanced default for these registry methods: every regime, about a minute
+    /// on 2 cores with every method.
     pub fn default_with(methods: Vec<&'static dyn Method>) -> Self {
+        Self::default_for(crate::bounds::shared_all(methods))
+    }
+
+    /// The balanced default for any methods (a user's own bounds among them).
+    pub fn default_for(methods: Vec<MethodRef>) -> Self {
         CheckConfig {
             methods,
             regimes: Regime::ALL.to_vec(),
@@ -224,7 +230,7 @@ fn judge_case(cfg: &CheckConfig, i: u64) -> CaseResult {
         if cfg.limit_every == 0 || !(round + salt).is_multiple_of(cfg.limit_every) {
             continue;
         }
-        let (jl, b) = judge_limit_tiles(cfg, *m, &case, i, salt);
+        let (jl, b) = judge_limit_tiles(cfg, m.as_ref(), &case, i, salt);
         boxes += b;
         if let Some(jl) = jl {
             judgements[mi].merge(jl);
@@ -301,13 +307,7 @@ fn cross_check(case: &Case, embree: Option<&oracles::embree::EmbreeOracle>, unif
 
 /// Judge `methods` on one case and tile (no limit tiles); `i` seeds the uniform samples
 /// (and is recorded in witnesses). Returns the judgements and the solver's box count.
-pub fn judge(
-    cfg: &CheckConfig,
-    methods: &[&'static dyn Method],
-    case: &Case,
-    tile: &Tile,
-    i: u64,
-) -> (Vec<Judgement>, u64) {
+pub fn judge(cfg: &CheckConfig, methods: &[MethodRef], case: &Case, tile: &Tile, i: u64) -> (Vec<Judgement>, u64) {
     let embree = embree_for(case);
     let uniform = uniform_samples(cfg, tile, UNIFORM_STREAM, i, cfg.samples);
     let tri = case.triangle.to_oracle();

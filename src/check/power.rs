@@ -116,11 +116,11 @@ pub fn run(
             let id = format!("broken/{kind}/{}", m.info().id);
             pb.set_message(id.clone());
             let Some(slip) = broken::parse(&id) else { continue };
-            let n = changed(cfg, *m, slip);
+            let n = changed(cfg, m.as_ref(), slip);
             let (killed, by) = if n == 0 {
                 (false, Vec::new())
             } else {
-                let c = CheckConfig { methods: vec![slip], ..cfg.clone() };
+                let c = CheckConfig { methods: vec![crate::bounds::shared(slip)], ..cfg.clone() };
                 let r = run_with_baseline(&c, ex, base, false);
                 let by: Vec<String> = r
                     .rows

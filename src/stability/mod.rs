@@ -247,7 +247,7 @@ fn eval_case(cfg: &Config, ccfg: &CheckConfig, family: Family, step: usize, para
     let index = step as u64 * 1_000_000 + c;
     let mut rng = rng_for(seed, index);
     let b = family.build(param, &mut rng, c, cfg.tile);
-    let (js, _) = check::judge(ccfg, &cfg.methods, &b.case, &b.tile, index);
+    let (js, _) = check::judge(ccfg, &ccfg.methods, &b.case, &b.tile, index);
     let mut srng = rng_for(seed ^ STE_SALT, index);
     let samples: Vec<Sample> = (0..cfg.samples).map(|_| tile_sample(&mut srng, &b.tile)).collect();
     let tri = b.case.triangle;

@@ -1,0 +1,376 @@
+//! The gate as a library: run it on your own bound inside your own `cargo test`.
+//!
+//! ```no_run
+//! use cullproof::{Gate, Method};
+//! # fn my_bound() -> &'static dyn Method { cullproof::bounds::by_id("bbox-safe").unwrap() }
+//! let report = Gate::new().method(my_bound()).cases(960).seed(1).run();
+//! assert!(report.passed(), "{}", report.render());
+//! ```
+//!
+//! [`Gate`] collects the settings (methods, cases, seed, regimes, tile size, budgets,
+//! expectations, baseline) and runs the same judge as `cullproof check`; [`GateReport`]
+//! answers per method with typed values: a [`MethodVerdict`], counts of proven /
+//! violated / unproven cases with [`Unproven`] reasons, and [`Counterexample`]s whose
+//! sample, case and tile can be replayed.
+
+use crate::bounds::{Method, MethodRef};
+use crate::check::baseline::BaselineFile;
+use crate::check::{self, CheckConfig, CheckReport, Expectations};
+use crate::gen::Regime;
+use crate::model::{Case, Sample, Tile};
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The settings of a gate run (a builder; every setting has the default of
+/// `cullproof check`).
+#[derive(Clone)]
+pub struct Gate {
+    cfg: CheckConfig,
+    expectations: Expectations,
+    baseline: Option<BaselineFile>,
+}
+
+impl Default for Gate {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Gate {
+    /// No method yet; 9,600 cases of every regime, seed 1, every method expected
+    /// conservative, no baseline.
+    pub fn new() -> Self {
+        Gate { cfg: CheckConfig::default_for(Vec::new()), expectations: Expectations::default(), baseline: None }
+    }
+    /// Add a method: your own bound (any value implementing [`Method`]), or a built-in
+    /// one (`cullproof::bounds::by_id("bbox")`).
+    pub fn method(mut self, m: impl Method + 'static) -> Self {
+        self.cfg.methods.push(Arc::new(m));
+        self
+    }
+    /// Add a method already held as a [`MethodRef`].
+    pub fn method_ref(mut self, m: MethodRef) -> Self {
+        self.cfg.methods.push(m);
+        self
+    }
+    /// Number of cases, spread over the regimes in turn.
+    pub fn cases(mut self, n: u64) -> Self {
+        self.cfg.cases = n;
+        self
+    }
+    /// Seed of the case streams (a run is the same for a seed at any thread count).
+    pub fn seed(mut self, s: u64) -> Self {
+        self.cfg.seed = s;
+        self
+    }
+    /// Only these regimes.
+    pub fn regimes(mut self, r: &[Regime]) -> Self {
+        self.cfg.regimes = r.to_vec();
+        self
+    }
+    /// A fixed tile size in pixels (default: drawn from 1, 2, 4, 8, 16 per case).
+    pub fn tile(mut self, px: f32) -> Self {
+        self.cfg.tile = Some(px);
+        self
+    }
+    /// Boxes per interval side and per constraint search (larger: fewer unproven cases,
+    /// slower).
+    pub fn budgets(mut self, side: usize, constraint: usize) -> Self {
+        self.cfg.side_budget = side;
+        self.cfg.constraint_budget = constraint;
+        self
+    }
+    /// Judge each method on the tiles at its own tile-reject limit in one case of this
+    /// many (0: never).
+    pub fn limit_every(mut self, n: u64) -> Self {
+        self.cfg.limit_every = n;
+        self
+    }
+    /// What each method x regime is expected to show (default: conservative).
+    pub fn expectations(mut self, e: Expectations) -> Self {
+        self.expectations = e;
+        self
+    }
+    /// Expectations from a file (the format of `corpus/expectations.json`; ids must be
+    /// known: built-in, or added to this gate before the call).
+    pub fn expectations_file(mut self, path: &Path) -> anyhow::Result<Self> {
+        let ids: Vec<String> = self.cfg.methods.iter().map(|m| m.info().id.to_string()).collect();
+        let known = |id: &str| crate::bounds::by_id(id).is_some() || ids.iter().any(|x| x == id);
+        self.expectations = Expectations::load_with(path, &known)?;
+        Ok(self)
+    }
+    /// Compare with a stored baseline (the format of `corpus/baseline.json`).
+    pub fn baseline_file(mut self, path: &Path) -> anyhow::Result<Self> {
+        self.baseline = Some(BaselineFile::load(path)?);
+        Ok(self)
+    }
+    /// The settings as `cullproof check` holds them.
+    pub fn config(&self) -> &CheckConfig {
+        &self.cfg
+    }
+    /// Run it (all cores; no progress bar).
+    pub fn run(&self) -> GateReport {
+        let raw = check::run_with_baseline(&self.cfg, &self.expectations, self.baseline.as_ref(), false);
+        GateReport::from_check(raw)
+    }
+}
+
+/// A method's verdict over the run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MethodVerdict {
+    /// Every case proven: every claim certified, no gap left.
+    Proven,
+    /// At least one case violated: a covered sample, confirmed exactly, that it culls.
+    Violated,
+    /// No violation, but some cases neither proven nor violated.
+    Unproven,
+}
+
+/// Why a case is unproven.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Unproven {
+    /// A side search stopped with boxes beyond the claimed bound still open.
+    SideGap,
+    /// A culled tile whose occupancy was not settled.
+    TileUnknown,
+    /// A depth violation candidate not confirmed.
+    DepthUnconfirmed,
+    /// A per-sample constraint search ran out of its budget.
+    ConstraintBudget,
+    /// A per-sample constraint search left boxes at its smallest size.
+    ConstraintResolution,
+    /// A reason this version does not name.
+    Other(String),
+}
+
+impl Unproven {
+    fn parse(s: &str) -> Self {
+        match s {
+            "side-gap" => Unproven::SideGap,
+            "tile-unknown" => Unproven::TileUnknown,
+            "depth-unconfirmed" => Unproven::DepthUnconfirmed,
+            "constraint-budget" => Unproven::ConstraintBudget,
+            "constraint-resolution" => Unproven::ConstraintResolution,
+            o => Unproven::Other(o.to_string()),
+        }
+    }
+}
+
+/// Which part of an answer a counterexample violates.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Bound {
+    UMin,
+    UMax,
+    VMin,
+    VMax,
+    TMin,
+    TMax,
+    ZMin,
+    ZMax,
+    /// The tile was culled although it holds a covered sample.
+    TileCulled,
+    /// An interval end was NaN (judged as culling everything).
+    NanEnd,
+    /// A per-sample constraint, by its name.
+    Constraint(String),
+}
+
+impl Bound {
+    fn parse(s: &str) -> Self {
+        match s {
+            "u min" => Bound::UMin,
+            "u max" => Bound::UMax,
+            "v min" => Bound::VMin,
+            "v max" => Bound::VMax,
+            "t min" => Bound::TMin,
+            "t max" => Bound::TMax,
+            "z min" => Bound::ZMin,
+            "z max" => Bound::ZMax,
+            "tile culled" => Bound::TileCulled,
+            "NaN interval end" => Bound::NanEnd,
+            o => Bound::Constraint(o.to_string()),
+        }
+    }
+}
+
+/// A violation: a covered sample, confirmed in exact arithmetic, that the answer culls.
+#[derive(Clone, Debug)]
+pub struct Counterexample {
+    pub regime: Regime,
+    pub case_index: u64,
+    pub case: Case,
+    pub tile: Tile,
+    /// The covered sample (x, y, u, v, t), exactly as the oracle decided it.
+    pub sample: [f64; 5],
+    pub bound: Bound,
+    /// How far the bound would have to move to admit it (infinite for a culled tile).
+    pub margin: f64,
+}
+
+impl Counterexample {
+    /// The sample rounded to f32 (what hardware would hold; it may then fall on the
+    /// other side of the bound when the witness lies between f32 values).
+    pub fn f32_sample(&self) -> Sample {
+        let p = self.sample;
+        Sample::new(p[0] as f32, p[1] as f32, p[2] as f32, p[3] as f32, p[4] as f32)
+    }
+}
+
+/// One method over the run.
+#[derive(Clone, Debug)]
+pub struct MethodReport {
+    pub id: String,
+    pub cases: u64,
+    pub proven: u64,
+    pub violated: u64,
+    pub unproven: u64,
+    /// Unproven cases by reason (a case may have several).
+    pub unproven_by: BTreeMap<Unproven, u64>,
+    pub verdict: MethodVerdict,
+    /// False when some row of this method fails its expectation (or the baseline).
+    pub passed: bool,
+    /// The worst counterexample of each regime with one.
+    pub counterexamples: Vec<Counterexample>,
+}
+
+/// The typed result of a run, with the full report of `cullproof check` under it.
+#[derive(Clone, Debug)]
+pub struct GateReport {
+    pub methods: Vec<MethodReport>,
+    pub raw: CheckReport,
+}
+
+impl GateReport {
+    fn from_check(raw: CheckReport) -> Self {
+        let mut methods: Vec<MethodReport> = Vec::new();
+        for r in &raw.rows {
+            let i = match methods.iter().position(|m| m.id == r.method) {
+                Some(i) => i,
+                None => {
+                    methods.push(MethodReport {
+                        id: r.method.clone(),
+                        cases: 0,
+                        proven: 0,
+                        violated: 0,
+                        unproven: 0,
+                        unproven_by: BTreeMap::new(),
+                        verdict: MethodVerdict::Proven,
+                        passed: true,
+                        counterexamples: Vec::new(),
+                    });
+                    methods.len() - 1
+                }
+            };
+            let m = &mut methods[i];
+            m.cases += r.cases;
+            m.proven += r.proven;
+            m.violated += r.violations;
+            m.unproven += r.unproven;
+            for (k, n) in &r.unproven_by {
+                *m.unproven_by.entry(Unproven::parse(k)).or_insert(0) += n;
+            }
+            m.passed &= !r.status.fails();
+            if let (Some(w), Some(regime)) = (&r.worst, Regime::ALL.iter().find(|x| x.name() == r.regime)) {
+                m.counterexamples.push(Counterexample {
+                    regime: *regime,
+                    case_index: w.case_index,
+                    case: w.case,
+                    tile: w.tile,
+                    sample: w.sample,
+                    bound: Bound::parse(&crate::check::bound_kind(&w.bound)),
+                    margin: w.margin,
+                });
+            }
+        }
+        for m in &mut methods {
+            m.verdict = if m.violated > 0 {
+                MethodVerdict::Violated
+            } else if m.unproven > 0 {
+                MethodVerdict::Unproven
+            } else {
+                MethodVerdict::Proven
+            };
+        }
+        GateReport { methods, raw }
+    }
+    /// True when every row meets its expectation (and the baseline, when given).
+    pub fn passed(&self) -> bool {
+        !self.raw.failed()
+    }
+    /// The report of one method.
+    pub fn method(&self, id: &str) -> Option<&MethodReport> {
+        self.methods.iter().find(|m| m.id == id)
+    }
+    /// The table `cullproof check` prints.
+    pub fn render(&self) -> String {
+        crate::check::render(&self.raw)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bounds::{by_id, MethodInfo, Prepared, TileResult};
+    use crate::model::Triangle;
+
+    /// A user's bound in a test: culls every tile (so it is violated wherever the
+    /// triangle covers the tile).
+    struct CullAll;
+    static INFO: MethodInfo = MethodInfo {
+        id: "cull-all",
+        source: "a test bound",
+        reconstruction: false,
+        dims: &[],
+        outputs: crate::bounds::Outputs {
+            tile_reject: true,
+            lens: false,
+            time: false,
+            depth: false,
+            per_sample: false,
+        },
+    };
+    struct Nothing;
+    impl Prepared for Nothing {
+        fn tile(&self, _: &Tile) -> TileResult {
+            TileResult::Empty
+        }
+    }
+    impl Method for CullAll {
+        fn info(&self) -> &'static MethodInfo {
+            &INFO
+        }
+        fn setup(&self, _: &Triangle) -> Box<dyn Prepared> {
+            Box::new(Nothing)
+        }
+    }
+
+    #[test]
+    fn a_users_bound_and_a_built_in_one_get_typed_verdicts() {
+        let r = Gate::new()
+            .method(CullAll)
+            .method(by_id("bbox-safe").unwrap())
+            .cases(64)
+            .regimes(&[Regime::Static, Regime::Both])
+            .run();
+        assert!(!r.passed());
+        let bad = r.method("cull-all").unwrap();
+        assert_eq!(bad.verdict, MethodVerdict::Violated);
+        assert!(bad.violated > 0 && !bad.passed);
+        let cx = &bad.counterexamples[0];
+        assert_eq!(cx.bound, Bound::TileCulled);
+        assert!(crate::check::in_domain(&cx.tile, cx.sample));
+        let good = r.method("bbox-safe").unwrap();
+        assert_eq!((good.verdict, good.proven, good.cases), (MethodVerdict::Proven, 64, 64));
+        assert!(good.passed && good.counterexamples.is_empty());
+        assert!(r.render().contains("cull-all"));
+    }
+
+    #[test]
+    fn bound_and_reason_names_map_to_their_variants() {
+        assert_eq!(Bound::parse("t max"), Bound::TMax);
+        assert_eq!(Bound::parse("edge # hyperplane"), Bound::Constraint("edge # hyperplane".into()));
+        assert_eq!(Unproven::parse("side-gap"), Unproven::SideGap);
+        assert_eq!(Unproven::parse("new"), Unproven::Other("new".into()));
+    }
+}
