@@ -32,7 +32,7 @@ impl Method for WideBox {
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
         let ends = [(&tri.q, &tri.c0), (&tri.r, &tri.c1)];
-        if ends.iter().any(|(p, _)| p.iter().any(|v| !(v[3] > 0.0))) {
+        if ends.iter().any(|(p, _)| p.iter().any(|v| v[3] <= 0.0 || v[3].is_nan())) {
             return Box::new(Prep(None));
         }
         let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
