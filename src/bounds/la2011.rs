@@ -114,8 +114,144 @@
 //! No division by a quantity that can be 0: `L0 - L1 > 0` where it is used, and `theta`
 //! is only formed when `c` has a strict sign. Zero-area or coincident vertices need no
 //! special case.
+//!
+//! # `la2011-safe`: the same bounds in f32 interval arithmetic
+//! `la2011` above is the reconstruction computed in f32 rounded to nearest and stays as
+//! it is: the gate finds covered samples just outside its `t` and `u`/`v` ends (margins
+//! ~1e-7..3e-5), far from the origin (1e4..1e6 px) `fl(X w)` and `fl(x - X w)` lose up to
+//! 1/16 px so its bounds miss by up to 1e-2 and a covered tile can be culled outright,
+//! and its f32 tile reject culls covered tiles at the limit. All three are rounding:
+//! the derivation above holds in real arithmetic for every sign of w (lemma, clipless
+//! columns, concave `F` above its chord, monotone `theta` between shears of one strict
+//! sign), so **no correction beyond rounding is needed**. `la2011-safe` runs the same
+//! algorithm (`Axis::bounds` is generic over the arithmetic `R`; `la2011` is
+//! `R = Nearest`, bit for bit the code it was) in **f32 interval arithmetic**
+//! (`R = Outward`): every quantity is an interval `[lo, hi]` of f32 values that encloses
+//! its exact value for the f32 inputs, every rounded operation is followed by one
+//! `next_down` (a lower end) or `next_up` (an upper end).
+//!
+//! *Why a step encloses.* Rust's f32 operations are IEEE round-to-nearest, without FMA
+//! contraction. If `r = fl(z)` for a real `z`, then `next_down(r) <= z <= next_up(r)`:
+//! for finite `r`, z lies within half the gap between r and its neighbour on z's side
+//! (in the subnormal range the gaps are a uniform 2^-149, so underflow is covered; at a
+//! power of two the gap towards zero is the smaller one, and z is within half of it);
+//! `r = ±0` means `|z| <= 2^-150 < 2^-149`; `r = +inf` means `z > f32::MAX =
+//! next_down(inf)` (round to nearest overflows only beyond MAX + ulp/2), and the same
+//! for -inf. This holds with no assumption on magnitudes, which is why steps are used
+//! rather than a `gamma_n` bound: `d = x - X w` cancels (far from the origin both terms
+//! are ~1e6 and the result ~1), the thresholds divide by shears that can be tiny, and a
+//! relative bound would need its own absolute underflow terms at each of those steps.
+//! A step costs one ulp per operation (the error bound of nearest rounding is half).
+//!
+//! *The quantities* (exact inputs: the f32 vertex values, `c0`, `c1`, `k`, tile edges):
+//! - shear `s = k c` (y; `s = c` for x): `[dn(fl(k c)), up(fl(k c))]`, or `fl(k c)`
+//!   alone when it is exact (a factor 0 or ±1). Its sign class is `Pos` only when the
+//!   lower ends are > 0 at both shutter ends, `Neg` when the upper ends are < 0, `Zero`
+//!   only when `s` is exactly 0 (a zero factor), else `Cross` (full lens for that
+//!   vertex, as in `la2011`): a `k c` that underflows to 0 is `Cross`, not `Zero`.
+//! - `X w`: the same; `d = p - X w` is `[dn(fl(p - Xw_hi)), up(fl(p - Xw_lo))]`.
+//! - time: `m = dn(fl(d_lo - a))`, `mm = up(fl(d_hi + a))` with `a = max(|s_lo|,
+//!   |s_hi|) >= |s|`; their min / max (exact) give `F_lo(e) <= F(e)` and
+//!   `G_hi(e) >= G(e)`. The chord through `F_lo(0)`, `F_lo(1)` lies below the exact
+//!   chord, hence below `F`, so the `t` where it is > 0 hold no covered sample (and the
+//!   same for G above); the tile is Empty when `F_lo(0) > 0` and `F_lo(1) > 0` (or the
+//!   G side), comparisons of f32 values being exact.
+//! - the crossing `t* = l0 / (l0 - l1)` of that chord, `l0`, `l1` f32: the denominator
+//!   is rounded up, `D = up(fl(l0 - l1))`. If `l0 > 0 >= l1`, `t*` is the lower end of
+//!   the kept range and `D >= l0 - l1 > 0` makes `l0 / D <= t*`, so `dn(fl(l0 / D))` is
+//!   below it; if `l0 <= 0 < l1`, `t*` is the upper end and `l0 - l1 <= D <= 0`
+//!   makes `|l0| / |D| >= t*`, so `up(fl(l0 / D))` is above it (`D = -0` gives inf or
+//!   NaN: the end stays at 1). Clamping to [0, 1] is exact.
+//! - thresholds `theta = -d / s` at each shutter end: for `Pos` the largest value over
+//!   the enclosures, at `n = -d_lo` divided by `s_lo` if `n >= 0` (by `s_hi` if not),
+//!   rounded up; for `Neg` the smallest, at the same `n` divided by `s_hi` if `n >= 0`
+//!   (by `s_lo` if not), rounded down. `theta` is monotone in t between the ends (exact
+//!   argument above), so these enclose its extreme over the shutter. `Zero`: the set is
+//!   everything when some `d_lo < 0`.
+//! - hulls, intersections and the clamp to [-1, 1]: min / max of f32 values, exact.
+//!
+//! *Non-finite values.* A non-finite input (any component of `q`, `r`, `c0`, `c1`, `k`,
+//! or a tile edge) gives every tile the full domain, never Empty. A non-finite
+//! intermediate (overflow, or NaN from inf / inf) gives the full `t` range for that
+//! axis (time part) or the full lens for that vertex and column (a threshold or a `d`
+//! of a `Zero` shear); `la2011` does this for NaN only. No division by w happens
+//! anywhere, so w near 0 (or crossing 0) needs no case of its own; a shear whose
+//! enclosure touches 0 (the focal plane: CoC crossing or reaching 0) is `Cross`.
+//!
+//! *Cost.* Per operation one step more, two subtractions for `d` (one per end), two
+//! comparisons to pick the divisor of `theta`. The intervals are a few ulps wider than
+//! `la2011`'s values: near the origin no STE figure can see it; at 1e6 px the enclosure
+//! of `X w` is ~1/8 px wide, so `t` bounds widen by ~1/8 px over the motion and `u`/`v`
+//! bounds by ~1/8 px over the CoC (tiny CoCs there lose their lens bounds entirely:
+//! that is the precision f32 has at 1e6 px, not a choice).
 
 use super::*;
+use std::marker::PhantomData;
+
+/// An f32 interval `[lo, hi]`; in `la2011` both ends are the one rounded value.
+type Iv = [f32; 2];
+
+/// How a value rounded to nearest becomes a bound: `la2011` keeps it as it is (the
+/// published arithmetic), `la2011-safe` steps it one f32 value outward.
+trait Round: 'static {
+    /// A value `<=` the exact result that `x` is the rounding (to nearest) of.
+    fn dn(x: f32) -> f32;
+    /// A value `>=` it.
+    fn up(x: f32) -> f32;
+    /// A computed value that must not be used (the quantity falls back to its full range).
+    fn bad(x: f32) -> bool;
+    /// Non-finite input (triangle or tile) gives the full domain before any arithmetic.
+    const GUARD: bool;
+}
+
+/// `la2011`: round to nearest, no steps; only NaN falls back.
+struct Nearest;
+
+impl Round for Nearest {
+    fn dn(x: f32) -> f32 {
+        x
+    }
+    fn up(x: f32) -> f32 {
+        x
+    }
+    fn bad(x: f32) -> bool {
+        x.is_nan()
+    }
+    const GUARD: bool = false;
+}
+
+/// `la2011-safe`: f32 interval arithmetic (one step outward after each rounded
+/// operation); any non-finite value falls back.
+struct Outward;
+
+impl Round for Outward {
+    fn dn(x: f32) -> f32 {
+        x.next_down()
+    }
+    fn up(x: f32) -> f32 {
+        x.next_up()
+    }
+    fn bad(x: f32) -> bool {
+        !x.is_finite()
+    }
+    const GUARD: bool = true;
+}
+
+/// Encloses the exact product `a b` of two f32 values: `fl(a b)` stepped outward, or
+/// `fl(a b)` itself when it is exact (a factor 0 or ±1).
+fn mul<R: Round>(a: f32, b: f32) -> Iv {
+    let p = a * b;
+    if a == 0.0 || b == 0.0 || a.abs() == 1.0 || b.abs() == 1.0 {
+        [p, p]
+    } else {
+        [R::dn(p), R::up(p)]
+    }
+}
+
+/// `-[lo, hi] = [-hi, -lo]` (exact).
+fn neg(a: Iv) -> Iv {
+    [-a[1], -a[0]]
+}
 
 /// Sign class of a per-vertex lens shear over the shutter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -131,12 +267,14 @@ enum Class {
 }
 
 impl Class {
-    fn of(s0: f32, s1: f32) -> Class {
-        if s0 > 0.0 && s1 > 0.0 {
+    /// The class of a shear whose end values lie in `s0`, `s1`: a strict sign only
+    /// when the whole enclosure has it, Zero only when it is exactly 0.
+    fn of(s0: Iv, s1: Iv) -> Class {
+        if s0[0] > 0.0 && s1[0] > 0.0 {
             Class::Pos
-        } else if s0 < 0.0 && s1 < 0.0 {
+        } else if s0[1] < 0.0 && s1[1] < 0.0 {
             Class::Neg
-        } else if s0 == 0.0 && s1 == 0.0 {
+        } else if s0[0] == 0.0 && s0[1] == 0.0 && s1[0] == 0.0 && s1[1] == 0.0 {
             Class::Zero
         } else {
             Class::Cross
@@ -158,40 +296,44 @@ struct Axis {
     p: [[f32; 3]; 2],
     /// w.
     w: [[f32; 3]; 2],
-    /// Lens shear per unit lens coordinate: `c` for x, `k c` for y.
-    s: [[f32; 3]; 2],
+    /// Lens shear per unit lens coordinate: `c` for x, `k c` for y (an enclosure).
+    s: [[Iv; 3]; 2],
     class: [Class; 3],
 }
 
 impl Axis {
-    fn new(tri: &Triangle, axis: usize, scale: f32) -> Axis {
+    fn new<R: Round>(tri: &Triangle, axis: usize, scale: f32) -> Axis {
         let p = [tri.q.map(|v| v[axis]), tri.r.map(|v| v[axis])];
         let w = [tri.q.map(|v| v[3]), tri.r.map(|v| v[3])];
-        let s = [tri.c0.map(|c| scale * c), tri.c1.map(|c| scale * c)];
+        let s = [tri.c0.map(|c| mul::<R>(scale, c)), tri.c1.map(|c| mul::<R>(scale, c))];
         let class = [0, 1, 2].map(|i| Class::of(s[0][i], s[1][i]));
         Axis { p, w, s, class }
     }
 
-    /// `d = p - X w` for end e, vertex i.
-    fn d(&self, e: usize, i: usize, x: f32) -> f32 {
-        self.p[e][i] - x * self.w[e][i]
+    /// Encloses `d = p - X w` for end e, vertex i.
+    fn d<R: Round>(&self, e: usize, i: usize, x: f32) -> Iv {
+        let p = self.p[e][i];
+        let xw = mul::<R>(x, self.w[e][i]);
+        [R::dn(p - xw[1]), R::up(p - xw[0])]
     }
 
     /// Time range and lens range for the tile columns `[lo, hi]` of this axis, or
     /// None when the axis proves the tile empty.
-    fn bounds(&self, lo: f32, hi: f32) -> Option<([f32; 2], [f32; 2])> {
+    fn bounds<R: Round>(&self, lo: f32, hi: f32) -> Option<(Iv, Iv)> {
         let cols = [lo, hi];
-        // --- time: F(e) = min (d - |s|), G(e) = max (d + |s|) over i and both columns.
+        // --- time: F(e) = min (d - |s|), G(e) = max (d + |s|) over i and both columns
+        // (a lower bound of F, an upper bound of G).
         let mut f = [f32::INFINITY; 2];
         let mut g = [f32::NEG_INFINITY; 2];
         let mut nan = false;
         for e in 0..2 {
             for i in 0..3 {
-                let a = self.s[e][i].abs();
+                let s = self.s[e][i];
+                let a = s[0].abs().max(s[1].abs());
                 for &x in &cols {
-                    let d = self.d(e, i, x);
-                    let (m, mm) = (d - a, d + a);
-                    nan |= m.is_nan() || mm.is_nan();
+                    let d = self.d::<R>(e, i, x);
+                    let (m, mm) = (R::dn(d[0] - a), R::up(d[1] + a));
+                    nan |= R::bad(m) || R::bad(mm);
                     f[e] = f[e].min(m);
                     g[e] = g[e].max(mm);
                 }
@@ -200,17 +342,17 @@ impl Axis {
         let t = if nan {
             [0.0, 1.0]
         } else {
-            let tf = chord_nonpos(f[0], f[1])?;
-            let tg = chord_nonpos(-g[0], -g[1])?;
+            let tf = chord::<R>(f[0], f[1])?;
+            let tg = chord::<R>(-g[0], -g[1])?;
             [tf[0].max(tg[0]), tf[1].min(tg[1])]
         };
         if t[0] > t[1] {
             return None;
         }
         // --- lens: hull of condition (a) "some d + u s < 0", and (b) "some d + u s > 0".
-        let mut ha: Option<[f32; 2]> = None;
-        let mut hb: Option<[f32; 2]> = None;
-        let join = |h: &mut Option<[f32; 2]>, r: Option<[f32; 2]>| {
+        let mut ha: Option<Iv> = None;
+        let mut hb: Option<Iv> = None;
+        let join = |h: &mut Option<Iv>, r: Option<Iv>| {
             if let Some(r) = r {
                 *h = Some(match *h {
                     None => r,
@@ -221,9 +363,9 @@ impl Axis {
         for i in 0..3 {
             let s = [self.s[0][i], self.s[1][i]];
             for &x in &cols {
-                let d = [self.d(0, i, x), self.d(1, i, x)];
-                join(&mut ha, neg_hull(d, s, self.class[i]));
-                join(&mut hb, neg_hull([-d[0], -d[1]], [-s[0], -s[1]], self.class[i].flip()));
+                let d = [self.d::<R>(0, i, x), self.d::<R>(1, i, x)];
+                join(&mut ha, neg_hull::<R>(d, s, self.class[i]));
+                join(&mut hb, neg_hull::<R>(d.map(neg), s.map(neg), self.class[i].flip()));
             }
         }
         let (ha, hb) = (ha?, hb?);
@@ -238,8 +380,16 @@ impl Axis {
 /// The t in [0, 1] where the chord `(1-t) l0 + t l1` is <= 0 (the rest is culled);
 /// None when the chord is > 0 on all of [0, 1].
 pub(crate) fn chord_nonpos(l0: f32, l1: f32) -> Option<[f32; 2]> {
-    let cross = || {
-        let t = l0 / (l0 - l1);
+    chord::<Nearest>(l0, l1)
+}
+
+/// [`chord_nonpos`] with the crossing `t* = l0 / (l0 - l1)` rounded by `R` towards the
+/// kept side: down where it is the lower end (`l0 > 0 >= l1`), up where it is the upper
+/// end (`l0 <= 0 < l1`); the denominator is rounded up in both cases (see the module's
+/// `la2011-safe` analysis).
+fn chord<R: Round>(l0: f32, l1: f32) -> Option<[f32; 2]> {
+    let cross = |step: fn(f32) -> f32| {
+        let t = step(l0 / R::up(l0 - l1));
         if t.is_nan() {
             None
         } else {
@@ -249,39 +399,50 @@ pub(crate) fn chord_nonpos(l0: f32, l1: f32) -> Option<[f32; 2]> {
     if l0 > 0.0 && l1 > 0.0 {
         None
     } else if l0 > 0.0 {
-        Some([cross().unwrap_or(0.0), 1.0])
+        Some([cross(R::dn).unwrap_or(0.0), 1.0])
     } else if l1 > 0.0 {
-        Some([0.0, cross().unwrap_or(1.0)])
+        Some([0.0, cross(R::up).unwrap_or(1.0)])
     } else {
         Some([0.0, 1.0])
     }
 }
 
 /// Hull over t in [0, 1] of `{u real : d(t) + u s(t) < 0}`, for `d`, `s` affine in t
-/// with end values `d[e]`, `s[e]` and sign class `class` of `s`; None when empty.
+/// with end values in `d[e]`, `s[e]` and sign class `class` of `s`; None when empty.
 /// Bounds may be infinite.
-fn neg_hull(d: [f32; 2], s: [f32; 2], class: Class) -> Option<[f32; 2]> {
-    const FULL: [f32; 2] = [f32::NEG_INFINITY, f32::INFINITY];
-    let theta = |e: usize| -d[e] / s[e];
+fn neg_hull<R: Round>(d: [Iv; 2], s: [Iv; 2], class: Class) -> Option<Iv> {
+    const FULL: Iv = [f32::NEG_INFINITY, f32::INFINITY];
+    // The threshold `theta = -d / s` takes its largest value over the enclosures at the
+    // largest numerator `n = -d_lo`, over the smallest |s| if n >= 0 (the largest if
+    // n < 0) when s > 0; its smallest value at the same n, over the smallest |s| if
+    // n >= 0 (the largest if n < 0) when s < 0.
+    let top = |e: usize| {
+        let n = -d[e][0];
+        R::up(if n >= 0.0 { n / s[e][0] } else { n / s[e][1] })
+    };
+    let bottom = |e: usize| {
+        let n = -d[e][0];
+        R::dn(if n >= 0.0 { n / s[e][1] } else { n / s[e][0] })
+    };
     match class {
         Class::Pos => {
-            let (a, b) = (theta(0), theta(1));
-            if a.is_nan() || b.is_nan() {
+            let (a, b) = (top(0), top(1));
+            if R::bad(a) || R::bad(b) {
                 Some(FULL)
             } else {
                 Some([f32::NEG_INFINITY, a.max(b)])
             }
         }
         Class::Neg => {
-            let (a, b) = (theta(0), theta(1));
-            if a.is_nan() || b.is_nan() {
+            let (a, b) = (bottom(0), bottom(1));
+            if R::bad(a) || R::bad(b) {
                 Some(FULL)
             } else {
                 Some([a.min(b), f32::INFINITY])
             }
         }
         Class::Zero => {
-            if d[0] < 0.0 || d[1] < 0.0 || d[0].is_nan() || d[1].is_nan() {
+            if d[0][0] < 0.0 || d[1][0] < 0.0 || d.iter().flatten().any(|&x| R::bad(x)) {
                 Some(FULL)
             } else {
                 None
@@ -291,17 +452,23 @@ fn neg_hull(d: [f32; 2], s: [f32; 2], class: Class) -> Option<[f32; 2]> {
     }
 }
 
-struct Prep {
+struct Prep<R> {
     x: Axis,
     y: Axis,
+    /// Some input is not finite (only `la2011-safe` looks): every tile gets the full domain.
+    full: bool,
+    round: PhantomData<fn() -> R>,
 }
 
-impl Prepared for Prep {
+impl<R: Round> Prepared for Prep<R> {
     fn tile(&self, tile: &Tile) -> TileResult {
-        let Some((tx, u)) = self.x.bounds(tile.x0, tile.x1) else {
+        if R::GUARD && (self.full || ![tile.x0, tile.x1, tile.y0, tile.y1].iter().all(|v| v.is_finite())) {
+            return TileResult::Bounds(TileBounds::full());
+        }
+        let Some((tx, u)) = self.x.bounds::<R>(tile.x0, tile.x1) else {
             return TileResult::Empty;
         };
-        let Some((ty, v)) = self.y.bounds(tile.y0, tile.y1) else {
+        let Some((ty, v)) = self.y.bounds::<R>(tile.y0, tile.y1) else {
             return TileResult::Empty;
         };
         let t = [tx[0].max(ty[0]), tx[1].min(ty[1])];
@@ -312,7 +479,11 @@ impl Prepared for Prep {
     }
 }
 
-struct La2011;
+/// la2011 (`R = Nearest`) or la2011-safe (`R = Outward`): one algorithm, two arithmetics.
+struct La2011<R> {
+    info: &'static MethodInfo,
+    round: PhantomData<fn() -> R>,
+}
 
 static INFO: MethodInfo = MethodInfo {
     id: "la2011",
@@ -325,16 +496,40 @@ static INFO: MethodInfo = MethodInfo {
     outputs: Outputs { tile_reject: true, lens: true, time: true, depth: false, per_sample: false },
 };
 
-impl Method for La2011 {
+impl<R: Round> Method for La2011<R> {
     fn info(&self) -> &'static MethodInfo {
-        &INFO
+        self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(Prep { x: Axis::new(tri, 0, 1.0), y: Axis::new(tri, 1, tri.k) })
+        let finite =
+            tri.q.iter().chain(&tri.r).flatten().chain(&tri.c0).chain(&tri.c1).chain([&tri.k]).all(|v| v.is_finite());
+        Box::new(Prep::<R> {
+            x: Axis::new::<R>(tri, 0, 1.0),
+            y: Axis::new::<R>(tri, 1, tri.k),
+            full: R::GUARD && !finite,
+            round: PhantomData,
+        })
     }
 }
 
-pub static METHOD: &dyn Method = &La2011;
+pub static METHOD: &dyn Method = &La2011::<Nearest> { info: &INFO, round: PhantomData };
+
+static INFO_SAFE: MethodInfo = MethodInfo {
+    id: "la2011-safe",
+    source: "reconstruction of Laine, Aila, Karras, Lehtinen 2011, Clipless Dual-Space \
+             Bounds (LAKL11), as described in Munkberg & Akenine-Möller 2012 §1, Fig. 1, \
+             Table 3 and Wu 2013 ch. 2; formulas per docs/reconstructions.md \
+             (dual-space delta = x + u c - X w, chord time bounds, per-vertex lens thresholds); \
+             computed in f32 interval arithmetic (every rounding stepped outward, analysis \
+             in this file): conservative for every finite input",
+    reconstruction: true,
+    dims: &[Dims::Motion, Dims::Defocus, Dims::Both],
+    outputs: Outputs { tile_reject: true, lens: true, time: true, depth: false, per_sample: false },
+};
+
+/// `la2011-safe`: the same bounds in f32 interval arithmetic (see the module's
+/// `la2011-safe` analysis). `lc` and `mam2012-new` safe variants build on it.
+pub static METHOD_SAFE: &dyn Method = &La2011::<Outward> { info: &INFO_SAFE, round: PhantomData };
 
 /// The case of Munkberg & Akenine-Möller 2012, Figure 1: a small out-of-focus triangle
 /// moving across the screen, and a tile around x = 0. Shared with the other methods'
@@ -418,7 +613,9 @@ pub(crate) mod cases {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testkit::{assert_degenerate_input_is_answered, assert_spot, bounds_of, random_dual_case};
+    use super::super::testkit::{
+        assert_degenerate_input_is_answered, assert_keeps_covered, assert_spot, bounds_of, random_dual_case,
+    };
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
@@ -546,5 +743,367 @@ mod tests {
     #[test]
     fn degenerate_input_does_not_panic() {
         assert_degenerate_input_is_answered(METHOD, &figure1::triangle());
+    }
+
+    // --- la2011-safe ---
+
+    fn safe(tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
+        bounds_of(METHOD_SAFE, tri, tile)
+    }
+
+    /// `inner` lies in `outer`.
+    fn within(inner: [f32; 2], outer: [f32; 2]) -> bool {
+        outer[0] <= inner[0] && inner[1] <= outer[1]
+    }
+
+    /// Every stored case where la2011 culls a covered sample (f32 interval ends, far from
+    /// the origin at ~1e6 px where it culls a covered tile outright, the tile reject at
+    /// its limit): the witness still holds against la2011, and la2011-safe admits it and
+    /// keeps every covered sample of the tile.
+    #[test]
+    fn safe_admits_every_corpus_witness_of_la2011() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/cases/la2011");
+        let mut n = 0;
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_none_or(|e| e != "json") {
+                continue;
+            }
+            let cf = crate::corpus::CaseFile::load(&path).unwrap();
+            let Some(w) = &cf.witness else { continue };
+            let holds = crate::corpus::witness_holds(METHOD, &cf.case, &cf.tile, w.sample);
+            assert!(holds.is_ok(), "{}: la2011 no longer violates: {holds:?}", path.display());
+            let safe_holds = crate::corpus::witness_holds(METHOD_SAFE, &cf.case, &cf.tile, w.sample);
+            assert_eq!(safe_holds, Err("the method admits the witness".into()), "{}", path.display());
+            let p = METHOD_SAFE.setup(&cf.case.triangle);
+            assert_keeps_covered(p.as_ref(), &cf.case.triangle, &cf.tile, (2000, 300), 500 + n, "la2011-safe");
+            n += 1;
+        }
+        assert!(n >= 8, "only {n} witnesses");
+        // The far-from-origin case (static, in focus, ~1e6 px): la2011 culls the tile.
+        let far = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/cases/la2011/a07b6967125ee645.json");
+        let cf = crate::corpus::CaseFile::load(&far).unwrap();
+        assert!(bounds(&cf.case.triangle, &cf.tile).is_none());
+        assert!(safe(&cf.case.triangle, &cf.tile).is_some());
+    }
+
+    /// The real-arithmetic algorithm of this file evaluated in f64, on the exact shears
+    /// `s[e][i]` (a product of two f32 values is exact in f64; every other f64 operation
+    /// is correctly rounded, 2^-29 of an f32 step, so the reference sits far inside the
+    /// one-step margins of la2011-safe unless it is exact).
+    fn reference(ax: &Axis, s: [[f64; 3]; 2], lo: f32, hi: f32) -> Option<([f64; 2], [f64; 2])> {
+        let d = |e: usize, i: usize, x: f32| ax.p[e][i] as f64 - x as f64 * ax.w[e][i] as f64;
+        let (mut f, mut g) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for (e, se) in s.iter().enumerate() {
+            for (i, si) in se.iter().enumerate() {
+                for x in [lo, hi] {
+                    f[e] = f[e].min(d(e, i, x) - si.abs());
+                    g[e] = g[e].max(d(e, i, x) + si.abs());
+                }
+            }
+        }
+        let chord = |l0: f64, l1: f64| -> Option<[f64; 2]> {
+            let t = || (l0 / (l0 - l1)).clamp(0.0, 1.0);
+            if l0 > 0.0 && l1 > 0.0 {
+                None
+            } else if l0 > 0.0 {
+                Some([t(), 1.0])
+            } else if l1 > 0.0 {
+                Some([0.0, t()])
+            } else {
+                Some([0.0, 1.0])
+            }
+        };
+        let (tf, tg) = (chord(f[0], f[1])?, chord(-g[0], -g[1])?);
+        let t = [tf[0].max(tg[0]), tf[1].min(tg[1])];
+        if t[0] > t[1] {
+            return None;
+        }
+        // {u : d + u s < 0} over the shutter, per (i, X), for d, s at both ends.
+        let hull = |d: [f64; 2], s: [f64; 2]| -> Option<[f64; 2]> {
+            let th = |e: usize| -d[e] / s[e];
+            if s[0] > 0.0 && s[1] > 0.0 {
+                Some([f64::NEG_INFINITY, th(0).max(th(1))])
+            } else if s[0] < 0.0 && s[1] < 0.0 {
+                Some([th(0).min(th(1)), f64::INFINITY])
+            } else if s[0] == 0.0 && s[1] == 0.0 {
+                (d[0] < 0.0 || d[1] < 0.0).then_some([f64::NEG_INFINITY, f64::INFINITY])
+            } else {
+                Some([f64::NEG_INFINITY, f64::INFINITY])
+            }
+        };
+        let (mut ha, mut hb) = (None::<[f64; 2]>, None::<[f64; 2]>);
+        let join = |h: &mut Option<[f64; 2]>, r: Option<[f64; 2]>| {
+            if let Some(r) = r {
+                *h = Some(h.map_or(r, |h| [h[0].min(r[0]), h[1].max(r[1])]));
+            }
+        };
+        for (i, ss) in (0..3).map(|i| (i, [s[0][i], s[1][i]])) {
+            for x in [lo, hi] {
+                let dd = [d(0, i, x), d(1, i, x)];
+                join(&mut ha, hull(dd, ss));
+                join(&mut hb, hull([-dd[0], -dd[1]], [-ss[0], -ss[1]]));
+            }
+        }
+        let (ha, hb) = (ha?, hb?);
+        let lens = [ha[0].max(hb[0]).max(-1.0), ha[1].min(hb[1]).min(1.0)];
+        (lens[0] <= lens[1]).then_some((t, lens))
+    }
+
+    /// The f32 interval evaluation encloses the real-arithmetic answer for random axes of
+    /// every scale (subnormal to 1e30 coordinates and shears, w of either sign, exactly
+    /// 0, tiny or huge, shears crossing or touching 0, tile columns up to 1e6 px): it
+    /// culls only when the reference does, and its t and lens ranges hold the
+    /// reference's.
+    #[test]
+    fn safe_encloses_the_real_arithmetic_answer() {
+        let mut rng = ChaCha8Rng::seed_from_u64(0x1a2011);
+        let mut both_cut = 0;
+        for n in 0..60_000 {
+            let scale = [1e-40f32, 1e-20, 1e-3, 1.0, 30.0, 1e3, 1e6, 1e15, 1e30][n % 9];
+            let val = |rng: &mut ChaCha8Rng| -> f32 {
+                match rng.gen_range(0..10) {
+                    0 => 0.0,
+                    1 => scale * rng.gen_range(-1..=1) as f32,
+                    _ => rng.gen_range(-1.0f32..1.0) * scale,
+                }
+            };
+            let mut tri = figure1::triangle();
+            for p in tri.q.iter_mut().chain(tri.r.iter_mut()) {
+                p[0] = val(&mut rng);
+                p[1] = val(&mut rng);
+                p[3] = match rng.gen_range(0..6) {
+                    0 => 0.0,
+                    1 => rng.gen_range(-1e-6f32..1e-6),
+                    2 => rng.gen_range(-3.0f32..3.0),
+                    _ => rng.gen_range(0.01f32..4.0) * 10f32.powi(rng.gen_range(-3..4)),
+                };
+            }
+            for c in tri.c0.iter_mut().chain(tri.c1.iter_mut()) {
+                *c = val(&mut rng);
+            }
+            tri.k = [1.0f32, 0.7, 1.3, 1e-3][n % 4];
+            let at = rng.gen_range(-1.0f32..1.0) * [0.0f32, 1.0, 1e2, 1e4, 1e6][n % 5];
+            let size = [1e-3f32, 1.0, 4.0, 16.0][n % 4];
+            let (lo, hi) = (at, at + size);
+            for (axis, k) in [(0usize, 1.0f32), (1, tri.k)] {
+                let ax = Axis::new::<Outward>(&tri, axis, k);
+                let s = [tri.c0.map(|c| k as f64 * c as f64), tri.c1.map(|c| k as f64 * c as f64)];
+                let got = ax.bounds::<Outward>(lo, hi);
+                let want = reference(&ax, s, lo, hi);
+                match (got, want) {
+                    (None, Some(w)) => panic!("axis {axis} [{lo}, {hi}] culled, exact {w:?}: {tri:?}"),
+                    (Some((t, u)), Some((wt, wu))) => {
+                        let (t, u) = (t.map(|x| x as f64), u.map(|x| x as f64));
+                        assert!(
+                            t[0] <= wt[0] && wt[1] <= t[1],
+                            "axis {axis} t {t:?} exact {wt:?}: {tri:?} [{lo}, {hi}]"
+                        );
+                        assert!(
+                            u[0] <= wu[0] && wu[1] <= u[1],
+                            "axis {axis} lens {u:?} exact {wu:?}: {tri:?} [{lo}, {hi}]"
+                        );
+                        both_cut += (t != [0.0, 1.0] || u != [-1.0, 1.0]) as usize;
+                    }
+                    (None, None) => both_cut += 1,
+                    (Some(_), None) => {}
+                }
+            }
+        }
+        assert!(both_cut > 20_000, "the safe bounds hardly cut: {both_cut}");
+    }
+
+    /// la2011-safe's answer holds la2011's (each of its values encloses the one rounded
+    /// to nearest), so it culls a tile only where la2011 does; and it stays close:
+    /// nearly every tile la2011 culls is culled, and its intervals are barely wider.
+    #[test]
+    fn safe_contains_la2011_and_stays_close() {
+        let mut rng = ChaCha8Rng::seed_from_u64(4242);
+        let (mut culls, mut safe_culls, mut extra) = (0, 0, 0.0f64);
+        let mut tris: Vec<(Triangle, Tile)> = (0..3000).map(|n| random_dual_case(&mut rng, n)).collect();
+        for tri in cases::hard_triangles() {
+            for tx in -6..6 {
+                for ty in -6..6 {
+                    tris.push((tri, Tile::square(tx as f32 * 5.0, ty as f32 * 5.0, 5.0)));
+                }
+            }
+        }
+        for (tri, tile) in &tris {
+            match (bounds(tri, tile), safe(tri, tile)) {
+                (Some(o), Some(s)) => {
+                    assert!(within(o.u, s.u) && within(o.v, s.v) && within(o.t, s.t), "{o:?} not in {s:?}");
+                    extra += [(o.u, s.u), (o.v, s.v), (o.t, s.t)]
+                        .iter()
+                        .map(|(a, b)| ((b[1] - b[0]) - (a[1] - a[0])) as f64)
+                        .sum::<f64>();
+                }
+                (Some(o), None) => panic!("la2011-safe culls where la2011 keeps {o:?}: {tri:?} {tile:?}"),
+                (None, s) => {
+                    culls += 1;
+                    safe_culls += s.is_none() as usize;
+                }
+            }
+        }
+        eprintln!("la2011 culls {culls}, la2011-safe {safe_culls}; mean extra width {}", extra / tris.len() as f64);
+        assert!(culls > 200 && safe_culls * 100 >= culls * 99, "culls {culls} vs safe {safe_culls}");
+        assert!(extra / (tris.len() as f64) < 1e-4, "mean extra width {}", extra / tris.len() as f64);
+    }
+
+    /// Moves a triangle on screen by `(dx, dy)` px (in clip space: `x += dx w`) and
+    /// scales its screen size and CoC by `f`.
+    fn moved(tri: &Triangle, dx: f32, dy: f32, f: f32) -> Triangle {
+        let mut t = *tri;
+        for p in t.q.iter_mut().chain(t.r.iter_mut()) {
+            p[0] = p[0] * f + dx * p[3];
+            p[1] = p[1] * f + dy * p[3];
+        }
+        t.c0 = t.c0.map(|c| c * f);
+        t.c1 = t.c1.map(|c| c * f);
+        t
+    }
+
+    /// Uniform and near-miss samples (every covered one must be kept) on the hard
+    /// triangles moved far from the origin (1e4 .. 1e6 px), shrunk to 1e-3 (tiny),
+    /// grown 1e4-fold (huge), with a vertex at w ~ 0 or crossing it, and with CoCs
+    /// crossing and touching 0 (the focal plane), on a grid of tiles around each
+    /// projected vertex.
+    #[test]
+    fn safe_keeps_covered_samples_at_every_scale() {
+        let mut family: Vec<(&str, Triangle, f32)> = Vec::new();
+        let mut hard = cases::hard_triangles();
+        hard.push(figure1::triangle());
+        for (n, tri) in hard.iter().enumerate() {
+            family.push(("plain", *tri, 1.0));
+            for (dx, dy) in [(1.0e4f32, -3.0e4f32), (2.5e5, 1.0e5), (-1.0e6, 7.0e5)] {
+                family.push(("far from origin", moved(tri, dx, dy, 1.0), 1.0));
+            }
+            family.push(("tiny", moved(tri, 0.0, 0.0, 1e-3), 1e-3));
+            family.push(("huge", moved(tri, 0.0, 0.0, 1e4), 1e4));
+            let mut w0 = *tri;
+            w0.q[n % 3][3] = 1e-7;
+            w0.r[n % 3][3] = -1e-7;
+            family.push(("w crossing 0", w0, 1.0));
+            let mut w1 = *tri;
+            w1.r[(n + 1) % 3][3] = 1e-30;
+            family.push(("w near 0", w1, 1.0));
+            let mut focal = *tri;
+            focal.c0 = [2.0, -1.5, 0.0];
+            focal.c1 = [-1.0, 1e-30, 0.0];
+            family.push(("focal plane", focal, 1.0));
+        }
+        let (mut covered, mut seed) = (0, 7000);
+        for (what, tri, f) in &family {
+            let p = METHOD_SAFE.setup(tri);
+            for e in 0..2 {
+                for i in 0..3 {
+                    let v = if e == 0 { tri.q[i] } else { tri.r[i] };
+                    if v[3] <= 0.05 {
+                        continue;
+                    }
+                    let (cx, cy) = (v[0] / v[3], v[1] / v[3]);
+                    let size = 4.0 * f;
+                    for gx in -1..=1 {
+                        for gy in -1..=1 {
+                            let tile = Tile::square(cx + gx as f32 * size, cy + gy as f32 * size, size);
+                            covered += assert_keeps_covered(p.as_ref(), tri, &tile, (150, 20), seed, what).0;
+                            seed += 2;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(covered > 5000, "too few covered samples: {covered}");
+    }
+
+    /// Not vacuous: far tiles are culled, figure 1's bounds are LA's within a few ulps,
+    /// a static triangle keeps the whole time range inside, perspective motion still
+    /// cuts time, a moderately far (1e5 px) triangle still gets lens bounds.
+    #[test]
+    fn safe_is_not_vacuous() {
+        let tri = figure1::triangle();
+        for tile in [
+            Tile::square(30.0, -0.5, 1.0),
+            Tile::square(-31.0, -0.5, 1.0),
+            Tile::square(0.0, 10.0, 1.0),
+            Tile::square(0.0, -11.0, 1.0),
+        ] {
+            assert!(safe(&tri, &tile).is_none(), "{tile:?}");
+        }
+        let b = safe(&tri, &figure1::tile()).unwrap();
+        let close = |a: [f32; 2], e: [f32; 2]| (a[0] - e[0]).abs() < 1e-6 && (a[1] - e[1]).abs() < 1e-6;
+        assert!(close(b.u, figure1::LA_U) && close(b.t, figure1::LA_T) && close(b.v, figure1::LA_V), "{b:?}");
+        let st = Triangle::fixed([[0.0, 0.0, 0.5, 1.0], [10.0, 0.0, 0.5, 1.0], [0.0, 10.0, 0.5, 1.0]]);
+        assert!(safe(&st, &Tile::square(11.0, 0.0, 1.0)).is_none());
+        let b = safe(&st, &Tile::square(2.0, 2.0, 1.0)).unwrap();
+        assert_eq!((b.t, b.u, b.v), ([0.0, 1.0], [-1.0, 1.0], [-1.0, 1.0]));
+        // Perspective approach (as in perspective_motion_time_bound_is_conservative_and_cuts).
+        let persp = Triangle {
+            q: [[0.0, 0.0, 0.5, 10.0], [20.0, 0.0, 0.5, 10.0], [0.0, 20.0, 0.5, 10.0]],
+            r: [[30.0, 0.0, 0.5, 1.0], [32.0, 0.0, 0.5, 1.0], [30.0, 2.0, 0.5, 1.0]],
+            c0: [0.5; 3],
+            c1: [-0.5; 3],
+            k: 1.0,
+        };
+        let b = safe(&persp, &Tile::square(9.0, 0.0, 2.0)).unwrap();
+        assert!(b.t[0] > 0.5 && b.t[1] < 1.0, "t {:?}", b.t);
+        // Figure 1 moved 1e5 px away: the enclosures are ~1/64 px wide, the lens and
+        // time bounds move by ~1e-3.
+        let far = moved(&tri, 1.0e5, -1.0e5, 1.0);
+        let tile = Tile { x0: 1.0e5 - 0.5, y0: -1.0e5 - 0.5, x1: 1.0e5 + 0.5, y1: -1.0e5 + 0.5 };
+        let b = safe(&far, &tile).unwrap();
+        assert!(b.v[1] - b.v[0] < 0.4 && b.t[1] - b.t[0] < 0.5, "{b:?}");
+        assert!(safe(&far, &Tile { x0: 1.0e5 + 30.0, x1: 1.0e5 + 31.0, ..tile }).is_none());
+    }
+
+    /// NaN or an infinity in any input gives the full domain for every tile (never a
+    /// cull), and degenerate or huge input is answered inside the domain.
+    #[test]
+    fn safe_non_finite_input_gives_full_bounds() {
+        let full = |b: Option<TileBounds>| {
+            let b = b.expect("culled");
+            (b.u, b.v, b.t) == ([-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0])
+        };
+        let base = figure1::triangle();
+        let far = Tile::square(1000.0, 1000.0, 1.0);
+        for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+            for field in 0..9 {
+                let mut t = base;
+                match field {
+                    0 => t.q[1][0] = bad,
+                    1 => t.q[2][1] = bad,
+                    2 => t.r[0][3] = bad,
+                    3 => t.q[0][2] = bad,
+                    4 => t.c0[1] = bad,
+                    5 => t.c1[2] = bad,
+                    6 => t.k = bad,
+                    7 => t.r[2][0] = bad,
+                    _ => t.q[1][3] = bad,
+                }
+                assert!(full(safe(&t, &far)), "field {field} = {bad}");
+                assert!(full(safe(&t, &figure1::tile())), "field {field} = {bad}");
+            }
+            let tile = Tile { x1: bad, ..far };
+            assert!(full(safe(&base, &tile)), "tile x1 = {bad}");
+        }
+        assert_degenerate_input_is_answered(METHOD_SAFE, &base);
+        let random = |n| random_dual_case(&mut ChaCha8Rng::seed_from_u64(n), n as usize);
+        for n in 0..50 {
+            let (tri, _) = random(n);
+            assert_degenerate_input_is_answered(METHOD_SAFE, &tri);
+        }
+    }
+
+    /// The random stress set of `random_triangles_are_never_culled_where_covered`, for
+    /// la2011-safe, with near-miss samples just beyond each bound.
+    #[test]
+    fn safe_random_triangles_are_never_culled_where_covered() {
+        let mut rng = ChaCha8Rng::seed_from_u64(43);
+        let mut total = 0;
+        for n in 0..300 {
+            let (tri, tile) = random_dual_case(&mut rng, n);
+            let p = METHOD_SAFE.setup(&tri);
+            total += assert_keeps_covered(p.as_ref(), &tri, &tile, (1000, 200), 3000 + 2 * n as u64, "random").0;
+        }
+        assert!(total > 5000, "too few covered samples: {total}");
     }
 }

@@ -165,6 +165,7 @@ pub fn registry() -> Vec<&'static dyn Method> {
         bbox::METHOD,
         bbox::METHOD_SAFE,
         la2011::METHOD,
+        la2011::METHOD_SAFE,
         lb2011::METHOD,
         lc::METHOD,
         mam2012::METHOD,
@@ -172,6 +173,7 @@ pub fn registry() -> Vec<&'static dyn Method> {
         mam2012_hyperplane::METHOD_PS,
         mam2012_new::METHOD,
         wu2013::METHOD,
+        wu2013::METHOD_SAFE,
         nilsson2012_depth::METHOD,
         gdam2010::METHOD,
     ];

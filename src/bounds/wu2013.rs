@@ -131,6 +131,8 @@
 //! adds the two missing conditions: stage 1 only when all six CoC values share one
 //! strict sign, stage 2 on an axis only when all `D_i` share one strict sign on the
 //! tile-lens rectangle. It culls no covered sample on the same random triangles.
+//! `wu2013-safe` (below) keeps its stage-2 guard for the lines and replaces both guards'
+//! fallbacks by a bound that handles mixed signs.
 //!
 //! # Where f32 can make it non-conservative
 //! Every value (u_i, N, D, t(+-1), t(0), the slope, line coefficients, tile extremes,
@@ -139,6 +141,94 @@
 //! `x`, `X w`, `u c`) can be culled. `t_i` is ill-conditioned when `D_i` is small (slow
 //! relative motion): its error grows like `1 / D_i`. The corner sign test of `D_i` can
 //! be decided wrongly when `D_i` is within rounding of 0 at a corner.
+//!
+//! # `wu2013-safe`: both crossing directions, both CoC signs, rounded outward
+//! `wu2013` above is the published test and stays as it is (the gate finds its
+//! violations). `wu2013-safe` (`METHOD_SAFE`) computes the same two stages with two
+//! corrections beyond rounding and every quantity enclosed in f32 interval arithmetic.
+//! It rests on the one fact derived at the top (no assumption on w or on the CoC signs):
+//! at an interior sample (X, l, t) the three `delta_k` do not all have one strict sign,
+//! i.e. some `delta_k <= 0` and some `delta_j >= 0`.
+//!
+//! **The sign-aware hull** (both corrections). Let `delta_k` be affine in a variable z
+//! (u in stage 1, t in stage 2), increasing (set I) or decreasing (set J) over the
+//! whole tile, and vanishing at `z_k`, with `z_k in [m_k, M_k]` for every column of the
+//! tile (and lens or time position). For k in I, `delta_k <= 0` iff `z <= z_k <= M_k`
+//! and `delta_k >= 0` iff `z >= z_k >= m_k`; for k in J the reverse. So a covered z lies
+//! in `((-inf, M_I] u [m_J, inf)) n ([m_I, inf) u (-inf, M_J])`
+//! `= [m_I, M_I] u (-inf, min(M_I, M_J)] u [max(m_I, m_J), inf) u [m_J, M_J]`
+//! (`M_I = max_I M_k`, `m_I = min_I m_k`, empty set: -inf / +inf), and the bound is the
+//! hull of its part in the domain (`sign_hull`; Empty when there is none). With one
+//! direction only (J empty) this is the published `[min_k, max_k]`.
+//!
+//! **Correction 1, stage 1 (failed assumption: all CoC of one strict sign).** `delta_k`
+//! is affine in u with slope `c_k(t)`: increasing for c > 0, decreasing for c < 0. A
+//! vertex whose CoC keeps one strict sign over the shutter (c0, c1 both > 0 or both
+//! < 0) has `u_k(X, t)` affine in X and monotone in t, so its range over the tile's
+//! columns and the shutter is spanned by the 4 corners (as published); vertices may
+//! now differ in sign (a triangle straddling the focal plane, the focus point of a
+//! pixel on the triangle: the hull is then the whole lens, as it must be). A vertex
+//! whose CoC is 0 or changes sign in the shutter (a pole of `u_k`): **fallback**, no lens
+//! bound on that axis (the y axis uses `k c`).
+//!
+//! **Correction 2, stage 2 (failed assumption: all D_i of one sign, one crossing
+//! direction).** `delta_k(t) = N_k - t D_k` is increasing iff `D_k < 0`. `N_k` and `D_k`
+//! are affine in (X, l) jointly, so where `D_k` keeps one strict sign on the rectangle
+//! `[x0, x1] x l^` (`l^` the stage-1 range of that axis: covered samples lie in it) the
+//! crossing time `t_k = N_k / D_k` is a linear fraction of (X, l) without a pole, whose
+//! level sets are lines: its extremes over the rectangle are at its 4 corners. The hull
+//! with I = {D < 0}, J = {D > 0} bounds t^ for perspective motion, wobbling and turning
+//! triangles alike. A vertex whose `D_k` is not of one strict sign on the rectangle
+//! (static relative to some pixel ray, or turning there): **fallback**, no time bound
+//! from that axis. The published lines (per-sample constraints) need more: their
+//! chord / tangent argument needs every `D_k` of one common strict sign on
+//! `[x0, x1] x [-1, 1]`, which is exactly the stage-2 guard of the unregistered
+//! `Wu2013 { guarded: true }` (its stage-1 guard is superseded by correction 1); only
+//! then are they built, and t^ is the intersection of the hull and the lines' range.
+//!
+//! **w <= 0** needs nothing more: the delta fact never divides by w, and a vertex that
+//! moves behind the lens changes the sign of its CoC (thin lens) or of its D, which the
+//! fallbacks above catch.
+//!
+//! **Rounding: f32 interval arithmetic (`Iv`), not a gamma_n bound.** Every quantity the
+//! answer depends on (`X w - p`, `u_k`, `N`, `D`, `t_k` at the corners, `t(+-1)`,
+//! `t(0)`, the tangent slope, `k c`) is an interval of f32 values: each operation rounds
+//! its end results to nearest and steps each one to the next f32 value outward
+//! (`next_down` / `next_up`; +, - on the matching ends, *, / as the hull of the four end
+//! products / quotients, a divisor only of one strict sign). Why it encloses: a finite
+//! result r rounded to nearest from an exact z has z between r and its neighbour on z's
+//! side (subnormals included: an underflow to 0 is enclosed by +-2^-149), and the exact
+//! operation on any reals of the operand intervals lies between the exact end results.
+//! It was chosen because the chains are long (the slope is ten dependent operations) and
+//! cancel (`X w - p` at X = 1e6 px loses up to 1/16 px: the interval carries exactly that
+//! absolute width, where a relative gamma_n bound would need the magnitudes of every
+//! intermediate). Decisions (CoC sign, D sign) are taken on enclosures (an enclosure
+//! above 0 means the exact value is); comparisons of enclosure ends with tile edges and
+//! the domain are exact. A non-finite end (overflow, a divisor enclosure through 0) gives
+//! that quantity no bound (full lens or shutter on that axis), and a non-finite input
+//! anywhere gives the full domain for every tile (never a cull).
+//!
+//! **The lines in f32.** Upper endpoints are maxima of upper ends of the chord / tangent
+//! enclosures (lower: minima of lower ends), so the line through them lies above the
+//! exact published line on [-1, 1] (a line between two points is their convex
+//! combination there). Its f32 form: `a = fl(ur / 2 - ul / 2)` (any slope would do) and
+//! `b = max(up(ul + a), up(ur - a))`, so `a l + b >= line` at l = +-1, hence on [-1, 1].
+//! `TimeLine::eval` computes `fl(fl(fl(a l) + b') - t)` (the same code as `wu2013`):
+//! for |l| <= 1 and u = 2^-24, `|fl(fl(a l) + b') - (a l + b')| <= u |a| + 2^-150 +
+//! u (|a| (1 + u) + 2^-150 + |b'|) <= 1.1 u (2 |a| + |b|) + 2^-148`, so
+//! `b' = up(fl(b + p))` with `p = fl(fl(2 |a| + |b|) + 2^-100) * 2^-21 >=
+//! 8 u (1 - u)^2 (2 |a| + |b| + 2^-100)` (the scaling by 2^-21 is exact, the result being
+//! above 2^-121) keeps the computed line above `a l + b >= t` for every covered sample;
+//! the last subtraction of two f32 values whose exact difference is not negative
+//! rounds to a value that is not negative, so `g >= 0` (lower lines mirrored). `eval_box` is the published one (same
+//! `eval`). t^ from a line: its value at the ends of `l^` by `Iv`.
+//!
+//! **Cost and tightness.** Per tile and axis 12 corner crossings and the lines at two
+//! columns, each operation with two steps; the enclosures widen the published values by
+//! a few ulps of the magnitudes involved (far from the origin, 1/16 px of `X w`), which
+//! no STE figure sees. The real loss is the fallbacks: no lines where the vertices cross
+//! in opposite directions (the hull still gives t^), and no lens bound on an axis where
+//! a CoC changes sign in the shutter.
 
 use super::*;
 
@@ -432,6 +522,397 @@ pub static METHOD: &dyn Method = &Wu2013 { guarded: false };
 /// The guarded variant (not registered; see `Wu2013`).
 #[cfg(test)]
 static GUARDED: &dyn Method = &Wu2013 { guarded: true };
+
+// ---------------------------------------------------------------------------------------
+// wu2013-safe (module doc, "`wu2013-safe`"): the same two stages in f32 interval
+// arithmetic, with the sign-aware hull for mixed crossing directions.
+// ---------------------------------------------------------------------------------------
+
+/// An f32 interval enclosing an exact real value: every operation rounds to nearest and
+/// then steps each end one f32 value outward (`next_down` / `next_up`), which encloses
+/// the exact result of the operation on any reals in the operands (module doc). A
+/// non-finite end (NaN, an overflow) makes the interval [`BAD`], whose tests are all
+/// false, so that nothing is bounded from it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Iv {
+    lo: f32,
+    hi: f32,
+}
+
+/// The "no information" interval: NaN ends (every comparison with it is false).
+const BAD: Iv = Iv { lo: f32::NAN, hi: f32::NAN };
+
+impl Iv {
+    /// An exact f32 input.
+    fn pt(x: f32) -> Iv {
+        if x.is_finite() {
+            Iv { lo: x, hi: x }
+        } else {
+            BAD
+        }
+    }
+    /// `[lo, hi]` are round-to-nearest values of the exact ends: one step outward.
+    fn out(lo: f32, hi: f32) -> Iv {
+        if lo.is_finite() && hi.is_finite() {
+            Iv { lo: lo.next_down(), hi: hi.next_up() }
+        } else {
+            BAD
+        }
+    }
+    fn ok(self) -> bool {
+        self.lo.is_finite() && self.hi.is_finite()
+    }
+    /// Strictly positive / strictly negative (false for [`BAD`]).
+    fn pos(self) -> bool {
+        self.lo > 0.0
+    }
+    fn neg(self) -> bool {
+        self.hi < 0.0
+    }
+    fn add(self, o: Iv) -> Iv {
+        Iv::out(self.lo + o.lo, self.hi + o.hi)
+    }
+    fn sub(self, o: Iv) -> Iv {
+        Iv::out(self.lo - o.hi, self.hi - o.lo)
+    }
+    /// The hull of the four end products (quotients), or [`BAD`] if one is not finite.
+    fn hull4(p: [f32; 4]) -> Iv {
+        if !p.iter().all(|x| x.is_finite()) {
+            return BAD;
+        }
+        Iv::out(p[0].min(p[1]).min(p[2].min(p[3])), p[0].max(p[1]).max(p[2].max(p[3])))
+    }
+    fn mul(self, o: Iv) -> Iv {
+        Iv::hull4([self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi])
+    }
+    /// [`BAD`] unless the divisor has one strict sign.
+    fn div(self, o: Iv) -> Iv {
+        if !(o.pos() || o.neg()) {
+            return BAD;
+        }
+        Iv::hull4([self.lo / o.lo, self.lo / o.hi, self.hi / o.lo, self.hi / o.hi])
+    }
+}
+
+/// One vertex on one axis for `wu2013-safe`: position and w exact (f32 inputs), the CoC
+/// (c, or k c on the y axis) as an enclosure.
+#[derive(Clone, Copy, Debug)]
+struct SafeVertex {
+    p0: f32,
+    w0: f32,
+    c0: Iv,
+    p1: f32,
+    w1: f32,
+    c1: Iv,
+}
+
+impl SafeVertex {
+    /// `N(X, l) = p0 - X w0 + l c0 = delta(t = 0)` and
+    /// `D(X, l) = (p0 - p1) - X (w0 - w1) + l (c0 - c1) = delta(0) - delta(1)`.
+    fn nd(&self, s: f32, l: f32) -> (Iv, Iv) {
+        let (s, l) = (Iv::pt(s), Iv::pt(l));
+        let n = Iv::pt(self.p0).sub(s.mul(Iv::pt(self.w0))).add(l.mul(self.c0));
+        let dp = Iv::pt(self.p0).sub(Iv::pt(self.p1));
+        let dw = Iv::pt(self.w0).sub(Iv::pt(self.w1));
+        let d = dp.sub(s.mul(dw)).add(l.mul(self.c0.sub(self.c1)));
+        (n, d)
+    }
+}
+
+/// One crossing, for [`sign_hull`]: `delta_k` is affine in the variable z (u, or t),
+/// increasing (`inc`) or decreasing, and vanishes at some `z_k` in `[m, hi]` for every
+/// (column, other coordinate) of the tile.
+type Crossing = (bool, f32, f32);
+
+/// The hull, within `dom`, of the set of z at which not all `delta_k` have one strict
+/// sign (the necessary condition for coverage, module doc): `None` if that set misses
+/// `dom`. With I the increasing and J the decreasing deltas, some `delta_k <= 0` only for
+/// z in `(-inf, max_I hi] u [min_J m, inf)` and some `delta_k >= 0` only for
+/// z in `[min_I m, inf) u (-inf, max_J hi]`; the intersection is the union of the four
+/// intervals below (exact comparisons, no rounding).
+fn sign_hull(items: &[Crossing], dom: [f32; 2]) -> Option<[f32; 2]> {
+    let inf = f32::INFINITY;
+    let (mut mi, mut hi_i, mut mj, mut hi_j) = (inf, -inf, inf, -inf);
+    for &(inc, m, h) in items {
+        if inc {
+            mi = mi.min(m);
+            hi_i = hi_i.max(h);
+        } else {
+            mj = mj.min(m);
+            hi_j = hi_j.max(h);
+        }
+    }
+    let parts = [[mi, hi_i], [-inf, hi_i.min(hi_j)], [mj.max(mi), inf], [mj, hi_j]];
+    let mut out: Option<[f32; 2]> = None;
+    for [a, b] in parts {
+        let (a, b) = (a.max(dom[0]), b.min(dom[1]));
+        if a <= b {
+            out = Some(out.map_or([a, b], |o| [o[0].min(a), o[1].max(b)]));
+        }
+    }
+    out
+}
+
+/// One axis (x with u, or y with v) for `wu2013-safe`.
+#[derive(Clone, Copy, Debug)]
+struct SafeAxis {
+    v: [SafeVertex; 3],
+}
+
+impl SafeAxis {
+    /// Stage 1, corrected: per vertex the enclosure of its lens crossings
+    /// `u_k(X, t) = (X w_k(t) - p_k(t)) / c_k(t)` over the tile's columns and the shutter
+    /// (the 4 corners X in {s0, s1}, t in {0, 1}), with the direction of `delta_k` in u
+    /// (the sign of `c_k`). None (no lens bound) when a CoC is not of one strict sign
+    /// over the shutter, or a value is not finite.
+    fn lens_crossings(&self, s0: f32, s1: f32) -> Option<[Crossing; 3]> {
+        let mut out = [(false, 0.0, 0.0); 3];
+        for (a, o) in self.v.iter().zip(out.iter_mut()) {
+            let inc = if a.c0.pos() && a.c1.pos() {
+                true
+            } else if a.c0.neg() && a.c1.neg() {
+                false
+            } else {
+                return None;
+            };
+            let (mut m, mut h) = (f32::INFINITY, f32::NEG_INFINITY);
+            for (p, w, c) in [(a.p0, a.w0, a.c0), (a.p1, a.w1, a.c1)] {
+                for s in [s0, s1] {
+                    let l = Iv::pt(s).mul(Iv::pt(w)).sub(Iv::pt(p)).div(c);
+                    if !l.ok() {
+                        return None;
+                    }
+                    m = m.min(l.lo);
+                    h = h.max(l.hi);
+                }
+            }
+            *o = (inc, m, h);
+        }
+        Some(out)
+    }
+
+    /// Stage 2, corrected (tile level): per vertex the enclosure of its crossing time
+    /// `t_k = N / D` over the rectangle of columns [s0, s1] and lens `l` (a linear
+    /// fraction of (X, l) jointly: its extremes are at the 4 corners when D keeps one
+    /// strict sign there), with the direction of `delta_k(t) = N - t D` in t (increasing
+    /// iff D < 0). Vertices may cross in opposite directions. None (no time bound from
+    /// this axis) when some D is not of one strict sign on the rectangle.
+    fn time_crossings(&self, s0: f32, s1: f32, l: [f32; 2]) -> Option<[Crossing; 3]> {
+        let mut out = [(false, 0.0, 0.0); 3];
+        for (a, o) in self.v.iter().zip(out.iter_mut()) {
+            let (mut pos, mut neg) = (false, false);
+            let (mut m, mut h) = (f32::INFINITY, f32::NEG_INFINITY);
+            for s in [s0, s1] {
+                for lv in l {
+                    let (n, d) = a.nd(s, lv);
+                    pos |= d.pos();
+                    neg |= d.neg();
+                    let t = n.div(d);
+                    if !t.ok() {
+                        return None;
+                    }
+                    m = m.min(t.lo);
+                    h = h.max(t.hi);
+                }
+            }
+            if pos == neg {
+                return None;
+            }
+            *o = (neg, m, h);
+        }
+        Some(out)
+    }
+
+    /// Stage 2 as published (the green / red lines), enclosed: only when all three D
+    /// share one strict sign on columns [s0, s1] x lens [-1, 1] (the guarded condition).
+    /// Upper endpoints are upper ends of the enclosures, lower endpoints lower ends.
+    fn lines(&self, s0: f32, s1: f32) -> Option<Lines> {
+        let mut out = Lines { ul: f32::NEG_INFINITY, ur: f32::NEG_INFINITY, ll: f32::INFINITY, lr: f32::INFINITY };
+        let (mut pos, mut neg) = (false, false);
+        for a in &self.v {
+            for s in [s0, s1] {
+                let (n0, d0) = a.nd(s, 0.0);
+                let (nm, dm) = a.nd(s, -1.0);
+                let (np, dp) = a.nd(s, 1.0);
+                for d in [dm, dp] {
+                    pos |= d.pos();
+                    neg |= d.neg();
+                    if !(d.pos() || d.neg()) {
+                        return None;
+                    }
+                }
+                if pos && neg {
+                    return None;
+                }
+                let (n1, d1) = (a.c0, a.c0.sub(a.c1));
+                let tm = nm.div(dm);
+                let tp = np.div(dp);
+                let tz = n0.div(d0);
+                let slope = n1.sub(tz.mul(d1)).div(d0);
+                let (gm, gp) = (tz.sub(slope), tz.add(slope));
+                if !(tm.ok() && tp.ok() && gm.ok() && gp.ok()) {
+                    return None;
+                }
+                out.ul = out.ul.max(tm.hi.max(gm.hi));
+                out.ur = out.ur.max(tp.hi.max(gp.hi));
+                out.ll = out.ll.min(tm.lo.min(gm.lo));
+                out.lr = out.lr.min(tp.lo.min(gp.lo));
+            }
+        }
+        Some(out)
+    }
+}
+
+/// A padded f32 line `t = a l + b'` through (or beyond) `(-1, e_left)`, `(1, e_right)`:
+/// above both for an upper line, below both for a lower one, with `b'` moved outward by
+/// the f32 error of [`TimeLine::eval`] (module doc). None beyond `LINE_LIMIT`.
+fn safe_line(lens: Lens, upper: bool, e_left: f32, e_right: f32) -> Option<TimeLine> {
+    const PAD: f32 = 1.0 / (1u32 << 21) as f32; // 2^-21 = 8u
+    const FLOOR: f32 = 1.0 / (1u128 << 100) as f32; // 2^-100
+    if !(e_left.abs() <= LINE_LIMIT && e_right.abs() <= LINE_LIMIT) {
+        return None;
+    }
+    // Any slope will do: the intercept is chosen to dominate both endpoints.
+    let a = 0.5 * e_right - 0.5 * e_left;
+    let b = if upper {
+        (e_left + a).next_up().max((e_right - a).next_up())
+    } else {
+        (e_left + a).next_down().min((e_right - a).next_down())
+    };
+    let pad = (a.abs() + a.abs() + b.abs() + FLOOR) * PAD;
+    let b = if upper { (b + pad).next_up() } else { (b - pad).next_down() };
+    (a.is_finite() && b.is_finite()).then_some(TimeLine { lens, upper, a, b })
+}
+
+/// The safe lines' time range over lens range `l` and the constraints worth keeping
+/// (the same choice as [`apply_lines`]).
+fn apply_safe_lines(ln: Lines, lens: Lens, l: [f32; 2], t: &mut [f32; 2], cons: &mut Vec<Box<dyn SampleConstraint>>) {
+    let at = |c: &TimeLine, x: f32| Iv::pt(c.a).mul(Iv::pt(x)).add(Iv::pt(c.b));
+    if let Some(c) = safe_line(lens, true, ln.ul, ln.ur) {
+        let (e0, e1) = (at(&c, l[0]), at(&c, l[1]));
+        if e0.ok() && e1.ok() {
+            t[1] = t[1].min(e0.hi.max(e1.hi));
+            if c.a != 0.0 && e0.lo.min(e1.lo) < 1.0 {
+                cons.push(Box::new(c));
+            }
+        }
+    }
+    if let Some(c) = safe_line(lens, false, ln.ll, ln.lr) {
+        let (e0, e1) = (at(&c, l[0]), at(&c, l[1]));
+        if e0.ok() && e1.ok() {
+            t[0] = t[0].max(e0.lo.min(e1.lo));
+            if c.a != 0.0 && e0.hi.max(e1.hi) > 0.0 {
+                cons.push(Box::new(c));
+            }
+        }
+    }
+}
+
+struct SafePrep {
+    /// Every input is finite (otherwise every tile gets the full domain).
+    finite: bool,
+    x: SafeAxis,
+    y: SafeAxis,
+    disabled: Option<&'static str>,
+}
+
+impl Prepared for SafePrep {
+    fn tile(&self, tile: &Tile) -> TileResult {
+        let mut b = TileBounds::full();
+        if !self.finite {
+            return TileResult::Bounds(b);
+        }
+        // Stage 1, sign-aware.
+        for (axis, s0, s1, out) in [(&self.x, tile.x0, tile.x1, &mut b.u), (&self.y, tile.y0, tile.y1, &mut b.v)] {
+            if let Some(cr) = axis.lens_crossings(s0, s1) {
+                match sign_hull(&cr, [-1.0, 1.0]) {
+                    None => return TileResult::Empty,
+                    Some(r) => *out = r,
+                }
+            }
+        }
+        // Stage 2: the sign-aware tile interval over the lens range of stage 1, and the
+        // published lines where all vertices cross in one direction.
+        let mut t = [0.0f32, 1.0];
+        let mut cons: Vec<Box<dyn SampleConstraint>> = Vec::new();
+        for (axis, s0, s1, lens, l) in
+            [(&self.x, tile.x0, tile.x1, Lens::U, b.u), (&self.y, tile.y0, tile.y1, Lens::V, b.v)]
+        {
+            if let Some(cr) = axis.time_crossings(s0, s1, l) {
+                match sign_hull(&cr, t) {
+                    None => return TileResult::Empty,
+                    Some(r) => t = r,
+                }
+            }
+            if let Some(ln) = axis.lines(s0, s1) {
+                apply_safe_lines(ln, lens, l, &mut t, &mut cons);
+            }
+        }
+        if t[0].is_nan() || t[1].is_nan() || t[0] > t[1] {
+            return TileResult::Empty;
+        }
+        b.t = t;
+        b.constraints = cons;
+        TileResult::Bounds(b)
+    }
+    fn disabled(&self) -> Option<&'static str> {
+        self.disabled
+    }
+}
+
+fn safe_axis(tri: &Triangle, j: usize, scale: f32) -> SafeAxis {
+    let k = Iv::pt(scale);
+    SafeAxis {
+        v: std::array::from_fn(|i| {
+            let (q, r) = (tri.q[i], tri.r[i]);
+            let (c0, c1) = (k.mul(Iv::pt(tri.c0[i])), k.mul(Iv::pt(tri.c1[i])));
+            SafeVertex { p0: q[j], w0: q[3], c0, p1: r[j], w1: r[3], c1 }
+        }),
+    }
+}
+
+fn prepare_safe(tri: &Triangle) -> SafePrep {
+    let x = safe_axis(tri, 0, 1.0);
+    let y = safe_axis(tri, 1, tri.k);
+    let one_sign = |ax: &SafeAxis| ax.v.iter().all(|a| (a.c0.pos() && a.c1.pos()) || (a.c0.neg() && a.c1.neg()));
+    // A vertex with D identically 0 on axis j: no motion relative to any pixel ray.
+    let dead =
+        |j: usize| (0..3).any(|i| tri.q[i][j] == tri.r[i][j] && tri.q[i][3] == tri.r[i][3] && tri.c0[i] == tri.c1[i]);
+    let disabled = (!one_sign(&x) && !one_sign(&y) && dead(0) && dead(1)).then_some(
+        "no stage applies: a CoC is 0 or changes sign in the shutter on both axes (stage 1 off) and on both axes a \
+         vertex has no motion relative to the pixel rays (stage 2 denominators vanish)",
+    );
+    let finite =
+        tri.q.iter().chain(tri.r.iter()).flatten().chain(tri.c0.iter()).chain(tri.c1.iter()).all(|v| v.is_finite())
+            && tri.k.is_finite();
+    let disabled = if finite { disabled } else { Some("a non-finite input: the full domain for every tile") };
+    SafePrep { finite, x, y, disabled }
+}
+
+/// `wu2013-safe` (see the module doc).
+struct Wu2013Safe;
+
+static INFO_SAFE: MethodInfo = MethodInfo {
+    id: "wu2013-safe",
+    source: "Wu 2013, Clip Space Sample Culling for Stochastic Rasterization (M.Sc. thesis, NCTU): §3.3 stage 1 \
+             lens bounds; §3.4 stage 2 Eq. 1 rewritten, linear bounds of Figs. 3.7-3.8; §3.5 per-vertex CoC; in f32 \
+             interval arithmetic, with both crossing directions and both CoC signs handled (derived in this file)",
+    reconstruction: false,
+    dims: &[Dims::Motion, Dims::Defocus, Dims::Both],
+    outputs: Outputs { tile_reject: true, lens: true, time: true, depth: false, per_sample: true },
+};
+
+impl Method for Wu2013Safe {
+    fn info(&self) -> &'static MethodInfo {
+        &INFO_SAFE
+    }
+    fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
+        Box::new(prepare_safe(tri))
+    }
+}
+
+/// `wu2013-safe`: outward-rounded and corrected (see the module doc).
+pub static METHOD_SAFE: &dyn Method = &Wu2013Safe;
 
 #[cfg(test)]
 mod tests {
@@ -1031,5 +1512,260 @@ mod tests {
             assert!(covered[f] >= 2000, "{}: only {} covered samples", names[f], covered[f]);
             assert!(tight[f] >= 1000, "{}: only {} covered samples at a nearly active bound", names[f], tight[f]);
         }
+    }
+
+    // ---- wu2013-safe ----
+
+    fn safe_bounds(tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
+        bounds_of(METHOD_SAFE, tri, tile)
+    }
+
+    /// Every witness stored for `wu2013` (corpus/cases/wu2013) is admitted by the safe
+    /// variant: the original's violations are gone.
+    #[test]
+    fn safe_admits_the_corpus_witnesses() {
+        use crate::corpus::{witness_holds, CaseFile};
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/cases/wu2013");
+        let mut n = 0;
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let path = e.unwrap().path();
+            let cf = CaseFile::load(&path).unwrap();
+            let Some(w) = &cf.witness else { continue };
+            assert!(
+                witness_holds(METHOD, &cf.case, &cf.tile, w.sample).is_ok(),
+                "{}: not a wu2013 witness",
+                path.display()
+            );
+            let r = witness_holds(METHOD_SAFE, &cf.case, &cf.tile, w.sample);
+            assert!(r.is_err(), "{}: wu2013-safe culls the witness: {r:?}", path.display());
+            n += 1;
+        }
+        assert!(n >= 10, "{n}");
+    }
+
+    /// The two findings of the published test, and the random triangles outside its
+    /// assumptions: the safe variant culls no covered sample there.
+    #[test]
+    fn safe_keeps_the_findings() {
+        let tri = opposite_motion();
+        let s = Sample::new(20.0, 20.0, 0.0, 0.0, 1.0);
+        let tile = Tile::square(19.0, 19.0, 2.0);
+        assert!(safe_bounds(&tri, &tile).is_some_and(|b| b.admits(&s)));
+        spot_check_of(METHOD_SAFE, &tri, &tile, 4000, 22);
+        let c = cam();
+        let g = [[-1.0, -1.0, 2.5], [1.0, -1.0, 6.0], [0.0, 1.2, 6.0]];
+        let tri = c.triangle(g, g);
+        spot_check_of(METHOD_SAFE, &tri, &Tile::square(31.0, 31.0, 2.0), 4000, 21);
+        let (culled, covered, tris) = unconstrained(METHOD_SAFE, 79);
+        eprintln!("wu2013-safe, unconstrained: {culled} of {covered} covered samples culled ({tris} triangles)");
+        assert_eq!(culled, 0);
+    }
+
+    /// The sign-aware hull on the "no vertex crosses the row" example: two deltas stay
+    /// positive, one negative, all crossing times negative: the published [min, max] is
+    /// empty, the hull is the whole shutter.
+    #[test]
+    fn sign_hull_handles_both_directions() {
+        // Decreasing deltas (D > 0) crossing at t in [-3, -2] and [-5, -4], an
+        // increasing one at [-1, -0.5]: for t >= 0 the first two are < 0, the third > 0.
+        let cr = [(false, -3.0, -2.0), (false, -5.0, -4.0), (true, -1.0, -0.5)];
+        assert_eq!(sign_hull(&cr, [0.0, 1.0]), Some([0.0, 1.0]));
+        // One direction: the published interval.
+        let cr = [(false, 0.2, 0.3), (false, 0.5, 0.6), (false, 0.25, 0.4)];
+        assert_eq!(sign_hull(&cr, [0.0, 1.0]), Some([0.2, 0.6]));
+        assert_eq!(sign_hull(&cr, [0.7, 1.0]), None);
+        // Mixed, but all crossings before the shutter with every delta of one sign after.
+        let cr = [(false, -3.0, -2.0), (true, -5.0, -4.0), (true, -1.0, -0.5)];
+        // For t > -0.5: decreasing delta < 0, increasing deltas > 0: both signs present.
+        assert_eq!(sign_hull(&cr, [0.0, 1.0]), Some([0.0, 1.0]));
+        let cr = [(true, -3.0, -2.0), (true, -5.0, -4.0), (false, 2.0, 3.0)];
+        // For t in [0, 1]: increasing deltas > 0, the decreasing one > 0 (before its
+        // crossing): all positive, no coverage.
+        assert_eq!(sign_hull(&cr, [0.0, 1.0]), None);
+    }
+
+    /// The f32 interval operations enclose the exact results (checked in f64, exact for
+    /// sums, differences and products of these f32 values; quotients to 2^-53).
+    #[test]
+    fn intervals_enclose_exact_results() {
+        let mut rng = ChaCha8Rng::seed_from_u64(0x1f32);
+        for n in 0..200_000 {
+            let scale = [1e-30f32, 1e-6, 1.0, 1e6, 1e15][n % 5];
+            let mut r = || {
+                let lo = rng.gen_range(-1.0f32..1.0) * scale;
+                let hi = lo + rng.gen_range(0.0f32..1.0) * scale * [0.0f32, 1e-7, 1.0][n % 3];
+                Iv { lo, hi }
+            };
+            let (a, b) = (r(), r());
+            let pick = |i: Iv, f: f64| i.lo as f64 + f * (i.hi as f64 - i.lo as f64);
+            let (fa, fb) = (rng.gen_range(0.0..=1.0), rng.gen_range(0.0..=1.0));
+            let (x, y) = (pick(a, fa), pick(b, fb));
+            let inside = |i: Iv, z: f64, what: &str| {
+                assert!(!i.ok() || (i.lo as f64 <= z && z <= i.hi as f64), "{what}: {z:e} not in {i:?} ({a:?}, {b:?})");
+            };
+            // x, y are not f32 values in general, but lie in the intervals: the
+            // enclosure must hold for them too (f64 rounding far below the f32 steps).
+            inside(a.add(b), x + y, "add");
+            inside(a.sub(b), x - y, "sub");
+            inside(a.mul(b), x * y, "mul");
+            inside(a.div(b), x / y, "div");
+        }
+        // Underflow: a product that rounds to 0 is enclosed by the subnormal neighbours.
+        let t = Iv::pt(1e-30).mul(Iv::pt(1e-30));
+        assert!(t.lo < 0.0 && t.hi > 0.0);
+        assert!(!Iv::pt(f32::MAX).add(Iv::pt(f32::MAX)).ok());
+        assert!(!Iv::pt(1.0).div(Iv { lo: -1.0, hi: 1.0 }).ok());
+        assert!(!Iv::pt(f32::NAN).ok() && !Iv::pt(f32::NAN).pos() && !Iv::pt(f32::NAN).neg());
+    }
+
+    /// The padded lines: for random endpoints and f32 samples at or above (below) the
+    /// exact line through them, `eval` is never negative.
+    #[test]
+    fn safe_lines_never_cut_below_the_exact_line() {
+        let mut rng = ChaCha8Rng::seed_from_u64(0x11e5);
+        for n in 0..200_000 {
+            let scale = [1e-30f32, 1e-3, 1.0, 30.0, 1e6][n % 5];
+            let (el, er) = (rng.gen_range(-1.0f32..1.0) * scale, rng.gen_range(-1.0f32..1.0) * scale);
+            let upper = n % 2 == 0;
+            let c = safe_line(Lens::U, upper, el, er).unwrap();
+            let l: f32 = if n % 7 == 0 { [-1.0, 1.0, 0.0][n % 3] } else { rng.gen_range(-1.0..=1.0) };
+            let exact = 0.5 * (el as f64 + er as f64) + 0.5 * (er as f64 - el as f64) * l as f64;
+            // The f32 time nearest the exact line on the kept side.
+            let mut t = exact as f32;
+            if upper && (t as f64) > exact {
+                t = t.next_down();
+            }
+            if !upper && (t as f64) < exact {
+                t = t.next_up();
+            }
+            let g = c.eval(&Sample::new(0.0, 0.0, l, 0.0, t));
+            assert!(g >= 0.0, "{c:?} l {l} t {t} exact {exact}: g {g}");
+        }
+    }
+
+    /// Huge, tiny, far-from-origin, w near 0 and focal-plane input: no covered sample
+    /// culled (uniform and near-miss samples), answers in the domain.
+    #[test]
+    fn safe_on_extreme_input() {
+        use super::super::testkit::assert_keeps_covered;
+        let c = cam();
+        let mut n = 0;
+        let base = translated(&c, [[-1.0, -1.0, 8.0], [1.0, -1.2, 9.0], [0.2, 1.0, 7.0]], [0.8, 0.3, 1.5]);
+        // Far from the origin: every clip x, y shifted by 1e6 px times w.
+        let mut far = base;
+        for p in far.q.iter_mut().chain(far.r.iter_mut()) {
+            p[0] += 1.0e6 * p[3];
+            p[1] -= 1.0e6 * p[3];
+        }
+        // Tiny: everything scaled by 1e-30 (w too: same image, subnormal-adjacent sums).
+        let mut tiny = base;
+        for p in tiny.q.iter_mut().chain(tiny.r.iter_mut()) {
+            p.iter_mut().for_each(|x| *x *= 1e-30);
+        }
+        tiny.c0.iter_mut().chain(tiny.c1.iter_mut()).for_each(|x| *x *= 1e-30);
+        // Huge: the same scaled by 1e30.
+        let mut huge = base;
+        for p in huge.q.iter_mut().chain(huge.r.iter_mut()) {
+            p.iter_mut().for_each(|x| *x *= 1e30);
+        }
+        huge.c0.iter_mut().chain(huge.c1.iter_mut()).for_each(|x| *x *= 1e30);
+        // w near 0 and behind the lens: one vertex from w = 1e-6 to -0.5.
+        let mut near0 = base;
+        near0.q[0][3] = 1e-6;
+        near0.r[0][3] = -0.5;
+        // Straddling the focal plane (F = 4), moving through it.
+        let straddle = translated(&c, [[-1.0, -1.0, 2.5], [1.0, -1.0, 6.0], [0.0, 1.2, 3.9]], [0.3, -0.2, 0.5]);
+        let mut rng = ChaCha8Rng::seed_from_u64(0xe77);
+        for (what, tri, centre) in [
+            ("far", far, [1.0e6 + 40.0, -1.0e6 + 36.0]),
+            ("tiny", tiny, [40.0, 36.0]),
+            ("huge", huge, [40.0, 36.0]),
+            ("w near 0", near0, [40.0, 36.0]),
+            ("straddle", straddle, [32.0, 32.0]),
+        ] {
+            let p = METHOD_SAFE.setup(&tri);
+            for _ in 0..12 {
+                let size = [0.5f32, 1.0, 2.0, 4.0][rng.gen_range(0..4)];
+                let tile =
+                    Tile::square(centre[0] + rng.gen_range(-20.0..20.0), centre[1] + rng.gen_range(-20.0..20.0), size);
+                n += assert_keeps_covered(p.as_ref(), &tri, &tile, (400, 40), rng.gen(), what).0;
+                super::super::testkit::assert_answered_in_domain(p.as_ref(), &[tile]);
+            }
+        }
+        assert!(n > 2000, "{n}");
+        // Non-finite input gives the full domain (never a cull).
+        let mut bad = base;
+        bad.q[1][0] = f32::NAN;
+        let b = safe_bounds(&bad, &Tile::square(1e6, 1e6, 2.0)).expect("NaN input culled a tile");
+        assert_eq!((b.u, b.v, b.t), ([-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]));
+        assert!(b.constraints.is_empty());
+        let mut inf = base;
+        inf.c1[2] = f32::INFINITY;
+        inf.r[0][3] = f32::INFINITY;
+        let b = safe_bounds(&inf, &Tile::square(1e6, 1e6, 2.0)).expect("inf input culled a tile");
+        assert_eq!((b.u, b.v, b.t), ([-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]));
+        super::super::testkit::assert_degenerate_input_is_answered(
+            METHOD_SAFE,
+            &super::super::la2011::figure1::triangle(),
+        );
+    }
+
+    /// Not vacuous: far tiles are still culled, and on ordinary cases the bounds are
+    /// narrower than the domain and the lines cull samples; on triangles meeting the
+    /// thesis's assumptions the safe variant admits about what the original admits.
+    #[test]
+    fn safe_is_not_vacuous() {
+        let c = cam();
+        let tri = translated(&c, [[-1.0, -1.0, 8.0], [1.0, -1.0, 8.0], [0.0, 1.0, 8.5]], [2.0, 0.0, 0.0]);
+        let tri = Triangle { c0: [0.0; 3], c1: [0.0; 3], ..tri };
+        assert!(safe_bounds(&tri, &Tile::square(200.0, 30.0, 8.0)).is_none());
+        assert!(safe_bounds(&tri, &Tile::square(-100.0, 30.0, 8.0)).is_none());
+        let g = [[-1.0, -1.0, 8.0], [1.0, -1.0, 8.0], [0.0, 1.0, 9.0]];
+        let tri = c.triangle(g, g);
+        assert!(safe_bounds(&tri, &Tile::square(200.0, 30.0, 8.0)).is_none());
+        assert!(safe_bounds(&tri, &Tile::square(30.0, -200.0, 8.0)).is_none());
+        let b = safe_bounds(&tri, &Tile::square(45.0, 16.0, 1.0)).expect("edge tile culled");
+        assert!(b.u[0] > -1.0, "{b:?}");
+        let tri = translated(&c, [[-1.0, -1.0, 8.0], [1.0, -1.2, 9.0], [0.2, 1.0, 7.0]], [0.8, 0.3, 1.5]);
+        let tile = Tile::square(24.0, 24.0, 2.0);
+        let (b, o) = (safe_bounds(&tri, &tile).unwrap(), bounds(&tri, &tile).unwrap());
+        assert!(!b.constraints.is_empty() && b.t != [0.0, 1.0], "{b:?}");
+        // Within a few ulps of the published answer here.
+        for (s, p) in [(b.u, o.u), (b.v, o.v), (b.t, o.t)] {
+            assert!(s[0] <= p[0] && s[1] >= p[1] && s[0] >= p[0] - 1e-4 && s[1] <= p[1] + 1e-4, "{b:?} vs {o:?}");
+        }
+        let mut rng = ChaCha8Rng::seed_from_u64(77);
+        let (mut adm_safe, mut adm_orig, mut covered, mut total) = (0, 0, 0, 0);
+        for _ in 0..150 {
+            let tri = one_side_translated(&mut rng, 0.0);
+            for _ in 0..4 {
+                let size = [1.0f32, 2.0, 4.0, 0.7][rng.gen_range(0..4)];
+                let tile = tile_on(&tri, &mut rng, size);
+                let seed = rng.gen();
+                let (cv, ad) = spot_check_of(METHOD_SAFE, &tri, &tile, 200, seed);
+                let (_, ao) = spot_check(&tri, &tile, 200, seed);
+                covered += cv;
+                adm_safe += ad;
+                adm_orig += ao;
+                total += 200;
+            }
+        }
+        eprintln!("wu2013-safe random: {covered} covered, admitted {adm_safe} (wu2013: {adm_orig}) of {total}");
+        assert!(adm_safe < total && adm_safe as f64 <= 1.02 * adm_orig as f64, "{adm_safe} {adm_orig}");
+    }
+
+    /// The per-sample constraints' `eval_box` encloses `eval` on the safe variant's lines.
+    #[test]
+    fn safe_eval_box_encloses_eval() {
+        let c = cam();
+        let tri = translated(&c, [[-1.0, -1.0, 8.0], [1.0, -1.2, 9.0], [0.2, 1.0, 7.0]], [0.8, 0.3, 1.5]);
+        let mut k = 0;
+        for tile in [Tile::square(18.0, 18.0, 2.0), Tile::square(24.0, 12.0, 2.0), Tile::square(24.0, 24.0, 2.0)] {
+            if let Some(b) = safe_bounds(&tri, &tile) {
+                k += b.constraints.len();
+                super::super::testkit::assert_eval_box_encloses(&b, &tile, 9);
+            }
+        }
+        assert!(k > 0);
     }
 }
