@@ -169,6 +169,7 @@ pub fn registry() -> Vec<&'static dyn Method> {
         lb2011::METHOD,
         lc::METHOD,
         mam2012::METHOD,
+        mam2012::METHOD_SAFE,
         mam2012_hyperplane::METHOD,
         mam2012_hyperplane::METHOD_PS,
         mam2012_new::METHOD,
