@@ -88,9 +88,105 @@
 //! input) drops that axis's patches and ranges; a patch whose coefficients are not
 //! finite or sum in magnitude to `2^125` or more is dropped (its f32 `eval` could
 //! overflow to NaN, which would cull).
+//!
+//! # `lb2011-safe`: the same patches, rounded outward
+//! The f32 test above is the reconstruction and stays as it is: the gate finds covered
+//! samples it culls (a corner value, an interval end or a patch value a few ulps on the
+//! wrong side, worst where the patch values are large: CoCs of thousands of pixels,
+//! |X w| near 2^18, tiles far from the origin) and covered tiles it rejects at the
+//! limit. The claim above (B <= m) is true in real arithmetic, so no correction of the
+//! algorithm is needed: `lb2011-safe` is the same algorithm (one code path, [`Arith`]
+//! chooses the arithmetic) with every quantity the answer depends on rounded outward.
+//! Nothing else changes: the same corners, ranges, reject and four patches.
+//!
+//! *Corner values: f32 interval arithmetic by directed steps.* A result r of one f32
+//! operation rounded to nearest has the exact result between r and its neighbour on
+//! one side, so `next_up(r)` (`next_down(r)`) is an upper (lower) bound of it; that
+//! holds for subnormal results too (the neighbour is 2^-149 away and so is the step),
+//! and for an overflow: a value rounded to +inf is above `f32::MAX = next_down(inf)`,
+//! one rounded to -inf below `next_up(-inf)`. Computing an upper bound from upper
+//! bounds of the operands (lower bounds where they enter with a minus sign) and then
+//! stepping up therefore encloses the exact value, operation by operation. The shear
+//! `s` is exact for x (`1 c`); for y it is `fl(k c)`, enclosed by
+//! `[next_down(s), next_up(s)]`. The difference `p - X w` is one fused multiply-add,
+//! `a = fl(p - X w)` with a single rounding (`f32::mul_add`, correctly rounded as
+//! IEEE 754 fusedMultiplyAdd and GPU FMA units are), so it is enclosed by
+//! `[next_down(a), next_up(a)]`, a step of an ulp of the *difference*: far from the
+//! origin, where `p` and `X w` are both near 10^6 w and cancel, this is much tighter
+//! than rounding `X w` first (the plain test does, and its error is an ulp of `X w`).
+//! Then:
+//!
+//! ```text
+//! a_lo = next_down(a)                       a_hi = next_up(a)
+//! lower of p - X w - k c = next_down(a_lo - s_hi),  of p - X w + k c = next_down(a_lo + s_lo)
+//! upper of p - X w - k c = next_up(a_hi - s_lo),    of p - X w + k c = next_up(a_hi + s_hi)
+//! ```
+//!
+//! and the min (max) over vertices and columns of the lower (upper) bounds is a lower
+//! bound of the exact `m` (upper bound of `M`) at each (l, t) corner: min and max are
+//! exact. Any non-finite bound (NaN or infinite input, an overflow) drops the whole
+//! axis: no reject, no range, no patch from it (full domain for its outputs). Cost per
+//! column and vertex: one FMA and four adds (the plain test: a multiply, a subtract and
+//! two adds) plus a step after each.
+//!
+//! *Why these corners suffice (real arithmetic).* Let `g_ij` be the f32 corner values
+//! now (`-mn_lo` for the min patch, `mx_hi` for the max patch) and G their exact
+//! bilinear interpolant. Proof 1 of the claim only uses that each corner value is <=
+//! every `f_k` at that corner (for the min), so `G >= -m` (min patch) and `G >= M` (max
+//! patch) on the whole square: a covered sample has `G(l_s, t_s) > 0`. Everything
+//! below is rounded so that it keeps every (l, t) with `G(l, t) >= 0`.
+//!
+//! *Reject and ranges.* The tile is Empty when all four `g_ij < 0` (exact comparisons;
+//! G < 0 on the square). For t: G is affine in l, so `G(l_s, t) >= 0` needs
+//! `G(-1, t) >= 0` or `G(1, t) >= 0`; the crossing of a chord `(1-t) a + t b` that
+//! changes sign is `t* = |a| / (|a| + |b|)`, and [`chord_nonneg_safe`] keeps `[t_lo, 1]`
+//! with `t_lo = next_down(|a| / next_up(fl(|a| + |b|)))` when it rises (a quotient of
+//! positive numbers with the denominator rounded up is below t*, its rounding is
+//! enclosed by the step) and `[0, t_hi]`, `t_hi = next_up(|a| / next_down(fl(|a| +
+//! |b|)))` when it falls (a zero or non-finite quotient gives the whole [0, 1]); the
+//! same for l in sigma = (l + 1)/2 along t = 0 and t = 1, and `l = 2 sigma - 1` is
+//! rounded outward by one step (`2 sigma` is exact).
+//!
+//! *Per-sample evaluation: one padded coefficient.* `eval` stays the plain f32
+//! `fl(fl(P + fl(Q l)) + fl(t fl(R + fl(S l))))` with the rounded coefficients
+//! `P~, Q~, R~, S~` of `Patch::from_corners`; only `P` is raised by a pad. Error
+//! bound in Higham's style, u = 2^-24, `eta = 2^-150` (the absolute error of a product
+//! or halving that underflows; a sum that underflows is exact), `mg = max |g_ij|`, for
+//! |l| <= 1 and t in [0, 1] (the domain; a covered sample lies in it):
+//! - coefficients: `|P~ - P|, |Q~ - Q| <= u mg + eta` (one rounded sum, an exact or
+//!   underflowing halving); `R~ = fl(fl(fl(g01 + g11) 0.5) - P~)` errs by the half-sum's
+//!   `u mg + eta`, `P~`'s `u mg + eta` and its own `u |R~| <= 2u mg (1 + u) + 2u eta`:
+//!   `|R~ - R|, |S~ - S| <= 4.01 u mg + 2.01 eta`, so the coefficients move the patch
+//!   by at most `Ec = |dP| + |dQ| + |dR| + |dS| <= 10.1 u mg + 7 eta` on the square;
+//!   `|P~|, |Q~| <= 1.001 mg + eta`, `|R~|, |S~| <= 2.001 mg + 3 eta`;
+//! - `eval`: at most 4 roundings on any path (`S l` then `R +`, `t *`, the last `+`),
+//!   so `|eval - (P' + Q~ l + t (R~ + S~ l))| <= gamma_4 (|P'| + |Q~| + |R~| + |S~|) + 3.01 eta`,
+//!   `gamma_4 = 4u / (1 - 4u) <= 4.01 u`, with `P' = next_up(fl(P~ + pad)) >= P~ + pad`
+//!   and `|P'| <= 1.001 (mg + pad) + 2^-148`.
+//!
+//! So `eval >= G - Ec + pad - gamma_4 (6.01 mg + 1.001 pad) - 4 eta >= G` as soon as
+//! `pad >= 35 u mg + 13 eta`. The pad is computed as `fl(mg 2^-18 + 2^-140)`: the
+//! scaling is exact or underflows by at most eta, the sum rounds down by at most a
+//! factor (1 - u), so `pad >= 63.9 u mg + 2^-141`, enough. A patch with `mg >= 2^120`
+//! is dropped (the bound assumes no overflow; `usable` drops the rest as before).
+//! The padded coefficient is stored in the same `Patch`, so `eval_box` (which encloses
+//! the f32 `eval` of any stored coefficients, see above) is unchanged and still
+//! encloses it. Cost: per patch and tile a max over 4 values, a multiply, two adds and
+//! a step; per sample nothing (the same 3 multiply-adds).
+//!
+//! *What it costs in tightness.* Corner values move outward by a few ulps of
+//! `|p - X w| + |k c|`, interval ends by a few ulps, and every patch by `2^-18 mg`
+//! (about 32 ulps of its largest corner value; in clip units, 4e-3 w for a corner value
+//! of 1000 px w): far below the resolution of any STE figure. On the gate's seed 1 the
+//! fractions of tile samples admitted agree with `lb2011` to 1e-5 in every regime (far
+//! from the origin `lb2011-safe` admits slightly fewer: the FMA is more accurate than
+//! `lb2011`'s rounded product).
 
 use super::la2011::chord_nonpos;
 use super::*;
+
+/// `[min, max]` corner values of one axis, each indexed `[lens index][shutter end]`.
+type Corners = [[[f32; 2]; 2]; 2];
 
 /// One screen axis at the two shutter ends (index e = 0 at t = 0, 1 at t = 1).
 #[derive(Clone, Copy, Debug)]
@@ -100,6 +196,8 @@ struct Axis {
     w: [[f32; 3]; 2],
     /// Lens shear per unit lens coordinate: `c` for x, `k c` for y.
     s: [[f32; 3]; 2],
+    /// True when `s` is exact (`1 c` for x); else `fl(k c)`, one rounding off `k c`.
+    s_exact: bool,
 }
 
 impl Axis {
@@ -108,12 +206,13 @@ impl Axis {
             p: [tri.q.map(|v| v[axis]), tri.r.map(|v| v[axis])],
             w: [tri.q.map(|v| v[3]), tri.r.map(|v| v[3])],
             s: [tri.c0.map(|c| scale * c), tri.c1.map(|c| scale * c)],
+            s_exact: scale == 1.0,
         }
     }
 
     /// Corner values `[min, max]`, each indexed `[lens index (0: -1, 1: +1)][end]`, of
     /// `d + l s` over the 3 vertices and both columns; None if any is NaN.
-    fn corners(&self, lo: f32, hi: f32) -> Option<[[[f32; 2]; 2]; 2]> {
+    fn corners(&self, lo: f32, hi: f32) -> Option<Corners> {
         let mut mn = [[f32::INFINITY; 2]; 2];
         let mut mx = [[f32::NEG_INFINITY; 2]; 2];
         for e in 0..2 {
@@ -126,6 +225,36 @@ impl Axis {
                         }
                         mn[li][e] = mn[li][e].min(val);
                         mx[li][e] = mx[li][e].max(val);
+                    }
+                }
+            }
+        }
+        Some([mn, mx])
+    }
+
+    /// `lb2011-safe`: the same corner values as [`corners`](Self::corners) rounded
+    /// outward (f32 interval arithmetic, one `next_up` / `next_down` step after every
+    /// rounded operation): `[lower bounds of the min, upper bounds of the max]` of the
+    /// exact `p - X w + l k c`. None if any is NaN or infinite.
+    fn corners_safe(&self, lo: f32, hi: f32) -> Option<Corners> {
+        let mut mn = [[f32::INFINITY; 2]; 2];
+        let mut mx = [[f32::NEG_INFINITY; 2]; 2];
+        for e in 0..2 {
+            for i in 0..3 {
+                let s = self.s[e][i];
+                let (s_lo, s_hi) = if self.s_exact { (s, s) } else { (s.next_down(), s.next_up()) };
+                for x in [lo, hi] {
+                    // p - X w with one rounding (fused multiply-add), enclosed by a step.
+                    let a = (-x).mul_add(self.w[e][i], self.p[e][i]);
+                    let (a_lo, a_hi) = (a.next_down(), a.next_up());
+                    let lows = [(a_lo - s_hi).next_down(), (a_lo + s_lo).next_down()];
+                    let highs = [(a_hi - s_lo).next_up(), (a_hi + s_hi).next_up()];
+                    for li in 0..2 {
+                        if !(lows[li].is_finite() && highs[li].is_finite()) {
+                            return None;
+                        }
+                        mn[li][e] = mn[li][e].min(lows[li]);
+                        mx[li][e] = mx[li][e].max(highs[li]);
                     }
                 }
             }
@@ -206,50 +335,133 @@ impl SampleConstraint for Patch {
     }
 }
 
+/// The arithmetic of one variant: `lb2011` (f32 rounded to nearest, the published
+/// test) or `lb2011-safe` (every quantity rounded outward). The algorithm
+/// ([`patch_ranges`], [`Prep::tile`]) is shared.
+struct Arith {
+    /// `[min, max]` corner values of one axis for the tile's columns (or rows); see
+    /// [`Axis::corners`].
+    corners: fn(&Axis, f32, f32) -> Option<Corners>,
+    /// The part of [0, 1] where the chord `(1-t) a + t b` is >= 0; None if it is < 0
+    /// on all of it.
+    chord: fn(f32, f32) -> Option<[f32; 2]>,
+    /// The lens range `2 sigma - 1` (within [-1, 1]) of a range of sigma in [0, 1].
+    lens: fn([f32; 2]) -> [f32; 2],
+    /// The constraint of a patch with these corner values, or None to emit none.
+    patch: fn(&'static str, Lens, [[f32; 2]; 2]) -> Option<Patch>,
+}
+
+/// The published arithmetic (f32, round to nearest, no epsilon).
+static PLAIN: Arith = Arith {
+    corners: Axis::corners,
+    // g >= 0  <=>  -g <= 0: chord_nonpos keeps where its argument line is <= 0.
+    chord: |a, b| chord_nonpos(-a, -b),
+    lens: |sigma| [(2.0 * sigma[0] - 1.0).max(-1.0), (2.0 * sigma[1] - 1.0).min(1.0)],
+    patch: |name, lens, g| {
+        let can_cull = g.iter().flatten().any(|&v| v < 0.0);
+        let patch = Patch::from_corners(name, lens, g);
+        // A non-finite coefficient, or one so large that `eval` could overflow to
+        // inf - inf = NaN (which culls), drops the patch.
+        (can_cull && patch.usable()).then_some(patch)
+    },
+};
+
+/// `lb2011-safe`'s arithmetic: outward rounding (see the module's error analysis).
+static SAFE: Arith =
+    Arith { corners: Axis::corners_safe, chord: chord_nonneg_safe, lens: lens_safe, patch: patch_safe };
+
+/// `lb2011-safe`: the part of [0, 1] where `(1-t) a + t b >= 0`, rounded outward (a, b
+/// finite). The crossing `t* = a / (a - b)` is a quotient of two positive numbers when
+/// the chord changes sign; its lower bound divides by an upper bound of the denominator
+/// and steps down, its upper bound divides by a lower bound and steps up.
+fn chord_nonneg_safe(a: f32, b: f32) -> Option<[f32; 2]> {
+    if a < 0.0 && b < 0.0 {
+        None
+    } else if a < 0.0 {
+        // Rising through 0: kept [t*, 1], t* = (-a) / ((-a) + b), -a > 0, b >= 0. The
+        // denominator rounds to >= -a > 0; an overflow to inf gives 0 (still below t*).
+        let t = (-a / (b - a).next_up()).next_down();
+        Some([t.max(0.0), 1.0])
+    } else if b < 0.0 {
+        // Falling through 0: kept [0, t*], t* = a / (a + (-b)), a >= 0, -b > 0. The
+        // lower bound of the denominator can be 0 (a = 0, b = -2^-149): the quotient is
+        // then NaN or inf, and the range the whole [0, 1].
+        let t = (a / (a - b).next_down()).next_up();
+        Some([0.0, if (0.0..1.0).contains(&t) { t } else { 1.0 }])
+    } else {
+        Some([0.0, 1.0])
+    }
+}
+
+/// `lb2011-safe`: `l = 2 sigma - 1` rounded outward (`2 sigma` is exact, the difference
+/// is rounded once: one step encloses it).
+fn lens_safe(sigma: [f32; 2]) -> [f32; 2] {
+    [(2.0 * sigma[0] - 1.0).next_down().max(-1.0), (2.0 * sigma[1] - 1.0).next_up().min(1.0)]
+}
+
+/// `lb2011-safe`: the patch with its constant coefficient raised by
+/// `pad = 2^-18 mg + 2^-140` (mg the largest |corner value|), so that its f32 `eval`
+/// is >= the exact bilinear interpolant of the corner values for |l| <= 1, t in
+/// [0, 1] (module doc, "Per-sample evaluation"). None when no corner is < 0 (it cannot
+/// cull) or mg >= 2^120 (the analysis assumes no overflow; dropping a patch is always
+/// conservative).
+fn patch_safe(name: &'static str, lens: Lens, g: [[f32; 2]; 2]) -> Option<Patch> {
+    const PAD: f32 = 1.0 / (1u32 << 18) as f32; // 2^-18 = 64 u
+    const FLOOR: f32 = 1.0 / (1u128 << 120) as f32 / (1u32 << 20) as f32; // 2^-140
+    const LIMIT: f32 = (1u128 << 120) as f32; // 2^120
+    if !g.iter().flatten().any(|&v| v < 0.0) {
+        return None;
+    }
+    let mg = g.iter().flatten().fold(0.0f32, |m, v| m.max(v.abs()));
+    // (A NaN cannot reach here: corners are finite.)
+    if mg >= LIMIT || mg.is_nan() {
+        return None;
+    }
+    let mut patch = Patch::from_corners(name, lens, g);
+    patch.p = (patch.p + (mg * PAD + FLOOR)).next_up();
+    patch.usable().then_some(patch)
+}
+
 /// Ranges implied by one patch (g values at the corners, `g[l][e]`): the t where some
 /// l has g >= 0 and the l where some t has g >= 0, or None if g < 0 on the whole square.
-fn patch_ranges(g: [[f32; 2]; 2]) -> Option<([f32; 2], [f32; 2])> {
+fn patch_ranges(ar: &Arith, g: [[f32; 2]; 2]) -> Option<([f32; 2], [f32; 2])> {
     let hull = |a: Option<[f32; 2]>, b: Option<[f32; 2]>| match (a, b) {
         (Some(a), Some(b)) => Some([a[0].min(b[0]), a[1].max(b[1])]),
         (a, b) => a.or(b),
     };
-    // g >= 0  <=>  -g <= 0: chord_nonpos keeps where its argument line is <= 0.
-    let t = hull(chord_nonpos(-g[0][0], -g[0][1]), chord_nonpos(-g[1][0], -g[1][1]))?;
-    let sigma = hull(chord_nonpos(-g[0][0], -g[1][0]), chord_nonpos(-g[0][1], -g[1][1]))?;
-    let l = [(2.0 * sigma[0] - 1.0).max(-1.0), (2.0 * sigma[1] - 1.0).min(1.0)];
-    Some((t, l))
+    let t = hull((ar.chord)(g[0][0], g[0][1]), (ar.chord)(g[1][0], g[1][1]))?;
+    let sigma = hull((ar.chord)(g[0][0], g[1][0]), (ar.chord)(g[0][1], g[1][1]))?;
+    Some((t, (ar.lens)(sigma)))
 }
 
 struct Prep {
     x: Axis,
     y: Axis,
+    arith: &'static Arith,
 }
 
 impl Prepared for Prep {
     fn tile(&self, tile: &Tile) -> TileResult {
+        let ar = self.arith;
         let mut out = TileBounds::full();
         let axes = [
             (&self.x, tile.x0, tile.x1, Lens::U, ["x1 patch (min delta, u-t)", "x0 patch (max delta, u-t)"]),
             (&self.y, tile.y0, tile.y1, Lens::V, ["y1 patch (min eps, v-t)", "y0 patch (max eps, v-t)"]),
         ];
         for (ax, lo, hi, lens, names) in axes {
-            let Some([mn, mx]) = ax.corners(lo, hi) else {
+            let Some([mn, mx]) = (ar.corners)(ax, lo, hi) else {
                 continue;
             };
             // g = -min (culls where the min patch is > 0), g = max (culls where < 0).
             let gs = [mn.map(|r| r.map(|v| -v)), mx];
             for (g, name) in gs.into_iter().zip(names) {
-                let Some((t, l)) = patch_ranges(g) else {
+                let Some((t, l)) = patch_ranges(ar, g) else {
                     return TileResult::Empty;
                 };
                 out.t = [out.t[0].max(t[0]), out.t[1].min(t[1])];
                 let lr = if lens == Lens::U { &mut out.u } else { &mut out.v };
                 *lr = [lr[0].max(l[0]), lr[1].min(l[1])];
-                let can_cull = g.iter().flatten().any(|&v| v < 0.0);
-                let patch = Patch::from_corners(name, lens, g);
-                // A non-finite coefficient, or one so large that `eval` could overflow to
-                // inf - inf = NaN (which culls), drops the patch.
-                if can_cull && patch.usable() {
+                if let Some(patch) = (ar.patch)(name, lens, g) {
                     out.constraints.push(Box::new(patch));
                 }
             }
@@ -261,7 +473,11 @@ impl Prepared for Prep {
     }
 }
 
-struct Lb2011;
+/// lb2011 or lb2011-safe: the same algorithm in another arithmetic.
+struct Lb2011 {
+    info: &'static MethodInfo,
+    arith: &'static Arith,
+}
 
 static INFO: MethodInfo = MethodInfo {
     id: "lb2011",
@@ -276,14 +492,30 @@ static INFO: MethodInfo = MethodInfo {
 
 impl Method for Lb2011 {
     fn info(&self) -> &'static MethodInfo {
-        &INFO
+        self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(Prep { x: Axis::new(tri, 0, 1.0), y: Axis::new(tri, 1, tri.k) })
+        Box::new(Prep { x: Axis::new(tri, 0, 1.0), y: Axis::new(tri, 1, tri.k), arith: self.arith })
     }
 }
 
-pub static METHOD: &dyn Method = &Lb2011;
+pub static METHOD: &dyn Method = &Lb2011 { info: &INFO, arith: &PLAIN };
+
+static INFO_SAFE: MethodInfo = MethodInfo {
+    id: "lb2011-safe",
+    source: "reconstruction of Laine & Karras 2011, NVR-2011-004 (LK11), as described in \
+             Munkberg & Akenine-Möller 2012 §1, §2.1 (under Eq. 1) and Table 3; per \
+             docs/reconstructions.md: four bilinear patches in u-t / v-t of the \
+             min / max of delta = x + u c - X w over a tile's columns, evaluated per sample; \
+             with every corner value, interval end and patch rounded outward by a bound on \
+             its f32 error (error analysis in this file): conservative for every finite input",
+    reconstruction: true,
+    dims: &[Dims::Motion, Dims::Defocus, Dims::Both],
+    outputs: Outputs { tile_reject: true, lens: true, time: true, depth: false, per_sample: true },
+};
+
+/// `lb2011-safe`: lb2011 rounded outward (see the module's error analysis).
+pub static METHOD_SAFE: &dyn Method = &Lb2011 { info: &INFO_SAFE, arith: &SAFE };
 
 #[cfg(test)]
 mod tests {
@@ -511,5 +743,350 @@ mod tests {
     #[test]
     fn degenerate_input_does_not_panic() {
         assert_degenerate_input_is_answered(METHOD, &figure1::triangle());
+    }
+
+    // ----- lb2011-safe -----
+
+    fn safe_bounds(tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
+        bounds_of(METHOD_SAFE, tri, tile)
+    }
+
+    /// Enclosures (outward-rounded f64) of `delta_k(X, l, t)` on one axis, for the 3
+    /// vertices and both columns (rows) of the tile.
+    fn deltas(tri: &Triangle, tile: &Tile, axis: usize, l: f32, t: f32) -> Vec<Interval> {
+        let pt = |x: f32| Interval::point(x as f64);
+        let (t, l) = (pt(t), pt(l));
+        let lerp = |a: f32, b: f32| pt(a) + t * (pt(b) - pt(a));
+        let cols = if axis == 0 { [tile.x0, tile.x1] } else { [tile.y0, tile.y1] };
+        let scale = if axis == 0 { pt(1.0) } else { pt(tri.k) };
+        let mut out = Vec::new();
+        for i in 0..3 {
+            let p = lerp(tri.q[i][axis], tri.r[i][axis]);
+            let w = lerp(tri.q[i][3], tri.r[i][3]);
+            let c = lerp(tri.c0[i], tri.c1[i]) * scale;
+            for x in cols {
+                out.push(p - pt(x) * w + l * c);
+            }
+        }
+        out
+    }
+
+    /// True when the exact `min delta < 0 < max delta` holds for certain on both axes at
+    /// (u, v, t): the lemma's necessary condition for any covered sample in the tile.
+    fn surely_necessary(tri: &Triangle, tile: &Tile, u: f32, v: f32, t: f32) -> bool {
+        [(0, u), (1, v)].into_iter().all(|(axis, l)| {
+            let d = deltas(tri, tile, axis, l, t);
+            d.iter().any(|e| e.hi < 0.0) && d.iter().any(|e| e.lo > 0.0)
+        })
+    }
+
+    /// Lens and time values that sit on the zero set of some `delta_k`: the roots in l
+    /// at random t and the roots in t at l = -1, 0, 1, with their f32 neighbours, plus
+    /// the domain's corners and random values.
+    fn probes(tri: &Triangle, tile: &Tile, axis: usize, rng: &mut ChaCha8Rng) -> Vec<(f32, f32)> {
+        let cols = if axis == 0 { [tile.x0, tile.x1] } else { [tile.y0, tile.y1] };
+        let scale = if axis == 0 { 1.0 } else { tri.k as f64 };
+        let d_at = |i: usize, x: f32, l: f64, t: f64| {
+            let lerp = |a: f32, b: f32| a as f64 + t * (b as f64 - a as f64);
+            lerp(tri.q[i][axis], tri.r[i][axis]) - x as f64 * lerp(tri.q[i][3], tri.r[i][3])
+                + l * scale * lerp(tri.c0[i], tri.c1[i])
+        };
+        let near = |x: f32, lo: f32, hi: f32| {
+            let mut v = vec![x];
+            let (mut a, mut b) = (x, x);
+            for _ in 0..3 {
+                a = a.next_down();
+                b = b.next_up();
+                v.extend([a, b]);
+            }
+            v.into_iter().filter(move |y| (lo..=hi).contains(y))
+        };
+        let mut out = vec![(-1.0, 0.0), (1.0, 0.0), (-1.0, 1.0), (1.0, 1.0)];
+        for _ in 0..6 {
+            out.push((rng.gen_range(-1.0..=1.0), rng.gen_range(0.0..=1.0)));
+        }
+        for i in 0..3 {
+            for x in cols {
+                for _ in 0..3 {
+                    let t: f32 = rng.gen_range(0.0..=1.0);
+                    let (d0, d1) = (d_at(i, x, 0.0, t as f64), d_at(i, x, 1.0, t as f64));
+                    let l = (-d0 / (d1 - d0)) as f32;
+                    if l.is_finite() {
+                        out.extend(near(l, -1.0, 1.0).map(|l| (l, t)));
+                    }
+                }
+                for l in [-1.0f32, 0.0, 1.0] {
+                    let (d0, d1) = (d_at(i, x, l as f64, 0.0), d_at(i, x, l as f64, 1.0));
+                    let t = (-d0 / (d1 - d0)) as f32;
+                    if t.is_finite() {
+                        out.extend(near(t, 0.0, 1.0).map(|t| (l, t)));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Every probe (u, v, t) that surely meets the necessary condition must be admitted
+    /// at the tile's corners and centre. Returns (necessary probes, admitted probes of
+    /// all, probes culled by the original that are surely necessary).
+    fn check_safe_on(tri: &Triangle, tile: &Tile, rng: &mut ChaCha8Rng) -> (usize, usize, usize) {
+        let safe = safe_bounds(tri, tile);
+        let plain = bounds(tri, tile);
+        let pu = probes(tri, tile, 0, rng);
+        let pv = probes(tri, tile, 1, rng);
+        let (mut need, mut adm, mut plain_bad) = (0, 0, 0);
+        for (n, &(u, tu)) in pu.iter().enumerate() {
+            for k in 0..4 {
+                let (v, tv) = pv[(n * 7 + k * 13) % pv.len()];
+                for t in [tu, tv] {
+                    let nec = surely_necessary(tri, tile, u, v, t);
+                    let s = Sample::new(tile.x0, tile.y1, u, v, t);
+                    let ok = safe.as_ref().is_some_and(|b| b.admits(&s));
+                    assert!(ok || !nec, "lb2011-safe culls a necessary (u, v, t) {s:?}\n{tri:?}\n{tile:?}\n{safe:?}");
+                    need += nec as usize;
+                    adm += ok as usize;
+                    plain_bad += (nec && !plain.as_ref().is_some_and(|b| b.admits(&s))) as usize;
+                }
+            }
+        }
+        // The patches are upper bounds of the exact min / max at every probe.
+        if let Some(b) = &safe {
+            for c in &b.constraints {
+                let name = c.name();
+                let (axis, ps) = if name.starts_with('x') { (0, &pu) } else { (1, &pv) };
+                for &(l, t) in ps.iter() {
+                    let s = if axis == 0 { Sample::new(0.0, 0.0, l, 0.0, t) } else { Sample::new(0.0, 0.0, 0.0, l, t) };
+                    let g = c.eval(&s) as f64;
+                    let d = deltas(tri, tile, axis, l, t);
+                    let need = if name.contains("min") {
+                        d.iter().map(|e| -e.lo).fold(f64::NEG_INFINITY, f64::max)
+                    } else {
+                        d.iter().map(|e| e.hi).fold(f64::NEG_INFINITY, f64::max)
+                    };
+                    assert!(
+                        g >= need,
+                        "{name} at l {l} t {t}: eval {g} below the exact bound {need}\n{tri:?}\n{tile:?}"
+                    );
+                    let pt = |x: f32| Interval::point(x as f64);
+                    let bx = SampleBox { x: pt(s.x), y: pt(s.y), u: pt(s.u), v: pt(s.v), t: pt(s.t) };
+                    assert!(c.eval_box(&bx).contains(g), "{name}: {g} not in {:?}", c.eval_box(&bx));
+                }
+            }
+            super::super::testkit::assert_eval_box_encloses(b, tile, rng.gen());
+        }
+        (need, adm, plain_bad)
+    }
+
+    /// A random triangle of one of the hard kinds, positioned in pixels around (ox, oy),
+    /// and a tile near one of its projected vertices.
+    fn hard_case(rng: &mut ChaCha8Rng, kind: usize) -> (Triangle, Tile) {
+        let (ox, oy): (f32, f32) = match kind {
+            3 => (rng.gen_range(-1.0e6..1.0e6), rng.gen_range(-1.0e6..1.0e6)),
+            _ => (rng.gen_range(-100.0..100.0), rng.gen_range(-100.0..100.0)),
+        };
+        let size: f32 = match kind {
+            1 => 1.0e4,
+            2 => 1.0e-3,
+            _ => 30.0,
+        };
+        let wgen = |rng: &mut ChaCha8Rng| -> f32 {
+            match kind {
+                4 => rng.gen_range(-1.0e-6..1.0e-6),
+                5 => rng.gen_range(-0.5..2.0),
+                6 => rng.gen_range(1.0e3..1.0e5),
+                _ => rng.gen_range(0.5..20.0),
+            }
+        };
+        let v = |rng: &mut ChaCha8Rng| {
+            let w = wgen(rng);
+            let (x, y) = (ox + rng.gen_range(-size..size), oy + rng.gen_range(-size..size));
+            [x * w, y * w, 0.5, w]
+        };
+        let q = [v(rng), v(rng), v(rng)];
+        let moving = rng.gen_bool(0.7);
+        let r = if moving { [v(rng), v(rng), v(rng)] } else { q };
+        // CoC: physical c = a + b w crossing the focal plane, or per vertex, huge or tiny.
+        let cmag: f32 = match kind {
+            1 | 7 => 3.0e3,
+            2 => 1.0e-30,
+            _ => 5.0,
+        };
+        let (c0, c1) = if kind == 0 || rng.gen_bool(0.5) {
+            let focus = q[0][3] * rng.gen_range(0.5f32..1.5);
+            let b = cmag / focus.abs().max(1e-30);
+            (q.map(|p| b * (p[3] - focus)), r.map(|p| b * (p[3] - focus)))
+        } else {
+            let mut c = || rng.gen_range(-cmag..cmag);
+            ([c(), c(), c()], [c(), c(), c()])
+        };
+        let tri = Triangle { q, r, c0, c1, k: rng.gen_range(0.5..2.0) };
+        let i = rng.gen_range(0..3);
+        let p = if rng.gen_bool(0.5) { q[i] } else { r[i] };
+        let (cx, cy) = if p[3].abs() > 1e-30 { (p[0] / p[3], p[1] / p[3]) } else { (ox, oy) };
+        let ts = [1.0f32, 2.0, 4.0, 16.0][rng.gen_range(0..4)];
+        let jitter = if kind == 2 { size } else { (size * 0.1).max(ts) };
+        let (x0, y0) = (cx + rng.gen_range(-jitter..jitter), cy + rng.gen_range(-jitter..jitter));
+        // Pixel-aligned tiles, or for the tiny triangle tiles of its own size.
+        let tile =
+            if kind == 2 { Tile::square(x0, y0, ts * size / 8.0) } else { Tile::square(x0.floor(), y0.floor(), ts) };
+        (tri, tile)
+    }
+
+    #[test]
+    fn safe_admits_every_necessary_lens_time_on_hard_input() {
+        // Kinds: 0 ordinary thin lens through the focal plane, 1 huge (1e4 px, CoC 3e3),
+        // 2 tiny (1e-3 px, CoC 1e-30), 3 far from the origin (1e6 px), 4 w near 0
+        // (|w| < 1e-6), 5 vertices behind the lens, 6 huge w, 7 huge CoC.
+        let mut rng = ChaCha8Rng::seed_from_u64(2011);
+        let mut totals = [(0usize, 0usize, 0usize); 8];
+        for n in 0..1600 {
+            let kind = n % 8;
+            let (tri, tile) = hard_case(&mut rng, kind);
+            let (a, b, c) = check_safe_on(&tri, &tile, &mut rng);
+            totals[kind].0 += a;
+            totals[kind].1 += b;
+            totals[kind].2 += c;
+        }
+        for (kind, &(need, adm, _)) in totals.iter().enumerate() {
+            assert!(need > 100, "kind {kind}: only {need} necessary probes: {totals:?}");
+            assert!(adm > need, "kind {kind}: nothing culled ({adm} admitted, {need} necessary): {totals:?}");
+        }
+        eprintln!("(necessary, admitted, culled by lb2011 though necessary) per kind: {totals:?}");
+        // The probes sit on the rounding-sized boundary that the original misses.
+        let plain_bad: usize = totals.iter().map(|t| t.2).sum();
+        assert!(plain_bad > 0, "the probes never catch lb2011 itself: {totals:?}");
+    }
+
+    #[test]
+    fn safe_keeps_covered_samples_of_the_stored_lb2011_cases() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/cases/lb2011");
+        let mut n = 0;
+        for f in std::fs::read_dir(&dir).unwrap() {
+            let path = f.unwrap().path();
+            if path.extension().and_then(|e| e.to_str()) != Some("json") {
+                continue;
+            }
+            let cf = crate::corpus::CaseFile::load(&path).unwrap();
+            let w = cf.witness.as_ref().expect("a violation case has a witness");
+            assert!(crate::corpus::witness_holds(METHOD, &cf.case, &cf.tile, w.sample).is_ok(), "{path:?}");
+            let r = crate::corpus::witness_holds(METHOD_SAFE, &cf.case, &cf.tile, w.sample);
+            assert!(r.is_err(), "{path:?}: lb2011-safe still culls the witness: {r:?}");
+            let tri = &cf.case.triangle;
+            assert_spot(METHOD_SAFE, tri, &cf.tile, 4000, 77);
+            let mut rng = ChaCha8Rng::seed_from_u64(n);
+            check_safe_on(tri, &cf.tile, &mut rng);
+            n += 1;
+        }
+        assert!(n >= 2, "only {n} stored cases");
+    }
+
+    #[test]
+    fn safe_is_not_vacuous() {
+        // Far tiles are still culled, the figure-1 strip keeps its size.
+        let tri = figure1::triangle();
+        for tile in [Tile::square(30.0, -0.5, 1.0), Tile::square(-31.0, -0.5, 1.0), Tile::square(0.0, 10.0, 1.0)] {
+            assert!(safe_bounds(&tri, &tile).is_none(), "{tile:?}");
+        }
+        let tile = figure1::tile();
+        let (a, b) = (bounds(&tri, &tile).unwrap(), safe_bounds(&tri, &tile).unwrap());
+        for (x, y) in [(a.t, b.t), (a.u, b.u), (a.v, b.v)] {
+            assert!(y[0] <= x[0] && x[1] <= y[1], "safe {y:?} inside plain {x:?}");
+            assert!(x[0] - y[0] < 1e-5 && y[1] - x[1] < 1e-5, "safe {y:?} much wider than plain {x:?}");
+        }
+        assert_eq!(a.constraints.len(), b.constraints.len());
+        for (u, t, keep) in [(0.0f32, 0.5f32, true), (0.0, 0.45, false), (0.0, 0.56, false), (1.0, 0.7, false)] {
+            assert_eq!(b.admits(&Sample::new(0.0, 0.0, u, 0.0, t)), keep, "u {u} t {t}");
+        }
+        // On the random stress set, safe and plain admit nearly the same samples.
+        let mut rng = ChaCha8Rng::seed_from_u64(44);
+        let (mut pa, mut sa) = (0usize, 0usize);
+        for n in 0..300 {
+            let (tri, tile) = random_dual_case(&mut rng, n);
+            let (p, s) = (bounds(&tri, &tile), safe_bounds(&tri, &tile));
+            for _ in 0..200 {
+                let smp = random_sample(&mut rng, &tile);
+                pa += p.as_ref().is_some_and(|b| b.admits(&smp)) as usize;
+                sa += s.as_ref().is_some_and(|b| b.admits(&smp)) as usize;
+            }
+            assert_spot(METHOD_SAFE, &tri, &tile, 500, 5000 + n as u64);
+        }
+        // (Safe may admit a few fewer: its FMA difference is more accurate than plain's.)
+        let slack = pa / 1000 + 10;
+        assert!(sa + slack >= pa && sa <= pa + slack, "plain admits {pa}, safe {sa}");
+        assert!(sa < 300 * 200 * 3 / 4, "safe hardly culls: {sa}");
+    }
+
+    #[test]
+    fn safe_non_finite_input_never_culls_that_axis() {
+        let base = figure1::triangle();
+        let far = Tile::square(30.0, -0.5, 1.0); // culled by x only
+        assert!(safe_bounds(&base, &far).is_none());
+        for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 3.0e38] {
+            let mut tri = base;
+            tri.q[1][0] = bad;
+            tri.q[1][3] = if bad == 3.0e38 { 1.0e-30 } else { 1.0 };
+            let b = safe_bounds(&tri, &far).expect("a non-finite x must not cull");
+            assert!(b.constraints.iter().all(|c| c.name().starts_with('y')), "{b:?}");
+            assert_eq!(b.u, [-1.0, 1.0]);
+            let mut tri = base;
+            tri.c1[2] = bad;
+            assert!(safe_bounds(&tri, &far).is_some(), "a non-finite CoC must not cull ({bad})");
+        }
+        let mut tri = base;
+        tri.k = f32::NAN;
+        assert!(safe_bounds(&tri, &Tile::square(0.0, 10.0, 1.0)).is_some(), "NaN k culls in y");
+        assert_degenerate_input_is_answered(METHOD_SAFE, &base);
+    }
+
+    #[test]
+    fn safe_chord_and_patch_enclose() {
+        // Chords: the kept range holds the exact crossing, for extreme magnitudes.
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        for _ in 0..100_000 {
+            let e = |rng: &mut ChaCha8Rng| {
+                let m: f32 = rng.gen_range(-1.0..1.0);
+                m * 2f32.powi(rng.gen_range(-149..127))
+            };
+            let (a, b) = (e(&mut rng), e(&mut rng));
+            let r = chord_nonneg_safe(a, b);
+            let (a64, b64) = (a as f64, b as f64);
+            if a < 0.0 && b < 0.0 {
+                assert!(r.is_none());
+                continue;
+            }
+            let r = r.unwrap();
+            assert!(0.0 <= r[0] && r[0] <= r[1] && r[1] <= 1.0);
+            // Where the chord is >= 0 (checked at the crossing, in f64: exact enough here).
+            if (a < 0.0) != (b < 0.0) {
+                let ts = a64 / (a64 - b64);
+                assert!(r[0] as f64 <= ts && ts <= r[1] as f64, "{a} {b}: {ts} not in {r:?}");
+            } else {
+                assert_eq!(r, [0.0, 1.0]);
+            }
+        }
+        // Patches: eval >= the exact bilinear interpolant of the corners.
+        for n in 0..20_000 {
+            let scale = 2f32.powi(rng.gen_range(-140..118));
+            let g = [[0; 2]; 2].map(|r: [i32; 2]| r.map(|_| rng.gen_range(-1.0f32..1.0) * scale));
+            let Some(p) = patch_safe("t", Lens::U, g) else { continue };
+            for k in 0..20 {
+                let (l, t): (f32, f32) = match (n + k) % 3 {
+                    0 => ([-1.0, 1.0][k % 2], [0.0, 1.0][(k / 2) % 2]),
+                    _ => (rng.gen_range(-1.0..=1.0), rng.gen_range(0.0..=1.0)),
+                };
+                let pt = |x: f32| Interval::point(x as f64);
+                let (a, tt) = (pt(l), pt(t));
+                let one = pt(1.0);
+                let half = pt(0.5);
+                let al = (a + one) * half;
+                let exact = (one - al) * (one - tt) * pt(g[0][0])
+                    + al * (one - tt) * pt(g[1][0])
+                    + (one - al) * tt * pt(g[0][1])
+                    + al * tt * pt(g[1][1]);
+                let v = p.eval(&Sample::new(0.0, 0.0, l, 0.0, t)) as f64;
+                assert!(v >= exact.hi, "g {g:?} at ({l}, {t}): eval {v} below {exact:?}");
+            }
+        }
     }
 }

@@ -14,6 +14,13 @@
 //! either part's rounding costs, nothing more. Nothing is disabled: LA falls back to the
 //! full lens for a vertex whose CoC changes sign, and LB needs no division.
 //!
+//! # `lc-safe`
+//! The same conjunction of `la2011-safe` and `lb2011-safe` (each made conservative in
+//! f32 in its own file: f32 interval arithmetic with directed steps, and for lb2011's
+//! patches a padded constant term). Each part alone culls only samples no triangle
+//! covers, so their conjunction does too; nothing else needs an analysis. Its price is
+//! the sum of the two parts' prices.
+//!
 //! # Choices
 //! munkberg2012 does not say how LC orders the two tests; as the constraints are
 //! independent, the order has no effect on which samples pass.
@@ -40,7 +47,12 @@ impl Prepared for Prep {
     }
 }
 
-struct Lc;
+/// lc, or lc-safe: the same conjunction of two other registered methods.
+struct Lc {
+    info: &'static MethodInfo,
+    la: &'static &'static dyn Method,
+    lb: &'static &'static dyn Method,
+}
 
 static INFO: MethodInfo = MethodInfo {
     id: "lc",
@@ -55,14 +67,25 @@ static INFO: MethodInfo = MethodInfo {
 
 impl Method for Lc {
     fn info(&self) -> &'static MethodInfo {
-        &INFO
+        self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(Prep { la: super::la2011::METHOD.setup(tri), lb: super::lb2011::METHOD.setup(tri) })
+        Box::new(Prep { la: self.la.setup(tri), lb: self.lb.setup(tri) })
     }
 }
 
-pub static METHOD: &dyn Method = &Lc;
+pub static METHOD: &dyn Method = &Lc { info: &INFO, la: &super::la2011::METHOD, lb: &super::lb2011::METHOD };
+
+static INFO_SAFE: MethodInfo = MethodInfo {
+    id: "lc-safe",
+    source: "lc made conservative in f32: the conjunction of la2011-safe and lb2011-safe",
+    ..INFO
+};
+
+/// `lc-safe`: the conjunction of `la2011-safe` and `lb2011-safe`. A conjunction of
+/// conservative tests is conservative, so nothing beyond the two parts is needed.
+pub static METHOD_SAFE: &dyn Method =
+    &Lc { info: &INFO_SAFE, la: &super::la2011::METHOD_SAFE, lb: &super::lb2011::METHOD_SAFE };
 
 #[cfg(test)]
 mod tests {
