@@ -78,6 +78,8 @@
 //! (`mam2012-hyperplane-ps`) adds one per-sample constraint per edge,
 //! `g(s) = -(a . (1, x, y, u, v, t))` with the unpadded `a_1` and the sample's own x, y
 //! (the paper's parenthesised STE numbers of Table 1; "9 FMA" per sample).
+//! `METHOD_SAFE` and `METHOD_PS_SAFE` are the same two tests rounded outward (last
+//! section).
 //!
 //! # Selective enabling
 //! The paper enables the test per triangle by comparing the screen AABB at
@@ -102,8 +104,128 @@
 //! constraint: the real value widened by `2^-20 sum_i |a_i s_i| + 2^-140` (a length-6
 //! dot product evaluated in order errs by at most `gamma_6 < 2^-21` of the sum of
 //! magnitudes, plus denormal absolute errors below `2^-146`).
+//!
+//! # `mam2012-hyperplane-safe` and `mam2012-hyperplane-ps-safe`: the same planes, rounded outward
+//! The f32 planes above are the published method and stay as they are: the gate finds
+//! covered tiles they cull (the reject plane's rounding at a tile corner: static, sliver,
+//! tiny, far-from-origin, screen-parallel cases), refined u/v bounds of sub-pixel
+//! triangles that miss by up to 5e-2 (their cross products cancel), refined t bounds
+//! that miss, and per-sample planes whose f32 value `n . s + d` (terms of size pixel x w)
+//! errs by up to 0.21 plane units. `METHOD_SAFE` / `METHOD_PS_SAFE` compute the same
+//! hyperplane (Eqs. 7-9), the same reject, refined bounds and per-sample test, with every
+//! quantity they depend on rounded outward, so that each claim holds for the exact
+//! triangle (the issue's "tile reject that keeps its plane outside the hypercube's exact
+//! extreme").
+//!
+//! *Arithmetic: f32 intervals by directed steps* (`Iv`). Every operation rounds to
+//! nearest and steps one f32 outward (`next_down` on the low end, `next_up` on the high
+//! end). It encloses: the exact result z of an operation on f32 numbers rounds to r only
+//! if z is nearer to r than to r's neighbours, so z lies between them, subnormals
+//! included (their spacing 2^-149 is uniform); an overflow to +-inf steps back to +-MAX,
+//! still on the far side of z; an end that would be NaN (inf - inf, 0 x inf) becomes
+//! -inf / +inf. Steps rather than a gamma_n running bound because the setup is deep
+//! (determinants of sheared vertices, de Casteljau halvings, cross products of
+//! differences): intervals carry the error of every level mechanically and treat
+//! underflow and overflow the same way. The shared pieces (cross and dot products,
+//! determinants, the Bernstein sign test `cubic_sign`, the edge's expressions) are written
+//! once, generic over the arithmetic (`Ar`); with f32 they are the published method's,
+//! operation for operation (checked bit for bit on 76,800 tiles of every regime against
+//! the file before the change). `-safe` feeds them forms of the same quantities that
+//! avoid rounded differences of the inputs (below).
+//!
+//! *Setup.* Inputs are exact f32 values; a non-finite input or `k <= 0` disables the test
+//! (full domain). Every difference of two products of inputs, `a b - c d` (the cross
+//! products' components, m's coefficients), is enclosed by `dop_exact`: Kahan's
+//! difference of products with FMA (`p = fl(c d)`, `e = fl(p - c d)`, `f = fl(a b - p)`,
+//! three single roundings, `a b - c d = f' + e'` with `f'`, `e'` the exact values of the
+//! two FMAs, each enclosed by its rounded value's neighbours), so the enclosure is a few
+//! ulps of the result, not of the products: this is what keeps sub-pixel and
+//! far-from-origin triangles (whose cross products cancel) usable.
+//! - The facing (`facing_safe`): D is linear in each column of its matrix, so
+//!   `D(u, v, t) = det[x | y | w] + u det[c | y | w] + k v det[x | c | w]` (the u v term
+//!   `det[c | c | w]` vanishes), computed from the exact inputs without rounding a shear,
+//!   with x and y first moved to vertex 0's pixel o (`x - o_x w` by `dop_exact`; a column
+//!   operation, D unchanged). Each cubic gets its Bernstein coefficients in intervals
+//!   (1/3 enclosed by the neighbours of fl(1/3)), each corner `(+-1, +-1)` their sum, the
+//!   halvings are done in intervals; a sign is proven only when a whole interval lies on
+//!   one side of 0, so sigma is the exact sign of D (otherwise: disabled, as in the
+//!   original). The same D as `facing`, in a form whose terms stay at the triangle's
+//!   own size: the original's f32 facing test fails (disables itself) on many more tiny
+//!   and far-from-origin triangles than this one.
+//! - Per edge (`raw_edge_safe`): `n(t)` from its Bernstein coefficients
+//!   `b0 = q_i x q_j`, `s = q_i x r_j + r_i x q_j`, `b2 = r_i x r_j` (cross products of
+//!   exact inputs; `n0 = b0`, `n1 + n2 = b2 - b0`, `n2 = b0 + b2 - s`, the same values as
+//!   the original's in real arithmetic without its rounded `r - q`), and each component
+//!   of `m(t)` enclosed by the hull of its three Bernstein coefficients. An edge with an
+//!   unbounded enclosure gives no bound (as the original skips a non-finite edge).
+//!
+//! *Per tile* (`plane_safe`), over the tile `[x0, x1] x [y0, y1]` itself (its exact f32
+//! ends: no centre or half extent is rounded):
+//! - `a_x`, `a_y` are f32 numbers in the enclosures of `n0_x`, `n0_y` (their midpoints;
+//!   the plane is exact for whatever numbers are chosen), and the rest of `n0 . X`,
+//!   `(n0_x - a_x) x + (n0_y - a_y) y + n0_z`, is enclosed over the tile; its low end
+//!   goes into the constant. Far from the origin this is where the cost shows: the few
+//!   ulps of `x_i w_j` in the n0 enclosure times |x| up to 1e6 px, i.e. the published
+//!   plane's own rounding, bounded instead of ignored;
+//! - `a_t` = the low end of the enclosure of `(n1 + n2) . X` over the tile (Eq. 7:
+//!   `t (n1 + n2) . X >= a_t t` for t >= 0);
+//! - `P` = an upper bound of `max(n2 . X, 0) / 4` over the tile (Eq. 7's t^2 padding);
+//! - `d_x = y m_z - m_y` and `k d_y = k (m_x - x m_z)` enclosed over the tile and the
+//!   shutter; `alpha`, `beta` their midpoints and `rad_x`, `rad_y` upper bounds of
+//!   `|d_x - alpha|`, `|k d_y - beta|` (`Iv::dev`), so `u d_x + k v d_y >= alpha u +
+//!   beta v - rad_x - rad_y` for |u|, |v| <= 1 (Eq. 8; the interval products are never
+//!   wider than the original's midpoint-radius products);
+//! - `a_1` = the n0 rest's low end `- P - rad_x - rad_y`, each subtraction rounded to
+//!   nearest and stepped down.
+//!
+//! So `e >= a . (1, x, y, u, v, t)` holds in real arithmetic for these f32 numbers `a`
+//! on the whole box (the derivation above with every enclosure exact).
+//!
+//! *Reject and refined bounds.* `m = a_1 + min(a_x x0, a_x x1) + min(a_y y0, a_y y1) -
+//! |a_u| - |a_v| + min(a_t, 0)` with each product and partial sum stepped down is a lower
+//! bound of the plane's exact minimum over the hypercube: `m > 0` proves `e > 0` on the
+//! box, no interior sample. For coordinate k, `R_k` is the same sum without k's term
+//! (again rounded down, so below the exact one); an interior sample has
+//! `a_k x_k < -R_exact <= -R_k`, and the quotient of the two f32 numbers `-R_k / a_k`,
+//! rounded and stepped up (a_k > 0) or down (a_k < 0), encloses the exact quotient.
+//! Non-finite values give no bound, as in the original.
+//!
+//! *The t bound near double roots.* When the edge's quadratic in t has a (near) double
+//! root over the tile (a moving edge that grazes the tile's corner and turns back), `a_t`
+//! and `R_t` are both small differences of large terms, and the published quotient
+//! `-R_t / a_t` divides one rounding error by another: `cullproof stability --family
+//! double-root` finds the original's t bounds missing by 4e-4 .. 2e-2 as the graze depth
+//! goes from 1e-3 to 1e-6 px. The algebra is not at fault: Eq. 7's
+//! `A t^2 >= A t - max(A, 0) / 4` holds for every A (tangent at t = 1/2 for A > 0, chord
+//! for A < 0), so it holds at a double root too, and no fallback is needed. In `-safe`,
+//! `a_t` is an exact f32 lower bound of `(n1 + n2) . X` (the sign tested is the sign of
+//! the number divided by) and `R_t` a proven lower bound, so the outward-rounded quotient
+//! is a valid bound however small they are (a tiny `a_t` gives a far, harmless bound or an
+//! inf that is skipped); the same family finds no violation of either `-safe` variant.
+//!
+//! *Per sample* (`-ps-safe`). `eval` computes `a . s` with every product and partial sum
+//! stepped down (10 operations), a lower bound of the exact value, and returns its
+//! negation, an upper bound of `g(s) = -(a . s) > 0` for every interior sample. Its error:
+//! each step errs by at most `u |z| + 2u |r| <= 3.01 u |z|` (u = 2^-24; rounding to
+//! nearest, then one ulp <= 2u|r|) for normal results and `2^-150 + 2^-149` for
+//! subnormal ones, partial sums are below `1.01 sum |a_i s_i|`, so
+//! `|eval + a . s| <= (5 x 3.01 + 5 x 3.01 x 1.01) u sum |a_i s_i| + 30 x 2^-150
+//! < 2^-19 sum |a_i s_i| + 2^-140`, the widening `eval_box` uses for `-safe` (the
+//! original's: `2^-20` for rounding to nearest).
+//!
+//! *Cost*: setup in intervals with FMA differences of products (about three times the
+//! original's operations, plus the steps); per tile about twice the products (interval
+//! products over the tile); per sample 10 steps more (what a directed rounding mode gives
+//! for free). Tightness (`check --seed 1`, fraction of the boundary tiles' samples the
+//! tile answer admits, original -> `-safe`): within 0.2% in 12 of the 16 regimes; tighter
+//! on tiny (0.882 -> 0.823) and huge-CoC triangles (0.705 -> 0.697), where the
+//! original's f32 facing test gives up more often; looser far from the origin
+//! (0.735 -> 0.789, where the original culls covered samples in 148 of 600 cases) and on
+//! degenerate triangles (0.897 -> 0.912: zero area at a shutter end, where the original's
+//! f32 facing "proves" a sign that intervals cannot).
 
 use super::*;
+use std::ops::{Add, Mul, Neg, Sub};
 
 /// Default ratio of the selective enabling rule: with selective enabling, the test is
 /// disabled for a triangle whose blurred screen AABB has more than this times the area
@@ -117,6 +239,9 @@ pub struct Mam2012Hyperplane {
     pub per_sample: bool,
     /// `Some(r)`: selective enabling with ratio r (see [`SELECTIVE_ENABLE_RATIO`]).
     pub selective_enable_ratio: Option<f32>,
+    /// `-safe`: the setup in outward-rounded f32 intervals, the plane and its tests
+    /// rounded outward (see the module doc).
+    safe: bool,
 }
 
 impl Mam2012Hyperplane {
@@ -127,6 +252,7 @@ impl Mam2012Hyperplane {
             info: if per_sample { &INFO_PS } else { &INFO },
             per_sample,
             selective_enable_ratio: Some(ratio),
+            safe: false,
         }
     }
 }
@@ -145,16 +271,43 @@ static INFO_PS: MethodInfo = MethodInfo {
     ..INFO
 };
 
-pub static METHOD: &dyn Method = &Mam2012Hyperplane { info: &INFO, per_sample: false, selective_enable_ratio: None };
+pub static METHOD: &dyn Method =
+    &Mam2012Hyperplane { info: &INFO, per_sample: false, selective_enable_ratio: None, safe: false };
 pub static METHOD_PS: &dyn Method =
-    &Mam2012Hyperplane { info: &INFO_PS, per_sample: true, selective_enable_ratio: None };
+    &Mam2012Hyperplane { info: &INFO_PS, per_sample: true, selective_enable_ratio: None, safe: false };
+
+static INFO_SAFE: MethodInfo = MethodInfo {
+    id: "mam2012-hyperplane-safe",
+    source: "Munkberg & Akenine-Möller 2012, Hyperplane Culling for Stochastic Rasterization, §2.2 (Eqs. 2-3) and Appendix B (Eqs. 4-9); per-tile reject and refined u/v/t bounds. The same planes from an outward-rounded f32 setup, with the reject and the bounds rounded outward (error analysis in this file)",
+    ..INFO
+};
+static INFO_PS_SAFE: MethodInfo = MethodInfo {
+    id: "mam2012-hyperplane-ps-safe",
+    source: "Munkberg & Akenine-Möller 2012, Hyperplane Culling for Stochastic Rasterization, §2.2 (Eqs. 2-3), Appendix B (Eqs. 4-9) and §3 Discussion (per-sample hyperplane test). The same planes from an outward-rounded f32 setup, with the reject, the bounds and the per-sample test rounded outward (error analysis in this file)",
+    ..INFO_PS
+};
+
+/// `mam2012-hyperplane-safe`: the per-tile test, rounded outward (see the module doc).
+pub static METHOD_SAFE: &dyn Method =
+    &Mam2012Hyperplane { info: &INFO_SAFE, per_sample: false, selective_enable_ratio: None, safe: true };
+/// `mam2012-hyperplane-ps-safe`: with the per-sample planes, rounded outward.
+pub static METHOD_PS_SAFE: &dyn Method =
+    &Mam2012Hyperplane { info: &INFO_PS_SAFE, per_sample: true, selective_enable_ratio: None, safe: true };
 
 impl Method for Mam2012Hyperplane {
     fn info(&self) -> &'static MethodInfo {
         self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        let s = match self.selective_enable_ratio.and_then(|r| selective_disable(tri, r)) {
+        let off = self.selective_enable_ratio.and_then(|r| selective_disable(tri, r));
+        if self.safe {
+            let s = match off {
+                Some(why) => Err(why),
+                None => setup_safe(tri),
+            };
+            return Box::new(SafePrep { s, k: tri.k, per_sample: self.per_sample });
+        }
+        let s = match off {
             Some(why) => Err(why),
             None => setup(tri),
         };
@@ -164,37 +317,78 @@ impl Method for Mam2012Hyperplane {
 
 type V3 = [f32; 3];
 
-fn cross(a: V3, b: V3) -> V3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+/// The arithmetic of the setup: plain f32 (the published method) or outward-rounded f32
+/// intervals ([`Iv`], `-safe`). The expressions below are written once for both; with
+/// f32 they are the published method's, operation for operation.
+trait Ar: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> {
+    /// An f32 constant.
+    fn c(x: f32) -> Self;
+    /// 1/3 (f32: rounded; interval: enclosed).
+    fn third() -> Self;
+    /// Provably > 0 / < 0 (f32: the comparison; false on NaN).
+    fn is_pos(self) -> bool;
+    fn is_neg(self) -> bool;
+    /// Both provably nonzero with the same sign.
+    fn same_sign(a: Self, b: Self) -> bool;
+    /// `a b - c d` (f32: as written).
+    fn dop(a: Self, b: Self, c: Self, d: Self) -> Self;
 }
-fn dot(a: V3, b: V3) -> f32 {
+
+impl Ar for f32 {
+    fn c(x: f32) -> Self {
+        x
+    }
+    fn third() -> Self {
+        1.0 / 3.0
+    }
+    fn is_pos(self) -> bool {
+        self > 0.0
+    }
+    fn is_neg(self) -> bool {
+        self < 0.0
+    }
+    fn same_sign(a: Self, b: Self) -> bool {
+        a * b > 0.0 // false on NaN too
+    }
+    fn dop(a: Self, b: Self, c: Self, d: Self) -> Self {
+        a * b - c * d
+    }
+}
+
+fn cross<T: Ar>(a: [T; 3], b: [T; 3]) -> [T; 3] {
+    [T::dop(a[1], b[2], a[2], b[1]), T::dop(a[2], b[0], a[0], b[2]), T::dop(a[0], b[1], a[1], b[0])]
+}
+fn dot<T: Ar>(a: [T; 3], b: [T; 3]) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
-fn add(a: V3, b: V3) -> V3 {
+fn add<T: Ar>(a: [T; 3], b: [T; 3]) -> [T; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+fn sub<T: Ar>(a: [T; 3], b: [T; 3]) -> [T; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 fn scale(s: f32, a: V3) -> V3 {
     [s * a[0], s * a[1], s * a[2]]
 }
-fn det(a: V3, b: V3, c: V3) -> f32 {
+fn det<T: Ar>(a: [T; 3], b: [T; 3], c: [T; 3]) -> T {
     dot(a, cross(b, c))
 }
 
 /// The strict sign of a cubic on [0, 1] from its Bernstein coefficients, if provable
 /// within `depth` halvings.
-fn cubic_sign(b: [f32; 4], depth: u32) -> Option<f32> {
-    if b.iter().all(|&x| x > 0.0) {
+fn cubic_sign<T: Ar>(b: [T; 4], depth: u32) -> Option<f32> {
+    if b.iter().all(|&x| x.is_pos()) {
         return Some(1.0);
     }
-    if b.iter().all(|&x| x < 0.0) {
+    if b.iter().all(|&x| x.is_neg()) {
         return Some(-1.0);
     }
     // A sign change or zero at an end, NaN, or no budget left: not provable.
-    let same_sign_ends = b[0] * b[3] > 0.0; // false on NaN too
+    let same_sign_ends = T::same_sign(b[0], b[3]);
     if depth == 0 || !same_sign_ends {
         return None;
     }
-    let m = |p: f32, q: f32| 0.5 * (p + q);
+    let m = |p: T, q: T| T::c(0.5) * (p + q);
     let (p01, p12, p23) = (m(b[0], b[1]), m(b[1], b[2]), m(b[2], b[3]));
     let (p012, p123) = (m(p01, p12), m(p12, p23));
     let mid = m(p012, p123);
@@ -226,6 +420,114 @@ fn facing(tri: &Triangle) -> Option<f32> {
     sign
 }
 
+/// [`facing`] for `-safe`, from the exact inputs without rounding the shear: D is linear
+/// in each column of its matrix with rows `(x + u c, y + k v c, w)`, so
+/// `D(u, v, t) = det[x | y | w] + u det[c | y | w] + k v det[x | c | w]` (the u v term
+/// `det[c | c | w]` vanishes), and the columns x, y are first moved to the origin `o`
+/// (`x - o_x w`, `y - o_y w`: column operations, D unchanged), which keeps the
+/// determinants' terms at the triangle's own size far from the screen origin. Each of the
+/// three cubics gets its Bernstein coefficients as in [`facing`] (rows linear in t), in
+/// intervals; the corner `(u, v)`'s coefficients are their combination.
+fn facing_safe(tri: &Triangle, o: [f32; 2]) -> Option<f32> {
+    let row = |p: [f32; 4], c: f32| -> [Iv; 4] {
+        [dop_exact(p[0], 1.0, o[0], p[3]), dop_exact(p[1], 1.0, o[1], p[3]), Iv::point(p[3]), Iv::point(c)]
+    };
+    let a = [0, 1, 2].map(|i| row(tri.q[i], tri.c0[i]));
+    let b = [0, 1, 2].map(|i| row(tri.r[i], tri.c1[i]));
+    let third = Iv::third();
+    // The Bernstein coefficients of det[col0 | col1 | col2] (columns of the rows above).
+    let bern = |cols: [usize; 3]| -> [Iv; 4] {
+        let d = |at1: [bool; 3]| {
+            let r = [0, 1, 2].map(|i| {
+                let v = if at1[i] { b[i] } else { a[i] };
+                cols.map(|c| v[c])
+            });
+            det(r[0], r[1], r[2])
+        };
+        let (f, t) = (false, true);
+        [
+            d([f, f, f]),
+            (d([t, f, f]) + d([f, t, f]) + d([f, f, t])) * third,
+            (d([f, t, t]) + d([t, f, t]) + d([t, t, f])) * third,
+            d([t, t, t]),
+        ]
+    };
+    let (d0, du, dv) = (bern([0, 1, 2]), bern([3, 1, 2]), bern([0, 3, 2]));
+    let k = Iv::point(tri.k);
+    let mut sign = None;
+    for (u, v) in [(-1.0f32, -1.0f32), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)] {
+        let coef = [0, 1, 2, 3].map(|j| {
+            let su = if u > 0.0 { d0[j] + du[j] } else { d0[j] - du[j] };
+            let kv = k * dv[j];
+            if v > 0.0 {
+                su + kv
+            } else {
+                su - kv
+            }
+        });
+        let s = cubic_sign(coef, 4)?;
+        if sign.is_some_and(|p| p != s) {
+            return None;
+        }
+        sign = Some(s);
+    }
+    sign
+}
+
+/// The edge (i, j) before orientation: `n0`, `n1 + n2`, `n2` and the three Bernstein
+/// coefficients on [0, 1] of each component of `m(t) = c_j(t) p_i(t) - c_i(t) p_j(t)`.
+struct RawEdge<T> {
+    n0: [T; 3],
+    n12: [T; 3],
+    n2: [T; 3],
+    mb: [[T; 3]; 3],
+}
+
+fn raw_edge<T: Ar>(tri: &Triangle, i: usize, j: usize) -> RawEdge<T> {
+    let p3 = |p: [f32; 4]| -> [T; 3] { [T::c(p[0]), T::c(p[1]), T::c(p[3])] };
+    let (qi, qj) = (p3(tri.q[i]), p3(tri.q[j]));
+    let (ri, rj) = (p3(tri.r[i]), p3(tri.r[j]));
+    let (di, dj) = (sub(ri, qi), sub(rj, qj));
+    let n0 = cross(qi, qj);
+    let n1 = add(cross(qi, dj), cross(di, qj));
+    let n2 = cross(di, dj);
+    let (ci0, ci1, cj0, cj1) = (T::c(tri.c0[i]), T::c(tri.c1[i]), T::c(tri.c0[j]), T::c(tri.c1[j]));
+    let mb = [0, 1, 2].map(|a| {
+        [
+            cj0 * qi[a] - ci0 * qj[a],
+            T::c(0.5) * ((cj0 * ri[a] + cj1 * qi[a]) - (ci0 * rj[a] + ci1 * qj[a])),
+            cj1 * ri[a] - ci1 * rj[a],
+        ]
+    });
+    RawEdge { n0, n12: add(n1, n2), n2, mb }
+}
+
+/// [`raw_edge`] for `-safe`, from cross products and differences of products of the
+/// exact inputs only (each enclosed to a few ulps of its result by [`dop_exact`]): with
+/// `b0 = q_i x q_j`, `s = q_i x r_j + r_i x q_j`, `b2 = r_i x r_j` (n(t) in the Bernstein
+/// basis), `n0 = b0`, `n1 + n2 = b2 - b0`, `n2 = b0 + b2 - s`; and m's coefficients
+/// `c_j0 q_i - c_i0 q_j`, `((c_j0 r_i - c_i0 r_j) + (c_j1 q_i - c_i1 q_j)) / 2`,
+/// `c_j1 r_i - c_i1 r_j`. The same values as [`raw_edge`] in real arithmetic, without
+/// its rounded differences `r - q`, whose error times the far-from-origin coordinates
+/// would swamp `n1`.
+fn raw_edge_safe(tri: &Triangle, i: usize, j: usize) -> RawEdge<Iv> {
+    let p3 = |p: [f32; 4]| -> V3 { [p[0], p[1], p[3]] };
+    let (qi, qj, ri, rj) = (p3(tri.q[i]), p3(tri.q[j]), p3(tri.r[i]), p3(tri.r[j]));
+    let cr = |a: V3, b: V3| cross(a.map(Iv::point), b.map(Iv::point));
+    let (b0, b2) = (cr(qi, qj), cr(ri, rj));
+    let sum = add(cr(qi, rj), cr(ri, qj));
+    let (ci0, ci1, cj0, cj1) = (tri.c0[i], tri.c1[i], tri.c0[j], tri.c1[j]);
+    let half = Iv::point(0.5);
+    let mb = [0, 1, 2].map(|a| {
+        [
+            dop_exact(cj0, qi[a], ci0, qj[a]),
+            half * (dop_exact(cj0, ri[a], ci0, rj[a]) + dop_exact(cj1, qi[a], ci1, qj[a])),
+            dop_exact(cj1, ri[a], ci1, rj[a]),
+        ]
+    });
+    RawEdge { n0: b0, n12: sub(b2, b0), n2: sub(add(b0, b2), sum), mb }
+}
+
 /// Per-edge setup state (already multiplied by sigma = -sign(D)).
 #[derive(Clone, Copy, Debug)]
 struct Edge {
@@ -248,27 +550,18 @@ struct Prep {
     per_sample: bool,
 }
 
+const FACING_MAY_VANISH: &str = "D (the facing) may vanish or change sign over the lens and shutter";
+
 fn setup(tri: &Triangle) -> Result<Setup, &'static str> {
     let Some(d_sign) = facing(tri) else {
-        return Err("D (the facing) may vanish or change sign over the lens and shutter");
+        return Err(FACING_MAY_VANISH);
     };
     let sigma = -d_sign;
-    let p3 = |p: [f32; 4]| -> V3 { [p[0], p[1], p[3]] };
     let edge = |i: usize, j: usize| -> Edge {
-        let (qi, qj) = (p3(tri.q[i]), p3(tri.q[j]));
-        let (ri, rj) = (p3(tri.r[i]), p3(tri.r[j]));
-        let (di, dj) = ([ri[0] - qi[0], ri[1] - qi[1], ri[2] - qi[2]], [rj[0] - qj[0], rj[1] - qj[1], rj[2] - qj[2]]);
-        let n0 = cross(qi, qj);
-        let n1 = add(cross(qi, dj), cross(di, qj));
-        let n2 = cross(di, dj);
-        // m(t) = c_j(t) p_i(t) - c_i(t) p_j(t): Bernstein coefficients of each component.
-        let (ci0, ci1, cj0, cj1) = (tri.c0[i], tri.c1[i], tri.c0[j], tri.c1[j]);
+        let r = raw_edge::<f32>(tri, i, j);
         let mut mc = [0.0; 3];
         let mut mr = [0.0; 3];
-        for a in 0..3 {
-            let b0 = cj0 * qi[a] - ci0 * qj[a];
-            let b1 = 0.5 * ((cj0 * ri[a] + cj1 * qi[a]) - (ci0 * rj[a] + ci1 * qj[a]));
-            let b2 = cj1 * ri[a] - ci1 * rj[a];
+        for (a, &[b0, b1, b2]) in r.mb.iter().enumerate() {
             let (lo, hi) = (b0.min(b1).min(b2), b0.max(b1).max(b2));
             // sigma = -1 negates m: the midpoint flips, the radius stays.
             mc[a] = sigma * (0.5 * (lo + hi));
@@ -277,7 +570,7 @@ fn setup(tri: &Triangle) -> Result<Setup, &'static str> {
                 mc[a] = f32::NAN;
             }
         }
-        Edge { n0: scale(sigma, n0), n12: scale(sigma, add(n1, n2)), n2: scale(sigma, n2), mc, mr }
+        Edge { n0: scale(sigma, r.n0), n12: scale(sigma, r.n12), n2: scale(sigma, r.n2), mc, mr }
     };
     Ok(Setup { edges: [edge(1, 2), edge(2, 0), edge(0, 1)], k: tri.k })
 }
@@ -345,6 +638,8 @@ fn plane(e: &Edge, k: f32, xc: f32, yc: f32, hx: f32, hy: f32) -> Option<[f32; 6
 struct Plane {
     edge: usize,
     a: [f32; 6],
+    /// `-safe`: `eval` rounds every step of `a . s` down (an upper bound of `-(a . s)`).
+    safe: bool,
 }
 
 impl SampleConstraint for Plane {
@@ -353,6 +648,14 @@ impl SampleConstraint for Plane {
     }
     fn eval(&self, s: &Sample) -> f32 {
         let a = &self.a;
+        if self.safe {
+            let dn = f32::next_down;
+            let mut acc = a[0];
+            for (ai, si) in a[1..].iter().zip([s.x, s.y, s.u, s.v, s.t]) {
+                acc = dn(acc + dn(ai * si));
+            }
+            return -acc;
+        }
         let mut acc = a[0];
         acc += a[1] * s.x;
         acc += a[2] * s.y;
@@ -370,7 +673,10 @@ impl SampleConstraint for Plane {
             sum = sum + t;
             mag = mag + Interval::point(t.lo.abs().max(t.hi.abs()));
         }
-        let err = (Interval::point(mag.hi) * Interval::point(2f64.powi(-20)) + Interval::point(2f64.powi(-140))).hi;
+        // Rounded to nearest: gamma_6 < 2^-21 of the magnitudes (see the module doc);
+        // rounded down with a step after each of the 10 operations: below 2^-19 (`-safe`).
+        let rel = if self.safe { 2f64.powi(-19) } else { 2f64.powi(-20) };
+        let err = (Interval::point(mag.hi) * Interval::point(rel) + Interval::point(2f64.powi(-140))).hi;
         -(sum + Interval::new(-err, err))
     }
 }
@@ -411,17 +717,241 @@ impl Prepared for Prep {
                 }
             }
             if self.per_sample {
-                out.constraints.push(Box::new(Plane { edge: ei, a }));
+                out.constraints.push(Box::new(Plane { edge: ei, a, safe: false }));
             }
         }
-        let clamp = |r: [f32; 2], lo: f32, hi: f32| [r[0].max(lo), r[1].min(hi)];
-        out.u = clamp(out.u, -1.0, 1.0);
-        out.v = clamp(out.v, -1.0, 1.0);
-        out.t = clamp(out.t, 0.0, 1.0);
-        if !(out.u[0] <= out.u[1] && out.v[0] <= out.v[1] && out.t[0] <= out.t[1]) {
-            return TileResult::Empty;
+        finish(out)
+    }
+    fn disabled(&self) -> Option<&'static str> {
+        self.s.as_ref().err().copied()
+    }
+}
+
+/// Clamp the refined intervals to the domain; Empty when one is empty.
+fn finish(mut out: TileBounds) -> TileResult {
+    let clamp = |r: [f32; 2], lo: f32, hi: f32| [r[0].max(lo), r[1].min(hi)];
+    out.u = clamp(out.u, -1.0, 1.0);
+    out.v = clamp(out.v, -1.0, 1.0);
+    out.t = clamp(out.t, 0.0, 1.0);
+    if !(out.u[0] <= out.u[1] && out.v[0] <= out.v[1] && out.t[0] <= out.t[1]) {
+        return TileResult::Empty;
+    }
+    TileResult::Bounds(out)
+}
+
+/// A closed f32 interval `[lo, hi]` with outward rounding (`-safe`): every operation
+/// rounds to nearest and then steps one f32 outward (`next_down` / `next_up`), which
+/// encloses the exact result (it lies between the rounded value and its neighbour on
+/// its side, subnormals included; an overflow to inf steps back to +-MAX, still beyond
+/// the exact value). Endpoints may be infinite (then the quantity is unbounded), never
+/// NaN: an operation whose endpoint would be NaN (inf - inf, 0 * inf) gives the whole
+/// line on that side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Iv {
+    lo: f32,
+    hi: f32,
+}
+
+impl Iv {
+    fn new(lo: f32, hi: f32) -> Iv {
+        Iv { lo: if lo.is_nan() { f32::NEG_INFINITY } else { lo }, hi: if hi.is_nan() { f32::INFINITY } else { hi } }
+    }
+    fn point(x: f32) -> Iv {
+        Iv::new(x, x)
+    }
+    fn hull(self, o: Iv) -> Iv {
+        Iv { lo: self.lo.min(o.lo), hi: self.hi.max(o.hi) }
+    }
+    /// Some f32 value in (or near) the interval: the coefficient the plane uses.
+    fn mid(self) -> f32 {
+        0.5 * self.lo + 0.5 * self.hi
+    }
+    /// An upper bound of `|x - c|` over the interval (each `|end - c|` rounded, one step
+    /// up).
+    fn dev(self, c: f32) -> f32 {
+        (self.lo - c).abs().next_up().max((self.hi - c).abs().next_up())
+    }
+    fn finite(self) -> bool {
+        self.lo.is_finite() && self.hi.is_finite()
+    }
+}
+
+impl Add for Iv {
+    type Output = Iv;
+    fn add(self, o: Iv) -> Iv {
+        Iv::new((self.lo + o.lo).next_down(), (self.hi + o.hi).next_up())
+    }
+}
+impl Neg for Iv {
+    type Output = Iv;
+    fn neg(self) -> Iv {
+        Iv { lo: -self.hi, hi: -self.lo }
+    }
+}
+impl Sub for Iv {
+    type Output = Iv;
+    fn sub(self, o: Iv) -> Iv {
+        self + -o
+    }
+}
+impl Mul for Iv {
+    type Output = Iv;
+    fn mul(self, o: Iv) -> Iv {
+        let p = [self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi];
+        if p.iter().any(|x| x.is_nan()) {
+            return Iv { lo: f32::NEG_INFINITY, hi: f32::INFINITY };
         }
-        TileResult::Bounds(out)
+        let (lo, hi) = p.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), &x| (l.min(x), h.max(x)));
+        Iv::new(lo.next_down(), hi.next_up())
+    }
+}
+
+impl Ar for Iv {
+    fn c(x: f32) -> Self {
+        Iv::point(x)
+    }
+    fn third() -> Self {
+        let t = 1.0f32 / 3.0;
+        Iv { lo: t.next_down(), hi: t.next_up() }
+    }
+    fn is_pos(self) -> bool {
+        self.lo > 0.0
+    }
+    fn is_neg(self) -> bool {
+        self.hi < 0.0
+    }
+    fn same_sign(a: Self, b: Self) -> bool {
+        (a.is_pos() && b.is_pos()) || (a.is_neg() && b.is_neg())
+    }
+    fn dop(a: Self, b: Self, c: Self, d: Self) -> Self {
+        let pt = |x: Iv| (x.lo == x.hi).then_some(x.lo);
+        match (pt(a), pt(b), pt(c), pt(d)) {
+            (Some(a), Some(b), Some(c), Some(d)) => dop_exact(a, b, c, d),
+            _ => a * b - c * d,
+        }
+    }
+}
+
+/// `a b - c d` of four f32 numbers, enclosed to a few ulps of the result rather than of
+/// the products (Kahan's difference of products with FMA): `p = fl(c d)`,
+/// `e = fl(p - c d)` and `f = fl(a b - p)` are single roundings (FMA), and
+/// `a b - c d = (a b - p) + (p - c d)` lies in `[f, f] + [e, e]` widened by one step per
+/// rounding. A non-finite `p` gives the whole line.
+fn dop_exact(a: f32, b: f32, c: f32, d: f32) -> Iv {
+    let p = c * d;
+    if !p.is_finite() {
+        return Iv { lo: f32::NEG_INFINITY, hi: f32::INFINITY };
+    }
+    let e = (-c).mul_add(d, p);
+    let f = a.mul_add(b, -p);
+    Iv::new((f.next_down() + e.next_down()).next_down(), (f.next_up() + e.next_up()).next_up())
+}
+
+/// Per-edge setup of `-safe` (already multiplied by sigma): enclosures of `n0`,
+/// `n1 + n2`, `n2` and of each component of `m(t)` over t in [0, 1].
+#[derive(Clone, Copy, Debug)]
+struct SafeEdge {
+    n0: [Iv; 3],
+    n12: [Iv; 3],
+    n2: [Iv; 3],
+    m: [Iv; 3],
+}
+
+struct SafePrep {
+    /// Per edge; `None` when an enclosure is unbounded (that edge gives no bound).
+    s: Result<[Option<SafeEdge>; 3], &'static str>,
+    k: f32,
+    per_sample: bool,
+}
+
+fn setup_safe(tri: &Triangle) -> Result<[Option<SafeEdge>; 3], &'static str> {
+    let vals = tri.q.iter().chain(&tri.r).flatten().chain(&tri.c0).chain(&tri.c1);
+    if !(vals.into_iter().all(|v| v.is_finite()) && tri.k.is_finite() && tri.k > 0.0) {
+        return Err("a non-finite input or k <= 0");
+    }
+    // The origin: vertex 0's pixel at t = 0 (any finite f32 pair is valid; a vertex at
+    // w <= 0 or beyond 2^24 px gives 0).
+    let o = [tri.q[0][0] / tri.q[0][3], tri.q[0][1] / tri.q[0][3]];
+    let usable = tri.q[0][3] > 0.0 && o.iter().all(|v| v.abs() < (1u32 << 24) as f32);
+    let o = if usable { o } else { [0.0; 2] };
+    let Some(d_sign) = facing_safe(tri, o) else {
+        return Err(FACING_MAY_VANISH);
+    };
+    let orient = |v: [Iv; 3]| if d_sign < 0.0 { v } else { v.map(|x| -x) };
+    let edge = |i: usize, j: usize| -> Option<SafeEdge> {
+        let r = raw_edge_safe(tri, i, j);
+        let m = r.mb.map(|[b0, b1, b2]| b0.hull(b1).hull(b2));
+        let e = SafeEdge { n0: orient(r.n0), n12: orient(r.n12), n2: orient(r.n2), m: orient(m) };
+        [e.n0, e.n12, e.n2, e.m].iter().flatten().all(|x| x.finite()).then_some(e)
+    };
+    Ok([edge(1, 2), edge(2, 0), edge(0, 1)])
+}
+
+/// Eq. 9 for `-safe`: f32 coefficients `a` with `e >= a . (1, x, y, u, v, t)` in real
+/// arithmetic for every (x, y) in `xs` x `ys`, (u, v) in [-1, 1]^2, t in [0, 1] (see the
+/// module doc); None when some value is not finite.
+fn plane_safe(e: &SafeEdge, k: f32, xs: Iv, ys: Iv) -> Option<[f32; 6]> {
+    let dn = f32::next_down;
+    let x3 = [xs, ys, Iv::point(1.0)];
+    // Eq. 7: the x, y coefficients are f32 values near n0's; the rest of n0 . X over the
+    // tile goes into the constant.
+    let (ax, ay) = (e.n0[0].mid(), e.n0[1].mid());
+    let c_n0 = (e.n0[0] - Iv::point(ax)) * xs + (e.n0[1] - Iv::point(ay)) * ys + e.n0[2];
+    let a_t = dot(e.n12, x3).lo;
+    let p = (0.25 * dot(e.n2, x3).hi.max(0.0)).next_up();
+    // Eq. 8: d_x = y m_z - m_y, k d_y = k (m_x - x m_z) over the tile and the shutter.
+    let dx = ys * e.m[2] - e.m[1];
+    let dy = Iv::point(k) * (e.m[0] - xs * e.m[2]);
+    let (alpha, beta) = (dx.mid(), dy.mid());
+    let a_1 = dn(dn(dn(c_n0.lo - p) - dx.dev(alpha)) - dy.dev(beta));
+    let a = [a_1, ax, ay, alpha, beta, a_t];
+    a.iter().all(|v| v.is_finite()).then_some(a)
+}
+
+impl Prepared for SafePrep {
+    fn tile(&self, tile: &Tile) -> TileResult {
+        let Ok(edges) = &self.s else {
+            return TileResult::Bounds(TileBounds::full());
+        };
+        let (x0, x1, y0, y1) = (tile.x0, tile.x1, tile.y0, tile.y1);
+        if !([x0, x1, y0, y1].iter().all(|v| v.is_finite()) && x0 <= x1 && y0 <= y1) {
+            return TileResult::Bounds(TileBounds::full());
+        }
+        let (dn, up) = (f32::next_down, f32::next_up);
+        let (xs, ys) = (Iv::new(x0, x1), Iv::new(y0, y1));
+        let mut out = TileBounds::full();
+        for (ei, e) in edges.iter().enumerate() {
+            let Some(a) = e.as_ref().and_then(|e| plane_safe(e, self.k, xs, ys)) else {
+                continue;
+            };
+            // Lower bounds of the minimum over the hypercube: the xy part at the tile's
+            // corner (each product and sum rounded down), then the u, v, t corner terms.
+            let m_xy = dn(dn(a[0] + dn(a[1] * x0).min(dn(a[1] * x1))) + dn(a[2] * y0).min(dn(a[2] * y1)));
+            let (mu, mv, mt) = (-a[3].abs(), -a[4].abs(), a[5].min(0.0));
+            let m = dn(dn(dn(m_xy + mu) + mv) + mt);
+            if m > 0.0 {
+                return TileResult::Empty;
+            }
+            for (ak, rest, range) in [
+                (a[3], dn(dn(m_xy + mv) + mt), &mut out.u),
+                (a[4], dn(dn(m_xy + mu) + mt), &mut out.v),
+                (a[5], dn(dn(m_xy + mu) + mv), &mut out.t),
+            ] {
+                let bound = -rest / ak;
+                if !bound.is_finite() {
+                    continue;
+                }
+                if ak > 0.0 {
+                    range[1] = range[1].min(up(bound));
+                } else if ak < 0.0 {
+                    range[0] = range[0].max(dn(bound));
+                }
+            }
+            if self.per_sample {
+                out.constraints.push(Box::new(Plane { edge: ei, a, safe: true }));
+            }
+        }
+        finish(out)
     }
     fn disabled(&self) -> Option<&'static str> {
         self.s.as_ref().err().copied()
@@ -490,7 +1020,7 @@ mod tests {
 
     #[test]
     fn conservative_on_random_samples() {
-        for m in [METHOD, METHOD_PS] {
+        for m in [METHOD, METHOD_PS, METHOD_SAFE, METHOD_PS_SAFE] {
             for (ci, (tri, tiles)) in cases().into_iter().enumerate() {
                 let p = m.setup(&tri);
                 assert_eq!(p.disabled(), None, "case {ci}");
@@ -520,7 +1050,7 @@ mod tests {
     fn conservative_on_random_triangles() {
         let mut rng = ChaCha8Rng::seed_from_u64(99);
         let c = cam();
-        let (mut near_total, mut enabled, mut cov_total, mut culled_tiles) = (0, 0, 0, 0);
+        let (mut near_total, mut enabled, mut cov_total, mut culled_tiles, mut culled_safe) = (0, 0, 0, 0, 0);
         for it in 0..300 {
             let z0: f32 = rng.gen_range(0.5..30.0);
             let z1: f32 = if it % 3 == 0 { z0 } else { rng.gen_range(0.5..30.0) };
@@ -535,6 +1065,7 @@ mod tests {
             });
             let tri = c.triangle(q, r);
             let p = METHOD_PS.setup(&tri);
+            let safe = METHOD_PS_SAFE.setup(&tri);
             if p.disabled().is_some() {
                 continue;
             }
@@ -549,15 +1080,20 @@ mod tests {
                     assert_keeps_covered(p.as_ref(), &tri, &tile, (2000, 300), it * 7 + 1, &format!("triangle {it}"));
                 cov_total += cov;
                 near_total += tried;
+                let what = format!("safe, triangle {it}");
+                assert_keeps_covered(safe.as_ref(), &tri, &tile, (2000, 300), it * 7 + 1, &what);
+                culled_safe += matches!(safe.tile(&tile), TileResult::Empty) as usize;
             }
         }
         eprintln!("near-miss probes {near_total}, enabled {enabled}, covered {cov_total}, culled tiles {culled_tiles}");
+        eprintln!("safe: culled tiles {culled_safe}");
         assert!(enabled > 150 && cov_total > 5000 && culled_tiles > 50);
+        assert!(culled_safe * 10 >= culled_tiles * 9, "{culled_safe} vs {culled_tiles}");
     }
 
     #[test]
     fn static_triangle_keeps_time_and_far_tile_is_culled() {
-        for m in [METHOD, METHOD_PS] {
+        for m in [METHOD, METHOD_PS, METHOD_SAFE, METHOD_PS_SAFE] {
             for tri in [
                 Triangle::fixed([[-20.0, -20.0, 0.0, 1.0], [20.0, -20.0, 0.0, 1.0], [0.0, 20.0, 0.0, 1.0]]),
                 Triangle::fixed([[-20.0, -20.0, 0.0, 1.0], [0.0, 20.0, 0.0, 1.0], [20.0, -20.0, 0.0, 1.0]]),
@@ -653,7 +1189,7 @@ mod tests {
         let mut tri = Triangle::fixed([[3e38, -3e38, 0.0, 1e-30], [1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, -1.0]]);
         tri.c0 = [3e38, 0.0, -1e-45];
         let tiles = [Tile::square(-1e30, 0.0, 1e30), Tile::square(0.0, 0.0, 1.0)];
-        for m in [METHOD, METHOD_PS] {
+        for m in [METHOD, METHOD_PS, METHOD_SAFE, METHOD_PS_SAFE] {
             super::super::testkit::assert_answered_in_domain(m.setup(&tri).as_ref(), &tiles);
         }
         let selective = Mam2012Hyperplane::selective(true, 4.0).setup(&tri);
@@ -662,10 +1198,173 @@ mod tests {
 
     #[test]
     fn degenerate_and_huge_input_is_answered_in_the_domain() {
-        super::super::testkit::assert_degenerate_input_is_answered(METHOD, &super::super::la2011::figure1::triangle());
-        super::super::testkit::assert_degenerate_input_is_answered(
-            METHOD_PS,
-            &super::super::la2011::figure1::triangle(),
-        );
+        for m in [METHOD, METHOD_PS, METHOD_SAFE, METHOD_PS_SAFE] {
+            super::super::testkit::assert_degenerate_input_is_answered(m, &super::super::la2011::figure1::triangle());
+        }
+    }
+
+    /// The witnesses stored against the published method: each is interior, culled by
+    /// the original and kept by `-safe` (the tile is not culled and every bound admits
+    /// it).
+    #[test]
+    fn safe_keeps_the_stored_witnesses() {
+        use crate::corpus::{witness_holds, CaseFile};
+        let mut n = 0;
+        for (dir, orig, safe) in
+            [("mam2012-hyperplane", METHOD, METHOD_SAFE), ("mam2012-hyperplane-ps", METHOD_PS, METHOD_PS_SAFE)]
+        {
+            let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/cases").join(dir);
+            for f in std::fs::read_dir(&path).unwrap() {
+                let f = f.unwrap().path();
+                let cf = CaseFile::load(&f).unwrap();
+                let Some(w) = &cf.witness else { continue };
+                let culled = witness_holds(orig, &cf.case, &cf.tile, w.sample);
+                assert!(culled.is_ok(), "{}: the original no longer culls its witness: {culled:?}", f.display());
+                let kept = witness_holds(safe, &cf.case, &cf.tile, w.sample);
+                assert_eq!(kept, Err("the method admits the witness".into()), "{}", f.display());
+                n += 1;
+            }
+        }
+        assert!(n >= 10, "{n} witnesses");
+    }
+
+    /// Triangles that break the published planes: far from the origin, sub-pixel, huge,
+    /// a vertex at w near 0 (and one behind the lens), the focal plane crossing a moving
+    /// triangle (CoC through 0), a screen-parallel sliver. `-safe` keeps every covered
+    /// sample of random and near-miss probes on tiles around them.
+    #[test]
+    fn safe_keeps_covered_samples_on_hard_input() {
+        let c = cam();
+        let mut hard: Vec<(&str, Triangle, Vec<Tile>)> = Vec::new();
+        // Far from the origin (1e5 and 1e6 px), static and moving.
+        for off in [1.0e5f32, 1.0e6] {
+            let w = 2.0;
+            let v = |x: f32, y: f32| [(off + x) * w, (off * 0.5 + y) * w, 0.0, w];
+            let mut t = Triangle::fixed([v(0.0, 0.0), v(7.3, 0.4), v(2.1, 5.9)]);
+            let tiles = vec![
+                Tile::square(off, off * 0.5, 1.0),
+                Tile::square(off + 2.0, off * 0.5 + 1.0, 2.0),
+                Tile::square(off + 6.0, off * 0.5, 1.0),
+            ];
+            hard.push(("far static", t, tiles.clone()));
+            t.r = t.q.map(|p| [p[0] + 3.0 * w, p[1] - 1.0 * w, p[2], p[3]]);
+            t.c0 = [0.5, -0.25, 1.0];
+            t.c1 = [1.0, 0.25, -0.5];
+            hard.push(("far moving", t, tiles));
+        }
+        // Sub-pixel, moving and defocused.
+        let q = [[0.100, 0.100, 5.0], [0.1005, 0.1001, 5.0], [0.1002, 0.1006, 5.0]];
+        hard.push((
+            "tiny",
+            c.triangle(q, q.map(|p| [p[0] + 0.001, p[1], p[2] * 1.01])),
+            vec![Tile::square(9.0, 9.0, 4.0), Tile::square(10.0, 10.0, 1.0), Tile::square(9.5, 10.5, 0.5)],
+        ));
+        // Huge (beyond the screen) and a vertex close to w = 0.
+        let mut t = Triangle::fixed([[-1e5, -1e5, 0.0, 1.0], [1e5, -2e4, 0.0, 2.0], [0.0, 1e5, 0.0, 1.5]]);
+        t.r[0] = [-1e5, -1e5, 0.0, 1e-6];
+        hard.push(("huge, w near 0", t, vec![Tile::square(0.0, 0.0, 2.0), Tile::square(-300.0, 50.0, 8.0)]));
+        t.r[0][3] = -0.5;
+        hard.push(("behind the lens", t, vec![Tile::square(0.0, 0.0, 2.0), Tile::square(40.0, -10.0, 4.0)]));
+        // Moving through the focal plane (depth 4): CoC crosses 0.
+        let q = [[-0.3, -0.2, 3.0], [0.3, -0.25, 3.5], [0.0, 0.3, 3.2]];
+        hard.push((
+            "focal crossing",
+            c.triangle(q, q.map(|p| [p[0] + 0.1, p[1], p[2] + 2.0])),
+            vec![Tile::square(-2.0, -2.0, 4.0), Tile::square(6.0, -5.0, 2.0), Tile::square(-9.0, 4.0, 2.0)],
+        ));
+        // Screen-parallel sliver moving along its own length.
+        let mut t = Triangle::fixed([[-20.0, 0.0, 0.0, 1.0], [20.0, 0.01, 0.0, 1.0], [0.0, 0.03, 0.0, 1.0]]);
+        t.r = t.q.map(|p| [p[0] + 5.0, p[1], p[2], p[3]]);
+        hard.push(("sliver", t, vec![Tile::square(0.0, 0.0, 1.0), Tile::square(-3.0, -1.0, 2.0)]));
+        let mut covered_total = 0;
+        for m in [METHOD_SAFE, METHOD_PS_SAFE] {
+            for (what, tri, tiles) in &hard {
+                let p = m.setup(tri);
+                for (ti, tile) in tiles.iter().enumerate() {
+                    let what = format!("{} {what} tile {ti}", m.info().id);
+                    let (cov, _) = assert_keeps_covered(p.as_ref(), tri, tile, (20_000, 2000), 77 + ti as u64, &what);
+                    covered_total += cov;
+                }
+            }
+        }
+        assert!(covered_total > 10_000, "{covered_total}");
+    }
+
+    /// Not vacuous: on ordinary triangles `-safe` still culls far tiles and narrows the
+    /// intervals, close to the published answer.
+    #[test]
+    fn safe_is_close_to_the_original() {
+        let (mut culled, mut culled_safe, mut len, mut len_safe) = (0, 0, 0.0f64, 0.0f64);
+        for (tri, tiles) in cases() {
+            let (p, ps) = (METHOD.setup(&tri), METHOD_SAFE.setup(&tri));
+            let mut all = tiles.clone();
+            all.extend((0..40).map(|i| Tile::square(-40.0 + 2.0 * i as f32, -10.0 + 0.5 * i as f32, 2.0)));
+            for tile in &all {
+                let width = |r: &TileResult| match r {
+                    TileResult::Empty => 0.0,
+                    TileResult::Bounds(b) => ((b.u[1] - b.u[0]) + (b.v[1] - b.v[0]) + 2.0 * (b.t[1] - b.t[0])) as f64,
+                };
+                let (a, b) = (p.tile(tile), ps.tile(tile));
+                culled += matches!(a, TileResult::Empty) as usize;
+                culled_safe += matches!(b, TileResult::Empty) as usize;
+                if matches!(b, TileResult::Empty) {
+                    assert!(matches!(a, TileResult::Empty), "safe culls a tile the original keeps: {tile:?}");
+                }
+                len += width(&a);
+                len_safe += width(&b);
+            }
+        }
+        eprintln!("culled {culled} / safe {culled_safe}; interval length {len} / safe {len_safe}");
+        assert!(culled_safe > 30 && culled_safe * 10 >= culled * 9, "{culled_safe} vs {culled}");
+        assert!(len_safe <= len * 1.01 + 1e-3, "{len_safe} vs {len}");
+        // The sliding triangle of `refined_time_bounds`: the same t interval up to
+        // rounding.
+        let mut tri = Triangle::fixed([[-40.0, -10.0, 0.0, 1.0], [-20.0, -10.0, 0.0, 1.0], [-30.0, 10.0, 0.0, 1.0]]);
+        tri.r = tri.q.map(|p| [p[0] + 60.0, p[1], p[2], p[3]]);
+        let TileResult::Bounds(b) = METHOD_SAFE.setup(&tri).tile(&Tile::square(5.0, 0.0, 2.0)) else { panic!("empty") };
+        assert!(b.t[0] > 0.4999 && b.t[0] <= 0.5 && b.t[1] >= 0.7 && b.t[1] < 0.7001, "{:?}", b.t);
+    }
+
+    /// The interval arithmetic encloses: random f32 operands, exact results in f64.
+    #[test]
+    fn intervals_enclose_exact_results() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let draw = |rng: &mut ChaCha8Rng| -> f32 {
+            let e = rng.gen_range(-140..120);
+            let x = rng.gen_range(-1.0f32..1.0) * 2f32.powi(e);
+            if rng.gen_bool(0.05) {
+                0.0
+            } else {
+                x
+            }
+        };
+        for _ in 0..200_000 {
+            let (a, b) = (draw(&mut rng), draw(&mut rng));
+            let (ia, ib) = (Iv::point(a), Iv::point(b));
+            let inside = |i: Iv, x: f64| (i.lo as f64) <= x && x <= i.hi as f64;
+            assert!(inside(ia + ib, a as f64 + b as f64), "{a} + {b}");
+            assert!(inside(ia - ib, a as f64 - b as f64), "{a} - {b}");
+            // f32 x f32 is exact in f64 (48 bits), subnormals included down to 2^-298.
+            assert!(inside(ia * ib, a as f64 * b as f64), "{a} * {b}");
+            let c = draw(&mut rng);
+            assert!(Iv::new(a.min(b), a.max(b)).dev(c) as f64 >= ((a as f64 - c as f64).abs()), "dev");
+        }
+        let third = Iv::third();
+        assert!(third.lo < 1.0 / 3.0 && (1.0 / 3.0) < third.hi as f64);
+        assert_eq!(Iv::point(f32::MAX) + Iv::point(f32::MAX), Iv { lo: f32::MAX, hi: f32::INFINITY });
+        let whole = Iv::point(0.0) * Iv::new(1.0, f32::INFINITY);
+        assert_eq!(whole, Iv { lo: f32::NEG_INFINITY, hi: f32::INFINITY });
+    }
+
+    #[test]
+    fn safe_eval_box_encloses_eval() {
+        for (tri, tiles) in cases() {
+            let p = METHOD_PS_SAFE.setup(&tri);
+            for (i, tile) in tiles.iter().enumerate() {
+                if let TileResult::Bounds(b) = p.tile(tile) {
+                    super::super::testkit::assert_eval_box_encloses(&b, tile, i as u64);
+                }
+            }
+        }
     }
 }

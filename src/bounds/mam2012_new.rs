@@ -23,6 +23,12 @@
 //! A conjunction of conservative tests is conservative; each component's assumptions
 //! and f32 caveats are documented in its own file.
 //!
+//! # `mam2012-new-safe`
+//! The same conjunction of `la2011-safe`, `mam2012-safe` and `mam2012-hyperplane-safe`,
+//! each made conservative in f32 in its own file (f32 interval arithmetic with directed
+//! steps; see their error analyses). A conjunction of conservative tests is
+//! conservative, so nothing else needs an analysis; its price is the sum of the parts'.
+//!
 //! # Choices and deviations
 //! - Composition through the registry statics only: this file does not depend on the
 //!   internals of the other three files.
@@ -40,8 +46,12 @@
 
 use super::*;
 
-/// LA + bilinear + hyperplane (§3 of Munkberg & Akenine-Möller 2012).
-pub struct Mam2012New;
+/// LA + bilinear + hyperplane (§3 of Munkberg & Akenine-Möller 2012), from three
+/// registered methods (the published ones, or their -safe variants).
+struct Mam2012New {
+    info: &'static MethodInfo,
+    parts: [&'static &'static dyn Method; 3],
+}
 
 static INFO: MethodInfo = MethodInfo {
     id: "mam2012-new",
@@ -51,7 +61,24 @@ static INFO: MethodInfo = MethodInfo {
     outputs: Outputs { tile_reject: true, lens: true, time: true, depth: false, per_sample: true },
 };
 
-pub static METHOD: &dyn Method = &Mam2012New;
+pub static METHOD: &dyn Method = &Mam2012New {
+    info: &INFO,
+    parts: [&super::la2011::METHOD, &super::mam2012::METHOD, &super::mam2012_hyperplane::METHOD],
+};
+
+static INFO_SAFE: MethodInfo = MethodInfo {
+    id: "mam2012-new-safe",
+    source: "mam2012-new made conservative in f32: the conjunction of la2011-safe, mam2012-safe \
+             and mam2012-hyperplane-safe",
+    ..INFO
+};
+
+/// `mam2012-new-safe`: the same conjunction of the three -safe parts. A conjunction of
+/// conservative tests is conservative, so nothing beyond the parts is needed.
+pub static METHOD_SAFE: &dyn Method = &Mam2012New {
+    info: &INFO_SAFE,
+    parts: [&super::la2011::METHOD_SAFE, &super::mam2012::METHOD_SAFE, &super::mam2012_hyperplane::METHOD_SAFE],
+};
 
 struct Prep {
     parts: [Box<dyn Prepared>; 3],
@@ -59,16 +86,10 @@ struct Prep {
 
 impl Method for Mam2012New {
     fn info(&self) -> &'static MethodInfo {
-        &INFO
+        self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(Prep {
-            parts: [
-                super::la2011::METHOD.setup(tri),
-                super::mam2012::METHOD.setup(tri),
-                super::mam2012_hyperplane::METHOD.setup(tri),
-            ],
-        })
+        Box::new(Prep { parts: self.parts.map(|m| m.setup(tri)) })
     }
 }
 
