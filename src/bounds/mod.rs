@@ -181,6 +181,7 @@ pub fn registry() -> Vec<&'static dyn Method> {
         wu2013::METHOD,
         wu2013::METHOD_SAFE,
         nilsson2012_depth::METHOD,
+        nilsson2012_depth::METHOD_SAFE,
         gdam2010::METHOD,
     ];
     v.extend(plugged());

@@ -112,8 +112,133 @@
 //! plane (m close to 0) depends on the sign of rounded values. The cancellation in
 //! `n = (P1 - P0) x (P2 - P0)` for slivers makes the normal inaccurate, but the offsets
 //! are taken from the same rounded normal, so only their own rounding matters.
+//!
+//! # `nilsson2012-depth-safe`: the same bounds, rounded outward
+//! The f32 bounds above are the published ones and stay as they are: the gate finds
+//! depths 1e-8..1e-7 outside z^ at tile corners (4.2e-5 far from the origin, where the
+//! plane terms are coordinates of 1e6 px times w), covered tiles culled at the f32
+//! reject limit, and on screen-parallel triangles (all six w equal) an EMPTY interval:
+//! the plane bound `fl(fl(n_w w) / n_w)` rounds one ulp below the vertex box `[w, w]`
+//! and the intersection of the two culls every covered tile. `nilsson2012-depth-safe`
+//! runs the same code (one generic algorithm, `Round = Near` or `Outward`) with every
+//! rounded result that a bound depends on moved one f32 step outward.
+//!
+//! *Error analysis: directed steps (f32 interval arithmetic).* Every operation `a op b`
+//! on f32 values rounds to nearest, so the exact result lies between the computed
+//! `r = fl(a op b)` and its neighbour on the exact value's side, subnormals included
+//! (their spacing is uniform, 2^-149). Hence `next_down(r) <= a op b <= next_up(r)`.
+//! On overflow `r = +inf` means `a op b > f32::MAX`, so `next_down(+inf) = MAX` is a
+//! valid lower bound and `next_up(+inf) = +inf` a valid upper one (the same for -inf);
+//! a result of 0 steps to +-2^-149. The code writes `R::up(..)` around each result
+//! that must be an upper bound and `R::dn(..)` around each lower one, and only ever
+//! combines bounds monotonically: sums of same-sided bounds; products of exact f32
+//! inputs (`n_x x`, `a w`, `k |n_y|`) or of a non-negative exact factor and a
+//! non-negative upper bound (`|c| L`); a quotient `E_hi / m_lo` only where the rule
+//! above is monotone in both (below). This encloses every exact value for every
+//! finite input: huge, tiny (subnormal) and far-from-origin coordinates cost nothing
+//! but a loose bound; overflow gives an infinite (unbounded) side; `inf - inf` gives
+//! NaN, which the safe variant propagates through min / max (`f32::min` would skip it)
+//! so that it drops the bound it appears in. Non-finite input disables the test (full
+//! bounds), as in the original.
+//!
+//! What is enclosed, and why that is enough (real arithmetic on the f32 values):
+//! - *The normal needs no rounding.* Every step of the planes holds for any vector n;
+//!   the f32 cross product is used as an exact n, and the offsets and the plane value
+//!   m are computed for that very n. So `M_base, M_other` are upper bounds of
+//!   `max_i n . p_i + |c_i| (|n_x| + k |n_y|)` (dot products rounded up term by term,
+//!   `L = |n_x| + k |n_y|` rounded up, `|c_i| L` rounded up), `m_base, m_other` lower
+//!   bounds. The lens term is convex in t (`|c_i(t)|`), so the max plane still holds
+//!   between the shutter ends (and the min plane, concave, too).
+//! - *m over the tile*: each corner value `n_x x + n_y y + n_w` rounded down for
+//!   `m_lo` (the least) and up for `m_hi`: `m_lo <= m(x, y) <= m_hi` on the tile.
+//! - *w from a plane* (`w m <= E`, `E <= e_hi`, `m >= m_lo`, `w > 0`): if `m_lo > 0`
+//!   then `w <= E / m <= e_hi / m_lo` (for `e_hi > 0`), rounded up; `e_hi <= 0` is no
+//!   hit (`w m > 0 >= E`). If `m_lo <= 0` and `e_hi < 0`, a hit needs `m < 0` (empty when
+//!   `m_lo = 0`) and then `w >= E / m >= e_hi / m_lo` (`|E| >= |e_hi|`,
+//!   `|m| <= |m_lo|`), rounded down. The min plane is the same rule on `-m`, `-E`.
+//! - *The vertex boxes*: the six w are exact; the six `z / w` rounded down for the
+//!   least and up for the greatest.
+//! - *The conversion* `zeta = A + c / w` holds for any f32 A (and B): `c = z - A w` of
+//!   a vertex is enclosed by `dn(B + dn(dn(z - up(A w)) - B))` and the mirror image, the
+//!   four (or two) quotients of `c_over_w` are rounded outward, and so is `A + q`.
+//!
+//! Every interval the tile test intersects is then an enclosure of the same exact hit
+//! depth (or w) of every covered sample, so their intersection holds it and cannot be
+//! empty while a covered sample exists: this is what the screen-parallel failure
+//! needed, with no special case. Each Empty answer (`e_hi <= 0 < m_lo`,
+//! `m_lo = 0 > e_hi`, `hi <= 0`, `lo > hi`, `z_lo > z_hi`) compares enclosures, so it
+//! is a proof that the tile holds no covered sample. No correction beyond rounding is
+//! needed: the derivation above holds in real arithmetic for any f32 normal, A and B.
+//!
+//! *Cost*: a step after each operation (the corner values of m twice, once per
+//! side); the interval grows by a few ulps of the terms it is computed from, which far
+//! from the origin (terms of 1e6 px times w) is the same 1e-5 the original misses by.
+//! No sample test efficiency figure sees it (z^ is a depth test; the tile reject moves
+//! by ulps).
 
 use super::*;
+use std::marker::PhantomData;
+
+/// How each rounded f32 result is taken: as it comes (`Near`, the published method) or
+/// moved one f32 step outward (`Outward`, `nilsson2012-depth-safe`). Every bound below
+/// is written once, with `R::up` around a result that must not fall below the exact
+/// value and `R::dn` around one that must not exceed it; with `Near` both are the
+/// identity and the code is the published f32 computation, operation for operation.
+trait Round: Send + Sync + 'static {
+    /// True for the outward variant: NaN also propagates through min / max.
+    const SAFE: bool;
+    fn up(x: f32) -> f32;
+    fn dn(x: f32) -> f32;
+}
+
+/// Round to nearest, nothing more (`nilsson2012-depth`).
+struct Near;
+
+/// One step outward after each rounded operation (`nilsson2012-depth-safe`).
+struct Outward;
+
+impl Round for Near {
+    const SAFE: bool = false;
+    #[inline(always)]
+    fn up(x: f32) -> f32 {
+        x
+    }
+    #[inline(always)]
+    fn dn(x: f32) -> f32 {
+        x
+    }
+}
+
+impl Round for Outward {
+    const SAFE: bool = true;
+    #[inline(always)]
+    fn up(x: f32) -> f32 {
+        x.next_up()
+    }
+    #[inline(always)]
+    fn dn(x: f32) -> f32 {
+        x.next_down()
+    }
+}
+
+/// `a.min(b)`; for the safe variant a NaN operand gives NaN (an unknown value must not
+/// be skipped as `f32::min` does).
+fn min_r<R: Round>(a: f32, b: f32) -> f32 {
+    if R::SAFE && (a.is_nan() || b.is_nan()) {
+        f32::NAN
+    } else {
+        a.min(b)
+    }
+}
+
+/// `a.max(b)`, NaN-propagating for the safe variant (see [`min_r`]).
+fn max_r<R: Round>(a: f32, b: f32) -> f32 {
+    if R::SAFE && (a.is_nan() || b.is_nan()) {
+        f32::NAN
+    } else {
+        a.max(b)
+    }
+}
 
 /// One moving plane with fixed normal n in (x, y, w): for every vertex, lens position
 /// and time, `n . p' <= max(e)` over the shutter (max plane) or `>= min(e)` (min plane).
@@ -136,7 +261,7 @@ enum WBound {
 }
 
 /// `w m <= E` for some `m in [m_lo, m_hi]`, `E in [e_lo, e_hi]`, with `w > 0`.
-fn w_from(m_lo: f32, e_hi: f32) -> WBound {
+fn w_from<R: Round>(m_lo: f32, e_hi: f32) -> WBound {
     if !(m_lo.is_finite() && e_hi.is_finite()) {
         return WBound::Range(0.0, f32::INFINITY);
     }
@@ -144,13 +269,13 @@ fn w_from(m_lo: f32, e_hi: f32) -> WBound {
         if e_hi <= 0.0 {
             WBound::Empty
         } else {
-            WBound::Range(0.0, e_hi / m_lo)
+            WBound::Range(0.0, R::up(e_hi / m_lo))
         }
     } else if e_hi < 0.0 {
         if m_lo == 0.0 {
             WBound::Empty
         } else {
-            WBound::Range(e_hi / m_lo, f32::INFINITY)
+            WBound::Range(R::dn(e_hi / m_lo), f32::INFINITY)
         }
     } else {
         WBound::Range(0.0, f32::INFINITY)
@@ -165,8 +290,14 @@ fn cross(p: [f32; 3], q: [f32; 3]) -> [f32; 3] {
     [p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]]
 }
 
-fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+/// `a . b` rounded up (`R::up` after each operation): `>=` the exact dot product.
+fn dot_up<R: Round>(a: [f32; 3], b: [f32; 3]) -> f32 {
+    R::up(R::up(R::up(a[0] * b[0]) + R::up(a[1] * b[1])) + R::up(a[2] * b[2]))
+}
+
+/// `a . b` rounded down: `<=` the exact dot product.
+fn dot_dn<R: Round>(a: [f32; 3], b: [f32; 3]) -> f32 {
+    R::dn(R::dn(R::dn(a[0] * b[0]) + R::dn(a[1] * b[1])) + R::dn(a[2] * b[2]))
 }
 
 /// Same strict sign, both finite.
@@ -177,20 +308,21 @@ fn same_sign(a: f32, b: f32) -> bool {
 impl Plane {
     /// The planes with the normal of the triangle `base` (a shutter end, with CoC `cb`),
     /// bounding the triangle at that end and at the other end `oth` (CoC `co`).
-    fn new(base: [[f32; 3]; 3], cb: [f32; 3], oth: [[f32; 3]; 3], co: [f32; 3], k: f32) -> Plane {
+    fn new<R: Round>(base: [[f32; 3]; 3], cb: [f32; 3], oth: [[f32; 3]; 3], co: [f32; 3], k: f32) -> Plane {
+        // Any f32 normal will do (the offsets below are taken for this very n), so
+        // n needs no outward rounding.
         let mut n = cross(sub3(base[1], base[0]), sub3(base[2], base[0]));
         if n[2] < 0.0 {
             n = n.map(|x| -x);
         }
-        let lens = n[0].abs() + k * n[1].abs();
+        let lens = R::up(n[0].abs() + R::up(k * n[1].abs()));
         let ext = |pts: [[f32; 3]; 3], c: [f32; 3]| -> (f32, f32) {
             let mut hi = f32::NEG_INFINITY;
             let mut lo = f32::INFINITY;
             for i in 0..3 {
-                let d = dot(n, pts[i]);
-                let s = c[i].abs() * lens;
-                hi = hi.max(d + s);
-                lo = lo.min(d - s);
+                let s = R::up(c[i].abs() * lens);
+                hi = max_r::<R>(hi, R::up(dot_up::<R>(n, pts[i]) + s));
+                lo = min_r::<R>(lo, R::dn(dot_dn::<R>(n, pts[i]) - s));
             }
             (lo, hi)
         };
@@ -204,30 +336,36 @@ impl Plane {
         }
     }
 
-    /// The range of `m = n_x x + n_y y + n_w` over the tile (its four corners).
-    fn m_range(&self, tile: &Tile) -> (f32, f32) {
-        let m = |x: f32, y: f32| self.n[0] * x + self.n[1] * y + self.n[2];
-        let c = [m(tile.x0, tile.y0), m(tile.x1, tile.y0), m(tile.x0, tile.y1), m(tile.x1, tile.y1)];
-        (c.iter().cloned().fold(f32::INFINITY, f32::min), c.iter().cloned().fold(f32::NEG_INFINITY, f32::max))
+    /// The range of `m = n_x x + n_y y + n_w` over the tile (its four corners): the
+    /// least corner value rounded down, the greatest rounded up.
+    fn m_range<R: Round>(&self, tile: &Tile) -> (f32, f32) {
+        let n = self.n;
+        let lo = |x: f32, y: f32| R::dn(R::dn(R::dn(n[0] * x) + R::dn(n[1] * y)) + n[2]);
+        let hi = |x: f32, y: f32| R::up(R::up(R::up(n[0] * x) + R::up(n[1] * y)) + n[2]);
+        let corners = [(tile.x0, tile.y0), (tile.x1, tile.y0), (tile.x0, tile.y1), (tile.x1, tile.y1)];
+        (
+            corners.iter().map(|&(x, y)| lo(x, y)).fold(f32::INFINITY, min_r::<R>),
+            corners.iter().map(|&(x, y)| hi(x, y)).fold(f32::NEG_INFINITY, max_r::<R>),
+        )
     }
 
     /// The bounds on w of the max and the min plane over the tile (t^ = [0, 1]).
-    fn w_bounds(&self, tile: &Tile) -> [WBound; 2] {
+    fn w_bounds<R: Round>(&self, tile: &Tile) -> [WBound; 2] {
         let none = WBound::Range(0.0, f32::INFINITY);
-        let (m_lo, m_hi) = self.m_range(tile);
+        let (m_lo, m_hi) = self.m_range::<R>(tile);
         if m_lo.is_nan() || m_hi.is_nan() {
             return [none, none];
         }
         // max plane: w m <= M(t), M in [min, max] of its ends.
-        let up = self.upper.map_or(none, |e| w_from(m_lo, e[0].max(e[1])));
+        let up = self.upper.map_or(none, |e| w_from::<R>(m_lo, e[0].max(e[1])));
         // min plane: w m >= m(t)  <=>  w (-m) <= -m(t).
-        let lo = self.lower.map_or(none, |e| w_from(-m_hi, -(e[0].min(e[1]))));
+        let lo = self.lower.map_or(none, |e| w_from::<R>(-m_hi, -(e[0].min(e[1]))));
         [up, lo]
     }
 }
 
 #[derive(Debug)]
-struct Prep {
+struct Prep<R> {
     planes: [Plane; 2],
     /// w range of the six vertices (test 1).
     w_box: [f32; 2],
@@ -237,20 +375,24 @@ struct Prep {
     a: f32,
     c: [f32; 2],
     disabled: Option<&'static str>,
+    round: PhantomData<fn() -> R>,
 }
 
 /// `c / w` over `c in [c0, c1]`, `w in [w0, w1]`, `0 <= w0 <= w1 < inf`, `w > 0`.
-fn c_over_w(c: [f32; 2], w: [f32; 2]) -> [f32; 2] {
+fn c_over_w<R: Round>(c: [f32; 2], w: [f32; 2]) -> [f32; 2] {
     if w[0] > 0.0 {
-        let q = [c[0] / w[0], c[0] / w[1], c[1] / w[0], c[1] / w[1]];
-        return [q.iter().cloned().fold(f32::INFINITY, f32::min), q.iter().cloned().fold(f32::NEG_INFINITY, f32::max)];
+        let q = [(c[0], w[0]), (c[0], w[1]), (c[1], w[0]), (c[1], w[1])];
+        return [
+            q.iter().map(|&(c, w)| R::dn(c / w)).fold(f32::INFINITY, min_r::<R>),
+            q.iter().map(|&(c, w)| R::up(c / w)).fold(f32::NEG_INFINITY, max_r::<R>),
+        ];
     }
-    let lo = if c[0] >= 0.0 { c[0] / w[1] } else { f32::NEG_INFINITY };
-    let hi = if c[1] <= 0.0 { c[1] / w[1] } else { f32::INFINITY };
+    let lo = if c[0] >= 0.0 { R::dn(c[0] / w[1]) } else { f32::NEG_INFINITY };
+    let hi = if c[1] <= 0.0 { R::up(c[1] / w[1]) } else { f32::INFINITY };
     [lo, hi]
 }
 
-impl Prepared for Prep {
+impl<R: Round> Prepared for Prep<R> {
     fn tile(&self, tile: &Tile) -> TileResult {
         let mut b = TileBounds::full();
         if self.disabled.is_some() {
@@ -259,7 +401,7 @@ impl Prepared for Prep {
         // w: the box, w > 0, and the planes.
         let (mut lo, mut hi) = (self.w_box[0].max(0.0), self.w_box[1]);
         for p in &self.planes {
-            for wb in p.w_bounds(tile) {
+            for wb in p.w_bounds::<R>(tile) {
                 match wb {
                     WBound::Empty => return TileResult::Empty,
                     WBound::Range(l, h) => {
@@ -276,8 +418,8 @@ impl Prepared for Prep {
         if hi.is_nan() || hi <= 0.0 || lo > hi {
             return TileResult::Empty;
         }
-        let q = c_over_w(self.c, [lo, hi]);
-        let mut z = [self.a + q[0], self.a + q[1]];
+        let q = c_over_w::<R>(self.c, [lo, hi]);
+        let mut z = [R::dn(self.a + q[0]), R::up(self.a + q[1])];
         if z[0].is_nan() {
             z[0] = f32::NEG_INFINITY;
         }
@@ -300,7 +442,11 @@ impl Prepared for Prep {
     }
 }
 
-struct Nilsson2012Depth;
+/// nilsson2012-depth (`Near`) or nilsson2012-depth-safe (`Outward`).
+struct Nilsson2012Depth<R> {
+    info: &'static MethodInfo,
+    round: PhantomData<fn() -> R>,
+}
 
 static INFO: MethodInfo = MethodInfo {
     id: "nilsson2012-depth",
@@ -311,21 +457,23 @@ static INFO: MethodInfo = MethodInfo {
     outputs: Outputs { tile_reject: true, lens: false, time: false, depth: true, per_sample: false },
 };
 
-fn prepare(tri: &Triangle) -> Prep {
+fn prepare_with<R: Round>(tri: &Triangle) -> Prep<R> {
     let xyw = |p: [f32; 4]| [p[0], p[1], p[3]];
     let finite =
         tri.q.iter().chain(tri.r.iter()).flatten().chain(tri.c0.iter()).chain(tri.c1.iter()).all(|v| v.is_finite())
             && tri.k.is_finite();
     let (q, r) = (tri.q.map(xyw), tri.r.map(xyw));
-    let planes = [Plane::new(q, tri.c0, r, tri.c1, tri.k), Plane::new(r, tri.c1, q, tri.c0, tri.k)];
+    let planes = [Plane::new::<R>(q, tri.c0, r, tri.c1, tri.k), Plane::new::<R>(r, tri.c1, q, tri.c0, tri.k)];
     let verts: Vec<[f32; 4]> = tri.q.iter().chain(tri.r.iter()).cloned().collect();
     let w_box = [
         verts.iter().map(|p| p[3]).fold(f32::INFINITY, f32::min),
         verts.iter().map(|p| p[3]).fold(f32::NEG_INFINITY, f32::max),
     ];
     let zeta_box = verts.iter().all(|p| p[3] > 0.0).then(|| {
-        let zs: Vec<f32> = verts.iter().map(|p| p[2] / p[3]).collect();
-        [zs.iter().cloned().fold(f32::INFINITY, f32::min), zs.iter().cloned().fold(f32::NEG_INFINITY, f32::max)]
+        [
+            verts.iter().map(|p| R::dn(p[2] / p[3])).fold(f32::INFINITY, min_r::<R>),
+            verts.iter().map(|p| R::up(p[2] / p[3])).fold(f32::NEG_INFINITY, max_r::<R>),
+        ]
     });
     // The (w, z) line through the vertices of least and greatest w.
     let lo_v = verts.iter().cloned().fold(verts[0], |a, p| if p[3] < a[3] { p } else { a });
@@ -339,24 +487,55 @@ fn prepare(tri: &Triangle) -> Prep {
             bb = 0.0;
         }
     }
-    let res: Vec<f32> = verts.iter().map(|p| p[2] - a * p[3] - bb).collect();
-    let c = [
-        bb + res.iter().cloned().fold(f32::INFINITY, f32::min),
-        bb + res.iter().cloned().fold(f32::NEG_INFINITY, f32::max),
-    ];
-    Prep { planes, w_box, zeta_box, a, c, disabled: (!finite).then_some("non-finite triangle data") }
+    // Residuals z - a w - bb, rounded down for the least and up for the greatest (a
+    // and bb are any f32 values: the conversion is exact for every A, B).
+    let res_lo = verts.iter().map(|p| R::dn(R::dn(p[2] - R::up(a * p[3])) - bb)).fold(f32::INFINITY, min_r::<R>);
+    let res_hi = verts.iter().map(|p| R::up(R::up(p[2] - R::dn(a * p[3])) - bb)).fold(f32::NEG_INFINITY, max_r::<R>);
+    let mut c = [R::dn(bb + res_lo), R::up(bb + res_hi)];
+    if R::SAFE && (c[0].is_nan() || c[1].is_nan()) {
+        c = [f32::NEG_INFINITY, f32::INFINITY];
+    }
+    Prep {
+        planes,
+        w_box,
+        zeta_box,
+        a,
+        c,
+        disabled: (!finite).then_some("non-finite triangle data"),
+        round: PhantomData,
+    }
 }
 
-impl Method for Nilsson2012Depth {
+/// The published setup (round to nearest).
+#[cfg(test)]
+fn prepare(tri: &Triangle) -> Prep<Near> {
+    prepare_with::<Near>(tri)
+}
+
+impl<R: Round> Method for Nilsson2012Depth<R> {
     fn info(&self) -> &'static MethodInfo {
-        &INFO
+        self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(prepare(tri))
+        Box::new(prepare_with::<R>(tri))
     }
 }
 
-pub static METHOD: &dyn Method = &Nilsson2012Depth;
+pub static METHOD: &dyn Method = &Nilsson2012Depth::<Near> { info: &INFO, round: PhantomData };
+
+static INFO_SAFE: MethodInfo = MethodInfo {
+    id: "nilsson2012-depth-safe",
+    source: "Nilsson et al. 2012, Design and Novel Uses of Higher-Dimensional Rasterization, HPG 2012, \
+             Appendix A (moving bounding box; moving planes, Eq. 1, Figure 18); every bound rounded \
+             outward, one f32 step after each rounded operation (error analysis in this file)",
+    reconstruction: false,
+    dims: &[Dims::Static, Dims::Motion, Dims::Defocus, Dims::Both],
+    outputs: Outputs { tile_reject: true, lens: false, time: false, depth: true, per_sample: false },
+};
+
+/// `nilsson2012-depth-safe`: the same bounds rounded outward (see the module's error
+/// analysis).
+pub static METHOD_SAFE: &dyn Method = &Nilsson2012Depth::<Outward> { info: &INFO_SAFE, round: PhantomData };
 
 #[cfg(test)]
 mod tests {
@@ -532,13 +711,13 @@ mod tests {
 
     #[test]
     fn w_rule() {
-        assert_eq!(w_from(2.0, 4.0), WBound::Range(0.0, 2.0));
-        assert_eq!(w_from(2.0, -4.0), WBound::Empty);
-        assert_eq!(w_from(-2.0, -4.0), WBound::Range(2.0, f32::INFINITY));
-        assert_eq!(w_from(0.0, -4.0), WBound::Empty);
-        assert_eq!(w_from(-1.0, 4.0), WBound::Range(0.0, f32::INFINITY));
-        assert_eq!(c_over_w([-2.0, -1.0], [0.0, 4.0]), [f32::NEG_INFINITY, -0.25]);
-        assert_eq!(c_over_w([1.0, 2.0], [1.0, 4.0]), [0.25, 2.0]);
+        assert_eq!(w_from::<Near>(2.0, 4.0), WBound::Range(0.0, 2.0));
+        assert_eq!(w_from::<Near>(2.0, -4.0), WBound::Empty);
+        assert_eq!(w_from::<Near>(-2.0, -4.0), WBound::Range(2.0, f32::INFINITY));
+        assert_eq!(w_from::<Near>(0.0, -4.0), WBound::Empty);
+        assert_eq!(w_from::<Near>(-1.0, 4.0), WBound::Range(0.0, f32::INFINITY));
+        assert_eq!(c_over_w::<Near>([-2.0, -1.0], [0.0, 4.0]), [f32::NEG_INFINITY, -0.25]);
+        assert_eq!(c_over_w::<Near>([1.0, 2.0], [1.0, 4.0]), [0.25, 2.0]);
     }
 
     /// Random triangles of every kind (thin lens or per-vertex CoC, vertices behind the
@@ -592,5 +771,177 @@ mod tests {
     #[test]
     fn degenerate_and_huge_input_is_answered_in_the_domain() {
         super::super::testkit::assert_degenerate_input_is_answered(METHOD, &super::super::la2011::figure1::triangle());
+        super::super::testkit::assert_degenerate_input_is_answered(
+            METHOD_SAFE,
+            &super::super::la2011::figure1::triangle(),
+        );
+    }
+
+    /// The stored corpus cases of the original (far from the origin, screen-parallel,
+    /// static, motion, defocus, sliver): the original culls or misses its witness, the
+    /// safe variant keeps the tile and the witness's exact depth lies in its z^.
+    #[test]
+    fn safe_keeps_the_corpus_witnesses() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/cases/nilsson2012-depth");
+        let mut n = 0;
+        for f in std::fs::read_dir(dir).unwrap() {
+            let cf = crate::corpus::CaseFile::load(&f.unwrap().path()).unwrap();
+            let (tri, tile) = (cf.case.triangle, cf.tile);
+            let w = cf.witness.expect("a violation case has a witness").sample;
+            let o = tri.to_oracle();
+            let judge = |m: &dyn Method| match m.setup(&tri).tile(&tile) {
+                TileResult::Empty => DepthCheck::Above,
+                TileResult::Bounds(b) => {
+                    let z = b.z.unwrap_or([f32::NEG_INFINITY, f32::INFINITY]);
+                    oracles::classify_depth(&o, w, z[0] as f64, z[1] as f64)
+                }
+            };
+            assert_ne!(judge(METHOD), DepthCheck::Inside, "{}: the original should miss its witness", cf.note);
+            assert_eq!(judge(METHOD_SAFE), DepthCheck::Inside, "{tri:?} {tile:?} {w:?}");
+            n += 1;
+        }
+        assert!(n >= 8, "{n}");
+    }
+
+    /// A screen-parallel triangle (every w equal): the original's plane bound rounds
+    /// one ulp below the vertex box and the interval is empty for some of these tiles;
+    /// the safe one always holds the depth, over many depths and screen offsets.
+    #[test]
+    fn safe_screen_parallel_is_never_empty() {
+        let mut rng = ChaCha8Rng::seed_from_u64(77);
+        let mut empties = 0;
+        for _ in 0..2000 {
+            let w: f32 = rng.gen_range(0.01f32..50.0);
+            let z: f32 = rng.gen_range(-2.0f32..2.0) * w;
+            let (ox, oy): (f32, f32) = (rng.gen_range(-2000.0..2000.0), rng.gen_range(-2000.0..2000.0));
+            let v = |x: f32, y: f32| [(ox + x) * w, (oy + y) * w, z, w];
+            let tri = Triangle::fixed([v(-30.0, -20.0), v(40.0, -25.0), v(5.0, 45.0)]);
+            let tile = Tile::square(ox.floor(), oy.floor(), 1.0);
+            empties += bounds(&tri, &tile).is_none() as usize;
+            let b = bounds_of(METHOD_SAFE, &tri, &tile).expect("covered tile culled");
+            let zz = b.z.expect("no depth");
+            let s = Sample::new(tile.x0 + 0.5, tile.y0 + 0.5, 0.0, 0.0, 0.5);
+            let d = oracles::classify_depth(&tri.to_oracle(), s.to_oracle(), zz[0] as f64, zz[1] as f64);
+            assert_eq!(d, DepthCheck::Inside, "{tri:?} {tile:?} {zz:?}");
+        }
+        eprintln!("screen-parallel: the original culled {empties} of 2000 covered tiles");
+    }
+
+    /// Spot checks of the safe variant on the original's hard inputs: far from the
+    /// origin (1e4..1e6 px), huge and tiny scales, w near 0, vertices behind the lens,
+    /// the focal plane crossed (CoC through 0), slivers.
+    #[test]
+    fn safe_random_hard_inputs() {
+        let mut rng = ChaCha8Rng::seed_from_u64(2024);
+        let (mut covered, mut tiles, mut finite) = (0, 0, 0);
+        for it in 0..600 {
+            let kind = it % 6;
+            let scale: f32 = [1.0, 1e-3, 1e3, 1.0, 1.0, 1.0][kind];
+            let off: f32 = if kind == 3 { 10f32.powi(rng.gen_range(4..=6)) } else { 0.0 };
+            let vert = |rng: &mut ChaCha8Rng| {
+                let w: f32 = match kind {
+                    4 => rng.gen_range(1e-4f32..0.05),
+                    5 => rng.gen_range(-0.5f32..3.0),
+                    _ => rng.gen_range(0.3f32..5.0),
+                };
+                let (x, y): (f32, f32) = (rng.gen_range(-20.0..20.0), rng.gen_range(-20.0..20.0));
+                [(off + x) * scale * w, (off + y) * scale * w, rng.gen_range(-1.0f32..1.0) * w + 0.1, w]
+            };
+            let mut q = [vert(&mut rng), vert(&mut rng), vert(&mut rng)];
+            let mut r = q;
+            if it % 2 == 1 {
+                r = [vert(&mut rng), vert(&mut rng), vert(&mut rng)];
+            }
+            if it % 12 == 7 {
+                // A sliver: the third vertex close to the first edge.
+                for p in [&mut q, &mut r] {
+                    p[2] = std::array::from_fn(|j| 0.5 * (p[0][j] + p[1][j]) + 1e-4 * p[2][j]);
+                }
+            }
+            let mut tri = Triangle { q, r, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 };
+            if it % 3 == 0 {
+                // Focal plane crossed: the CoC changes sign over the shutter.
+                tri.c0 = std::array::from_fn(|_| rng.gen_range(-3.0..3.0) * scale);
+                tri.c1 = tri.c0.map(|c| -c);
+                tri.k = rng.gen_range(0.5..2.0);
+            }
+            for _ in 0..3 {
+                let i = rng.gen_range(0..3);
+                let p = tri.q[i];
+                if p[3] <= 0.0 {
+                    continue;
+                }
+                let size = [1.0f32, 4.0, 16.0][rng.gen_range(0..3)] * scale.max(1.0);
+                let tile = Tile::square(
+                    (p[0] / p[3] + rng.gen_range(-8.0..8.0) * scale).floor(),
+                    (p[1] / p[3] + rng.gen_range(-8.0..8.0) * scale).floor(),
+                    size,
+                );
+                tiles += 1;
+                let b = bounds_of(METHOD_SAFE, &tri, &tile);
+                finite +=
+                    b.as_ref().is_some_and(|b| b.z.is_some_and(|z| z[0].is_finite() && z[1].is_finite())) as usize;
+                let o = tri.to_oracle();
+                let mut srng = ChaCha8Rng::seed_from_u64(it as u64);
+                for _ in 0..300 {
+                    let s = random_sample(&mut srng, &tile);
+                    let z = match &b {
+                        None => [f32::INFINITY, f32::NEG_INFINITY],
+                        Some(b) => b.z.unwrap_or([f32::NEG_INFINITY, f32::INFINITY]),
+                    };
+                    match oracles::classify_depth(&o, s.to_oracle(), z[0] as f64, z[1] as f64) {
+                        DepthCheck::Inside => covered += 1,
+                        DepthCheck::NotInterior => {}
+                        d => panic!("{tri:?}\ntile {tile:?}: sample {s:?} depth {d:?} of z^ {z:?} ({b:?})"),
+                    }
+                }
+            }
+        }
+        eprintln!("nilsson2012-depth-safe hard inputs: {covered} covered samples, {finite} of {tiles} tiles finite z^");
+        assert!(covered > 5000 && finite > tiles / 3, "{covered} {finite} {tiles}");
+    }
+
+    /// Not vacuous: the safe variant still culls tiles above the horizon and gives a
+    /// depth interval far narrower than the vertex box, within a few ulps of the
+    /// original's.
+    #[test]
+    fn safe_is_not_vacuous() {
+        let c = cam();
+        let g = [[-5.0, -1.0, 2.0], [5.0, -1.0, 2.0], [0.0, -1.0, 40.0]];
+        let ground = Triangle { c0: [0.0; 3], c1: [0.0; 3], ..c.triangle(g, g) };
+        assert!(bounds_of(METHOD_SAFE, &ground, &Tile::square(28.0, 60.0, 8.0)).is_none());
+        assert!(bounds_of(METHOD_SAFE, &ground, &Tile::square(28.0, 200.0, 8.0)).is_none());
+        let tilted = c.triangle(
+            [[-1.0, -1.0, 3.0], [1.5, -1.0, 6.0], [-1.0, 1.5, 9.0]],
+            [[-1.0, -1.0, 3.0], [1.5, -1.0, 6.0], [-1.0, 1.5, 9.0]],
+        );
+        let tilted = Triangle { c0: [0.0; 3], c1: [0.0; 3], ..tilted };
+        let zb = prepare(&tilted).zeta_box.unwrap();
+        for tile in [Tile::square(5.0, 5.0, 4.0), Tile::square(20.0, 10.0, 8.0)] {
+            let z = bounds_of(METHOD_SAFE, &tilted, &tile).unwrap().z.unwrap();
+            let z0 = bounds(&tilted, &tile).unwrap().z.unwrap();
+            assert!(z[1] - z[0] < 0.5 * (zb[1] - zb[0]), "{z:?} vs box {zb:?}");
+            assert!(z[0] <= z0[0] && z0[1] <= z[1], "{z:?} must hold {z0:?}");
+            assert!((z[0] - z0[0]).abs() < 1e-5 && (z[1] - z0[1]).abs() < 1e-5, "{z:?} vs {z0:?}");
+        }
+        // Static flat triangle: a few ulps around its one depth.
+        let flat = Triangle::fixed([[0.0, 0.0, 1.0, 2.0], [200.0, 0.0, 1.0, 2.0], [0.0, 200.0, 1.0, 2.0]]);
+        let z = bounds_of(METHOD_SAFE, &flat, &Tile::square(10.0, 10.0, 4.0)).unwrap().z.unwrap();
+        assert!(z[0] <= 0.5 && 0.5 <= z[1] && z[1] - z[0] < 1e-6, "{z:?}");
+        assert!(bounds_of(METHOD_SAFE, &flat, &Tile::square(10.0, 10.0, 4.0)).is_some());
+    }
+
+    #[test]
+    fn safe_w_rule_rounds_outward() {
+        // 1 / 3 is not an f32: the bounds step past it.
+        let WBound::Range(_, hi) = w_from::<Outward>(3.0, 1.0) else { panic!() };
+        assert!(hi as f64 > 1.0 / 3.0);
+        let WBound::Range(lo, _) = w_from::<Outward>(-3.0, -1.0) else { panic!() };
+        assert!((lo as f64) < 1.0 / 3.0);
+        let q = c_over_w::<Outward>([1.0, 2.0], [3.0, 7.0]);
+        assert!((q[0] as f64) < 1.0 / 7.0 && q[1] as f64 > 2.0 / 3.0);
+        // NaN is not skipped by the safe min / max.
+        assert!(min_r::<Outward>(1.0, f32::NAN).is_nan() && min_r::<Near>(1.0, f32::NAN) == 1.0);
+        assert_eq!(w_from::<Outward>(f32::NEG_INFINITY, 1.0), WBound::Range(0.0, f32::INFINITY));
     }
 }
