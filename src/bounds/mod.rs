@@ -183,6 +183,7 @@ pub fn registry() -> Vec<&'static dyn Method> {
         nilsson2012_depth::METHOD,
         nilsson2012_depth::METHOD_SAFE,
         gdam2010::METHOD,
+        gdam2010::METHOD_SAFE,
     ];
     v.extend(plugged());
     v
