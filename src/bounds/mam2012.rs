@@ -1152,7 +1152,7 @@ mod tests {
     /// The gate's judge on one case: (original, safe) verdicts.
     fn judge_both(case: &crate::model::Case, tile: &Tile) -> (Verdict, Verdict) {
         let cfg = crate::check::CheckConfig::default_with(vec![]);
-        let (js, _) = crate::check::judge(&cfg, &[METHOD, METHOD_SAFE], case, tile, 1);
+        let (js, _) = crate::check::judge(&cfg, &crate::bounds::shared_all([METHOD, METHOD_SAFE]), case, tile, 1);
         (js[0].verdict(), js[1].verdict())
     }
     use crate::check::Verdict;
