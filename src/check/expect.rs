@@ -42,6 +42,21 @@ pub struct Allowance {
     pub why: String,
 }
 
+impl Allowance {
+    /// How many of `n` cases may be unproven under a share `rate`: `rate n` plus the
+    /// counting noise of a row of n cases (three binomial standard deviations, plus 2
+    /// for tiny rows), as for an expected violation's rate. No allowance (rate 0)
+    /// allows none: a row expected conservative with no stated allowance must prove
+    /// every case.
+    pub fn cases_allowed(rate: f64, n: u64) -> f64 {
+        if rate <= 0.0 {
+            return 0.0;
+        }
+        let n = n as f64;
+        rate * n + 3.0 * (rate * (1.0 - rate) * n).sqrt() + 2.0
+    }
+}
+
 /// A cap on one kind of bound's margin ("inf" in JSON for a culled covered tile).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Cap(#[serde(with = "num_or_inf")] pub f64);
@@ -218,6 +233,17 @@ mod tests {
         let r = Expectations::load_with(&p, &|m| m == "m");
         std::fs::remove_file(&p).ok();
         r
+    }
+
+    #[test]
+    fn an_allowance_admits_counting_noise_and_no_allowance_admits_nothing() {
+        assert_eq!(Allowance::cases_allowed(0.0, 600), 0.0);
+        // 0.092 of 9 cases: 0.83 expected, noise lets 1 through (a small row), not 6.
+        let a = Allowance::cases_allowed(0.092, 9);
+        assert!((1.0..6.0).contains(&a), "{a}");
+        // On 600 cases the noise is small against the rate.
+        let a = Allowance::cases_allowed(0.1, 600);
+        assert!(a > 60.0 && a < 60.0 + 25.0, "{a}");
     }
 
     #[test]

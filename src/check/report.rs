@@ -1,7 +1,7 @@
 //! The gate's report: a row per method x regime with the three counts, its status
 //! against the expectations (and the baseline), a summary per method, the text table.
 
-use super::expect::{Entry, Expectations, Expected};
+use super::expect::{Allowance, Entry, Expectations, Expected};
 use super::judge::{Judgement, Verdict};
 use super::{CheckConfig, Witness};
 use crate::gen::Regime;
@@ -283,7 +283,7 @@ fn set_status(row: &mut Row) {
         Expected::Conservative if row.unproven == 0 => Status::Proven,
         Expected::Conservative => {
             let allowed = entry.unproven.as_ref().map_or(0.0, |a| a.max_rate);
-            if row.unproven as f64 <= allowed * row.cases as f64 {
+            if row.unproven as f64 <= Allowance::cases_allowed(allowed, row.cases) {
                 Status::ProvenExceptAllowed
             } else {
                 row.problems.push(format!(

@@ -452,7 +452,7 @@ pub fn render(r: &FamilyReport, md: bool) -> String {
     } else {
         s += &format!("{head}\n\n");
         s += &format!(
-            "{:>10}  {:<22} {:>16} {:>9} {:>12} {:>8}  {:>10}\n",
+            "{:>10}  {:<26} {:>16} {:>9} {:>12} {:>8}  {:>10}\n",
             "step value", "method", "violations/cases", "undecided", "NaN/inf rate", "STE", "max margin"
         );
     }
@@ -477,7 +477,7 @@ pub fn render(r: &FamilyReport, md: bool) -> String {
             );
         } else {
             s += &format!(
-                "{p:>10}  {:<22} {vc:>16} {:>9} {:>12.3} {:>8}  {:>10}\n",
+                "{p:>10}  {:<26} {vc:>16} {:>9} {:>12.3} {:>8}  {:>10}\n",
                 row.method,
                 row.undecided,
                 row.nonfinite_rate(),
@@ -494,7 +494,7 @@ pub fn render(r: &FamilyReport, md: bool) -> String {
     } else {
         s += &format!(
             "\nfirst fails at (the first step with a certified violation; gross: with a margin > \
-             {GROSS_MARGIN:e} or inf):\n  {:<22} {:>14} {:>14} {:>14}\n",
+             {GROSS_MARGIN:e} or inf):\n  {:<26} {:>14} {:>14} {:>14}\n",
             "method", "first fails at", "first gross", "failing steps"
         );
     }
@@ -505,7 +505,7 @@ pub fn render(r: &FamilyReport, md: bool) -> String {
         if md {
             s += &format!("| {} | {at} | {gross} | {n} |\n", f.method);
         } else {
-            s += &format!("  {:<22} {at:>14} {gross:>14} {n:>14}\n", f.method);
+            s += &format!("  {:<26} {at:>14} {gross:>14} {n:>14}\n", f.method);
         }
     }
     s += "\nviolations: cases with an exactly confirmed covered sample the method culls (the gate's judge); \

@@ -489,9 +489,9 @@ fn price_of_safety(r: &TightnessReport, cols: &[(Setting, u32)], md: bool) -> St
         }
         s += &fmt_row(&cells);
     }
-    s += "A negative loss means the variant let through fewer samples (it is tighter there, e.g. because the \
-          original answered with full bounds where the variant applies a correction). Time: the rasterizer pass's \
-          wall time, one thread; differences of a few percent are within its noise.\n";
+    s += "A negative loss means the variant's STE is higher: the original culls covered samples there (see \
+          MISSED), which costs it hits, or the variant's correction lets fewer samples through. Time: the \
+          rasterizer pass's wall time, one thread; differences of a few percent are within its noise.\n";
     s
 }
 
