@@ -141,7 +141,7 @@ pub fn run(
 /// The table: a row per method, a column per slip (killed / survived / no effect),
 /// and the score.
 pub fn render(r: &PowerReport, slips: &[&str]) -> String {
-    let mut s = format!("cullproof power, seed {}, {} cases per run\n\n{:<24}", r.seed, r.cases, "method");
+    let mut s = format!("cullproof power, seed {}, {} cases per run\n\n{:<26}", r.seed, r.cases, "method");
     for k in slips {
         s += &format!(" {k:>11}");
     }
@@ -153,7 +153,7 @@ pub fn render(r: &PowerReport, slips: &[&str]) -> String {
         }
     }
     for m in methods {
-        s += &format!("{m:<24}");
+        s += &format!("{m:<26}");
         let (mut k, mut live) = (0, 0);
         for kind in slips {
             let cell = match r.rows.iter().find(|x| x.method == m && x.slip == *kind) {

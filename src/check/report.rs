@@ -322,7 +322,7 @@ fn fmt_margin(row: &Row) -> String {
 /// One line per method over all regimes: the verdict at a glance.
 fn render_summary(r: &CheckReport) -> String {
     let mut s = format!(
-        "\nper method, all regimes:\n{:<24} {:>6} {:>7} {:>10} {:>8} {:>11}  {}\n",
+        "\nper method, all regimes:\n{:<26} {:>6} {:>7} {:>10} {:>8} {:>11}  {}\n",
         "method", "cases", "proven", "violated", "unproven", "margin", "verdict"
     );
     let mut methods: Vec<&str> = Vec::new();
@@ -348,7 +348,7 @@ fn render_summary(r: &CheckReport) -> String {
         };
         let gate = if failing > 0 { format!(" — FAILS in {failing} rows") } else { String::new() };
         s += &format!(
-            "{:<24} {:>6} {:>7} {:>10} {:>8} {:>11}  {}{}\n",
+            "{:<26} {:>6} {:>7} {:>10} {:>8} {:>11}  {}{}\n",
             m,
             cases,
             proven,
@@ -365,7 +365,7 @@ fn render_summary(r: &CheckReport) -> String {
 /// The verdict table.
 pub fn render(r: &CheckReport) -> String {
     let mut s = format!(
-        "cullproof check, seed {}, {} cases (shard {}), {:.1} s\n\n{:<24} {:<15} {:>6} {:>7} {:>8} {:>8} {:>5} {:>7} {:>11}  status\n",
+        "cullproof check, seed {}, {} cases (shard {}), {:.1} s\n\n{:<26} {:<15} {:>6} {:>7} {:>8} {:>8} {:>5} {:>7} {:>11}  status\n",
         r.seed, r.cases, r.shard, r.seconds, "method", "regime", "cases", "proven", "violated", "unproven", "f32", "limit", "margin"
     );
     let mut last = "";
@@ -373,7 +373,7 @@ pub fn render(r: &CheckReport) -> String {
         let m = if row.method == last { "" } else { row.method.as_str() };
         last = &row.method;
         s += &format!(
-            "{:<24} {:<15} {:>6} {:>7} {:>8} {:>8} {:>5} {:>7} {:>11}  {}\n",
+            "{:<26} {:<15} {:>6} {:>7} {:>8} {:>8} {:>5} {:>7} {:>11}  {}\n",
             m,
             row.regime,
             row.cases,
