@@ -95,7 +95,7 @@
 //! wrong side, worst where the patch values are large: CoCs of thousands of pixels,
 //! |X w| near 2^18, tiles far from the origin) and covered tiles it rejects at the
 //! limit. The claim above (B <= m) is true in real arithmetic, so no correction of the
-//! algorithm is needed: `lb2011-safe` is the same algorithm (one code path, [`Arith`]
+//! algorithm is needed: `lb2011-safe` is the same algorithm (one code path, `Arith`
 //! chooses the arithmetic) with every quantity the answer depends on rounded outward.
 //! Nothing else changes: the same corners, ranges, reject and four patches.
 //!
@@ -139,7 +139,7 @@
 //! *Reject and ranges.* The tile is Empty when all four `g_ij < 0` (exact comparisons;
 //! G < 0 on the square). For t: G is affine in l, so `G(l_s, t) >= 0` needs
 //! `G(-1, t) >= 0` or `G(1, t) >= 0`; the crossing of a chord `(1-t) a + t b` that
-//! changes sign is `t* = |a| / (|a| + |b|)`, and [`chord_nonneg_safe`] keeps `[t_lo, 1]`
+//! changes sign is `t* = |a| / (|a| + |b|)`, and `chord_nonneg_safe` keeps `[t_lo, 1]`
 //! with `t_lo = next_down(|a| / next_up(fl(|a| + |b|)))` when it rises (a quotient of
 //! positive numbers with the denominator rounded up is below t*, its rounding is
 //! enclosed by the step) and `[0, t_hi]`, `t_hi = next_up(|a| / next_down(fl(|a| +
