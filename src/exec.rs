@@ -339,12 +339,25 @@ impl ExecMethod {
     }
 
     fn fail(&self, req: &str, what: &str) -> ! {
-        panic!(
+        std::panic::panic_any(ExecFailure(format!(
             "exec bound `{}` (`{}`) failed on request {}: {what}; no answer was taken",
             self.info.id,
             self.command,
             req.trim_end()
-        )
+        )))
+    }
+}
+
+/// Why a run stopped on a bound in another process (the payload of the panic that
+/// stops it: the tile test has no error channel, and no answer may be made up). The
+/// command line reports it as an error; a library caller can catch it with
+/// `std::panic::catch_unwind` and downcast the payload to this type.
+#[derive(Clone, Debug)]
+pub struct ExecFailure(pub String);
+
+impl std::fmt::Display for ExecFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
     }
 }
 

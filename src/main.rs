@@ -309,10 +309,8 @@ fn run() -> Result<()> {
     // the run from whichever worker saw it: say so as an error, without a backtrace.
     let default_hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
-        let p = info.payload();
-        let msg = p.downcast_ref::<String>().map(String::as_str).or_else(|| p.downcast_ref::<&str>().copied());
-        if let Some(m) = msg.filter(|m| m.starts_with("exec bound ")) {
-            eprintln!("error: {m}");
+        if let Some(f) = info.payload().downcast_ref::<cullproof::exec::ExecFailure>() {
+            eprintln!("error: {f}");
             std::process::exit(2);
         }
         default_hook(info)

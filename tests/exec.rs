@@ -65,7 +65,7 @@ fn stops(f: impl FnOnce() -> CheckReport) -> Box<dyn std::any::Any + Send> {
 fn fails_with(command: &str, cases: u64, want: &str) {
     let m = start(command);
     let e = stops(|| gate(m, cases));
-    let msg = e.downcast_ref::<String>().cloned().unwrap_or_default();
+    let msg = e.downcast_ref::<cullproof::exec::ExecFailure>().expect("an ExecFailure payload").0.clone();
     assert!(msg.starts_with("exec bound ") && msg.contains(want), "{msg}");
     assert!(msg.contains("\"op\":\"tile\""), "the request is named: {msg}");
 }
@@ -93,7 +93,7 @@ fn a_silent_process_is_reported_after_the_timeout() {
     let cmd = format!("python3 -c '{HELLO}import time\ntime.sleep(60)'");
     let m = cullproof::exec::start(&cmd, Duration::from_secs(3)).unwrap();
     let e = stops(|| gate(m, 2));
-    let msg = e.downcast_ref::<String>().cloned().unwrap_or_default();
+    let msg = e.downcast_ref::<cullproof::exec::ExecFailure>().expect("an ExecFailure payload").0.clone();
     assert!(msg.contains("no answer within 3 s"), "{msg}");
 }
 

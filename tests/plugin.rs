@@ -11,9 +11,17 @@ use std::sync::OnceLock;
 /// for the broken one) in this test's target directory.
 fn build(broken: bool) -> PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let name = if broken { "libc_bbox_broken.so" } else { "libc_bbox_safe.so" };
+    compile(&root.join("examples/c/bbox_safe.c"), name, if broken { &["-DCULLPROOF_BROKEN"] } else { &[] })
+}
+
+/// Compile one C file into a shared library named `name` in this test's target
+/// directory, with the repository's `include/` on the path.
+fn compile(src: &Path, name: &str, defines: &[&str]) -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plugins");
     std::fs::create_dir_all(&dir).unwrap();
-    let out = dir.join(if broken { "libc_bbox_broken.so" } else { "libc_bbox_safe.so" });
+    let out = dir.join(name);
     // cc reads the target from cargo's build-script environment; a test names the host.
     let rustc = std::process::Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into()))
         .arg("-vV")
@@ -31,11 +39,9 @@ fn build(broken: bool) -> PathBuf {
         .arg(root.join("include"))
         .arg("-o")
         .arg(&out)
-        .arg(root.join("examples/c/bbox_safe.c"))
-        .arg("-lm");
-    if broken {
-        cmd.arg("-DCULLPROOF_BROKEN");
-    }
+        .arg(src)
+        .arg("-lm")
+        .args(defines);
     let st = cmd.status().expect("a C compiler");
     assert!(st.success(), "compiling the C bound failed: {cmd:?}");
     out
@@ -132,9 +138,52 @@ fn the_broken_c_bound_is_caught_shrunk_and_replayed() {
     assert!(rep.judged.starts_with("violation"), "{}", rep.judged);
 }
 
+/// Write a C source into the test's target directory and compile it.
+fn compile_text(text: &str, name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plugins");
+    std::fs::create_dir_all(&dir).unwrap();
+    let src = dir.join(format!("{name}.c"));
+    std::fs::write(&src, text).unwrap();
+    compile(&src, &format!("lib{name}.so"), &[])
+}
+
+fn refusal(path: &Path) -> String {
+    match cullproof::plugin::load(path) {
+        Ok(m) => panic!("{} loaded as {}", path.display(), m.info().id),
+        Err(e) => format!("{e:#}"),
+    }
+}
+
 #[test]
-fn a_library_without_the_entry_point_is_refused_with_its_name() {
-    // The test binary's directory holds no plugin; a missing file names itself.
-    let e = cullproof::plugin::load(Path::new("/nonexistent/libnothing.so")).err().expect("refused");
-    assert!(format!("{e:#}").contains("/nonexistent/libnothing.so"), "{e:#}");
+fn a_missing_file_is_refused_with_its_name() {
+    let e = refusal(Path::new("/nonexistent/libnothing.so"));
+    assert!(e.contains("/nonexistent/libnothing.so") && e.contains("cannot load"), "{e}");
+}
+
+#[test]
+fn a_library_without_the_entry_point_is_refused() {
+    let lib = compile_text("int not_a_bound(void) { return 1; }\n", "no_entry");
+    let e = refusal(&lib);
+    assert!(e.contains("no `cullproof_method` symbol") && e.contains("libno_entry.so"), "{e}");
+}
+
+#[test]
+fn a_library_of_another_abi_version_or_without_a_tile_test_is_refused() {
+    let table = |version: &str, tile: &str| {
+        format!(
+            "#include \"cullproof.h\"\n\
+             static void *setup(const cp_triangle *t, const char **d) {{ (void)t; (void)d; return 0; }}\n\
+             static int32_t tile(const void *s, const cp_tile *t, cp_bounds *o) {{ (void)s; (void)t; (void)o; return CP_BOUNDS; }}\n\
+             static const cp_method m = {{ .abi_version = {version}, .id = \"x\", .source = \"test\", \
+             .outputs = CP_OUT_TILE_REJECT, .setup = setup, .tile = {tile} }};\n\
+             const cp_method *cullproof_method(void) {{ (void)tile; return &m; }}\n"
+        )
+    };
+    let e = refusal(&compile_text(&table("99", "tile"), "abi99"));
+    assert!(e.contains("ABI version 99") && e.contains("speaks version 1"), "{e}");
+    let e = refusal(&compile_text(&table("CULLPROOF_ABI_VERSION", "0"), "no_tile"));
+    assert!(e.contains("`setup` and `tile` are required"), "{e}");
+    // The same table with its tile test loads.
+    let ok = cullproof::plugin::load(&compile_text(&table("CULLPROOF_ABI_VERSION", "tile"), "minimal")).unwrap();
+    assert_eq!(ok.info().id, "x");
 }

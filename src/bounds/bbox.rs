@@ -242,9 +242,7 @@ static INFO_SAFE: MethodInfo = MethodInfo {
     id: "bbox-safe",
     source: "bbox with every corner value padded outward by a bound on its f32 rounding \
              error (error analysis in this file): conservative for every finite input",
-    reconstruction: false,
-    dims: &[Dims::Static, Dims::Motion, Dims::Defocus, Dims::Both],
-    outputs: Outputs { tile_reject: true, lens: false, time: false, depth: false, per_sample: false },
+    ..INFO
 };
 
 /// `bbox-safe`: the box rounded outward (see the module's error analysis).

@@ -640,9 +640,7 @@ static INFO_SAFE: MethodInfo = MethodInfo {
              (cited by Nilsson et al. 2012 §2, §4); quadratic moving edge functions of Munkberg et al. 2011 \
              (as restated in docs/reconstructions.md); every culled time piece certified by outward-rounded \
              Bernstein enclosures of the edge functions (derivation in this file)",
-    reconstruction: false,
-    dims: &[Dims::Motion],
-    outputs: Outputs { tile_reject: false, lens: false, time: false, depth: false, per_sample: true },
+    ..INFO
 };
 
 impl Method for Gdam2010Safe {
@@ -878,12 +876,11 @@ mod tests {
         }
     }
 
-    #[test]
-    fn eval_box_encloses_eval() {
-        let tri = moving();
-        let ts = TimeSpans::new(&tri);
-        let mut rng = ChaCha8Rng::seed_from_u64(11);
-        for _ in 0..2000 {
+    /// `eval_box` of a point (x, y) with a range of t, and of a box 2 px wide in x,
+    /// encloses `eval` at 9 times of the range, at `n` random pixels.
+    fn assert_eval_box_encloses_eval(ts: &dyn SampleConstraint, seed: u64, n: usize) {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        for _ in 0..n {
             let (x, y) = (rng.gen_range(0.0f32..110.0), rng.gen_range(0.0f32..100.0));
             let (t0, t1) = (rng.gen_range(0.0f32..1.0), rng.gen_range(0.0f32..1.0));
             let (t0, t1) = (t0.min(t1), t0.max(t1));
@@ -892,12 +889,16 @@ mod tests {
             let wide = SampleBox { x: Interval::new(x as f64 - 1.0, x as f64 + 1.0), ..bx };
             let (e, w) = (ts.eval_box(&bx), ts.eval_box(&wide));
             for k in 0..=8 {
-                let t = t0 + (t1 - t0) * k as f32 / 8.0;
-                let t = t.clamp(t0, t1);
+                let t = (t0 + (t1 - t0) * k as f32 / 8.0).clamp(t0, t1);
                 let g = ts.eval(&Sample::new(x, y, 0.0, 0.0, t)) as f64;
                 assert!(e.contains(g) && w.contains(g), "{g} not in {e:?} / {w:?}");
             }
         }
+    }
+
+    #[test]
+    fn eval_box_encloses_eval() {
+        assert_eval_box_encloses_eval(&TimeSpans::new(&moving()), 11, 2000);
     }
 
     #[test]
@@ -1184,23 +1185,7 @@ mod tests {
 
     #[test]
     fn safe_eval_box_encloses_eval_and_conservative_spots() {
-        let tri = moving();
-        let ts = SafeTimeSpans::new(&tri);
-        let mut rng = ChaCha8Rng::seed_from_u64(12);
-        for _ in 0..1000 {
-            let (x, y) = (rng.gen_range(0.0f32..110.0), rng.gen_range(0.0f32..100.0));
-            let (t0, t1) = (rng.gen_range(0.0f32..1.0), rng.gen_range(0.0f32..1.0));
-            let (t0, t1) = (t0.min(t1), t0.max(t1));
-            let pt = |v: f32| Interval::point(v as f64);
-            let bx = SampleBox { x: pt(x), y: pt(y), u: pt(0.0), v: pt(0.0), t: Interval::new(t0 as f64, t1 as f64) };
-            let wide = SampleBox { x: Interval::new(x as f64 - 1.0, x as f64 + 1.0), ..bx };
-            let (e, w) = (ts.eval_box(&bx), ts.eval_box(&wide));
-            for k in 0..=8 {
-                let t = (t0 + (t1 - t0) * k as f32 / 8.0).clamp(t0, t1);
-                let g = ts.eval(&Sample::new(x, y, 0.0, 0.0, t)) as f64;
-                assert!(e.contains(g) && w.contains(g), "{g} not in {e:?} / {w:?}");
-            }
-        }
+        assert_eval_box_encloses_eval(&SafeTimeSpans::new(&moving()), 12, 1000);
         let mut flipped = moving();
         flipped.q.swap(1, 2);
         flipped.r.swap(1, 2);

@@ -522,9 +522,7 @@ static INFO_SAFE: MethodInfo = MethodInfo {
              (dual-space delta = x + u c - X w, chord time bounds, per-vertex lens thresholds); \
              computed in f32 interval arithmetic (every rounding stepped outward, analysis \
              in this file): conservative for every finite input",
-    reconstruction: true,
-    dims: &[Dims::Motion, Dims::Defocus, Dims::Both],
-    outputs: Outputs { tile_reject: true, lens: true, time: true, depth: false, per_sample: false },
+    ..INFO
 };
 
 /// `la2011-safe`: the same bounds in f32 interval arithmetic (see the module's
@@ -548,6 +546,16 @@ pub(crate) mod figure1 {
             c1: [8.0; 3],
             k: 1.0,
         }
+    }
+    /// Tiles right of everything the triangle reaches (x <= 21 + 8), left of it, above
+    /// and below: every method must cull them.
+    pub fn far_tiles() -> [Tile; 4] {
+        [
+            Tile::square(30.0, -0.5, 1.0),
+            Tile::square(-31.0, -0.5, 1.0),
+            Tile::square(0.0, 10.0, 1.0),
+            Tile::square(0.0, -11.0, 1.0),
+        ]
     }
     /// The 1 x 1 px tile around x = 0 (and y = 0).
     pub fn tile() -> Tile {
@@ -642,13 +650,7 @@ mod tests {
     #[test]
     fn far_tiles_are_culled() {
         let tri = figure1::triangle();
-        // Right of everything the triangle reaches (x <= 21 + 8), left, above, below.
-        for tile in [
-            Tile::square(30.0, -0.5, 1.0),
-            Tile::square(-31.0, -0.5, 1.0),
-            Tile::square(0.0, 10.0, 1.0),
-            Tile::square(0.0, -11.0, 1.0),
-        ] {
+        for tile in figure1::far_tiles() {
             assert!(bounds(&tri, &tile).is_none(), "{tile:?}");
         }
         // In-focus static triangle, tile beside it.
@@ -1021,12 +1023,7 @@ mod tests {
     #[test]
     fn safe_is_not_vacuous() {
         let tri = figure1::triangle();
-        for tile in [
-            Tile::square(30.0, -0.5, 1.0),
-            Tile::square(-31.0, -0.5, 1.0),
-            Tile::square(0.0, 10.0, 1.0),
-            Tile::square(0.0, -11.0, 1.0),
-        ] {
+        for tile in figure1::far_tiles() {
             assert!(safe(&tri, &tile).is_none(), "{tile:?}");
         }
         let b = safe(&tri, &figure1::tile()).unwrap();

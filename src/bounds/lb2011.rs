@@ -509,9 +509,7 @@ static INFO_SAFE: MethodInfo = MethodInfo {
              min / max of delta = x + u c - X w over a tile's columns, evaluated per sample; \
              with every corner value, interval end and patch rounded outward by a bound on \
              its f32 error (error analysis in this file): conservative for every finite input",
-    reconstruction: true,
-    dims: &[Dims::Motion, Dims::Defocus, Dims::Both],
-    outputs: Outputs { tile_reject: true, lens: true, time: true, depth: false, per_sample: true },
+    ..INFO
 };
 
 /// `lb2011-safe`: lb2011 rounded outward (see the module's error analysis).
@@ -554,12 +552,7 @@ mod tests {
     #[test]
     fn far_tiles_are_culled() {
         let tri = figure1::triangle();
-        for tile in [
-            Tile::square(30.0, -0.5, 1.0),
-            Tile::square(-31.0, -0.5, 1.0),
-            Tile::square(0.0, 10.0, 1.0),
-            Tile::square(0.0, -11.0, 1.0),
-        ] {
+        for tile in figure1::far_tiles() {
             assert!(bounds(&tri, &tile).is_none(), "{tile:?}");
         }
     }

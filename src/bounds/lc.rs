@@ -106,8 +106,9 @@ mod tests {
     #[test]
     fn far_tiles_are_culled() {
         let tri = figure1::triangle();
-        for tile in [Tile::square(30.0, -0.5, 1.0), Tile::square(-31.0, -0.5, 1.0), Tile::square(0.0, 10.0, 1.0)] {
+        for tile in figure1::far_tiles() {
             assert!(bounds_of(METHOD, &tri, &tile).is_none(), "{tile:?}");
+            assert!(bounds_of(METHOD_SAFE, &tri, &tile).is_none(), "lc-safe: {tile:?}");
         }
     }
 

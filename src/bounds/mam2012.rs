@@ -600,9 +600,7 @@ pub struct Mam2012Safe;
 static INFO_SAFE: MethodInfo = MethodInfo {
     id: "mam2012-safe",
     source: "Munkberg & Akenine-Möller 2012, Hyperplane Culling for Stochastic Rasterization, §2.1 (Eq. 1, Fig. 3, Fig. 5) and Appendix A; every quantity computed in f32 interval arithmetic rounded outward (error analysis in this file): conservative for every finite input",
-    reconstruction: false,
-    dims: &[Dims::Defocus, Dims::Both],
-    outputs: Outputs { tile_reject: true, lens: true, time: false, depth: false, per_sample: true },
+    ..INFO
 };
 
 /// `mam2012-safe`: the bilinear test with outward-rounded patches, lines and extents.
@@ -776,10 +774,9 @@ impl Prepared for PrepSafe {
             }
             for (upper, l) in [(false, lo), (true, hi)] {
                 if let Some(l) = l {
-                    // The slope rounded outward: below the exact line on [0, 1] (lower).
                     // The slope rounded outward (the line then lies outside the exact one
-                    // on t in [0, 1]), the line moved out by LINE_PAD (a rounded
-                    // difference with a representable l[0] never crosses it).
+                    // on t in [0, 1]) and the intercept moved out by LINE_PAD (a rounded
+                    // difference with a representable l[0] never crosses l[0]).
                     let (a, b) = if upper {
                         ((l[1] - l[0]).next_up(), l[0] + LINE_PAD)
                     } else {

@@ -528,9 +528,7 @@ static INFO_SAFE: MethodInfo = MethodInfo {
     source: "Nilsson et al. 2012, Design and Novel Uses of Higher-Dimensional Rasterization, HPG 2012, \
              Appendix A (moving bounding box; moving planes, Eq. 1, Figure 18); every bound rounded \
              outward, one f32 step after each rounded operation (error analysis in this file)",
-    reconstruction: false,
-    dims: &[Dims::Static, Dims::Motion, Dims::Defocus, Dims::Both],
-    outputs: Outputs { tile_reject: true, lens: false, time: false, depth: true, per_sample: false },
+    ..INFO
 };
 
 /// `nilsson2012-depth-safe`: the same bounds rounded outward (see the module's error

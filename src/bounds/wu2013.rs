@@ -897,9 +897,7 @@ static INFO_SAFE: MethodInfo = MethodInfo {
     source: "Wu 2013, Clip Space Sample Culling for Stochastic Rasterization (M.Sc. thesis, NCTU): §3.3 stage 1 \
              lens bounds; §3.4 stage 2 Eq. 1 rewritten, linear bounds of Figs. 3.7-3.8; §3.5 per-vertex CoC; in f32 \
              interval arithmetic, with both crossing directions and both CoC signs handled (derived in this file)",
-    reconstruction: false,
-    dims: &[Dims::Motion, Dims::Defocus, Dims::Both],
-    outputs: Outputs { tile_reject: true, lens: true, time: true, depth: false, per_sample: true },
+    ..INFO
 };
 
 impl Method for Wu2013Safe {
