@@ -102,6 +102,13 @@ pub struct CaseFile {
     pub note: String,
 }
 
+/// The method a case file names: a registered or plugged id, or a deliberately broken
+/// variant of one (`broken/<slip>/<id>`, as `search` and the gate's JUnit witnesses
+/// write them).
+pub fn method_of(id: &str) -> Option<&'static dyn Method> {
+    by_id(id).or_else(|| crate::bounds::broken::parse(id))
+}
+
 impl CaseFile {
     /// Read and check a case file; errors name the file and the field.
     pub fn load(path: &Path) -> Result<CaseFile> {
@@ -119,7 +126,7 @@ impl CaseFile {
         if cf.format != FORMAT {
             bail!("{}: field `format` = {:?}: expected {FORMAT:?}", path.display(), cf.format);
         }
-        if by_id(&cf.method).is_none() {
+        if method_of(&cf.method).is_none() {
             bail!(
                 "{}: field `method` = {:?} is not a known method id (see `cullproof methods`; a plugin's id needs `--plugin LIB.so`)",
                 path.display(),
@@ -238,7 +245,7 @@ fn judged_word(j: &Judgement) -> String {
 /// Re-judge one case file, with the whole side budget (one case: no stall cut-off).
 pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
     let cf = CaseFile::load(path)?;
-    let m = by_id(&cf.method).expect("checked at load");
+    let m = method_of(&cf.method).expect("checked at load");
     let witness = cf.witness.as_ref().map(|w| witness_holds(m, &cf.case, &cf.tile, w.sample));
     let cfg = CheckConfig { side_stall: 0, ..cfg.clone() };
     let (js, _) = judge(&cfg, &[crate::bounds::shared(m)], &cf.case, &cf.tile, cf.provenance.case_index);
@@ -549,7 +556,7 @@ pub fn search(
 /// the tile, and the witness decided exactly (and by Embree when physical).
 pub fn describe(cf: &CaseFile) -> String {
     use oracles::extents::{ExtentsConfig, Occupancy, TileSolver};
-    let m = by_id(&cf.method).expect("checked at load");
+    let m = method_of(&cf.method).expect("checked at load");
     let info = m.info();
     let tri = cf.case.triangle.to_oracle();
     let mut s =

@@ -121,6 +121,33 @@ enum Cmd {
         /// the file is kept.
         #[arg(long)]
         write_baseline: bool,
+        /// Write the report as JUnit XML to this file as well (one test case per method
+        /// x regime; a failing row names the witness case file written beside it, in
+        /// FILE's stem + `.witnesses/`).
+        #[arg(long)]
+        junit: Option<PathBuf>,
+    },
+    /// Merge the JSON reports of `check --shard K/N --json F` (all N shards of one run)
+    /// into the report the unsharded run gives, number for number: prints the table,
+    /// applies the expectations and (for the settings of a stored entry) the baseline,
+    /// exits 1 when a row fails, like `check`. Shards of different runs, a missing or
+    /// repeated shard, or a timed run are refused with an error naming the file.
+    Merge {
+        /// The shard reports (JSON of `check --json`).
+        #[arg(required = true)]
+        reports: Vec<PathBuf>,
+        /// The expectations file (it must exist).
+        #[arg(long, default_value = "corpus/expectations.json")]
+        expectations: PathBuf,
+        /// The baseline file (compared when it holds the merged run's settings).
+        #[arg(long, default_value = "corpus/baseline.json")]
+        baseline: PathBuf,
+        /// Write the merged JSON report to this file ("-" for standard output) as well.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Write the merged report as JUnit XML to this file as well.
+        #[arg(long)]
+        junit: Option<PathBuf>,
     },
     /// Randomized counterexample search for one method: random cases of every regime
     /// (or one), each judged like `check`; every violation is shrunk (freeze the motion,
@@ -354,9 +381,10 @@ fn run() -> Result<()> {
             limit_every,
             baseline,
             write_baseline,
+            junit,
         } => {
             use cullproof::args;
-            let methods = args::methods("--method", &method, false)?;
+            let methods = args::methods("--method", &method, true)?;
             let mut cfg = cullproof::check::CheckConfig::default_with(methods);
             cfg.regimes = parse_regimes(&regime)?;
             if let Some(t) = tile {
@@ -403,6 +431,31 @@ fn run() -> Result<()> {
             }
             if let Some(p) = &json {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
+            }
+            if let Some(p) = &junit {
+                cullproof::check::junit::write(&r, p)?;
+            }
+            if r.failed() {
+                std::process::exit(1);
+            }
+        }
+        Cmd::Merge { reports, expectations, baseline, json, junit } => {
+            use cullproof::check::{baseline::BaselineFile, merge, Expectations};
+            anyhow::ensure!(
+                expectations.is_file(),
+                "--expectations {}: no such file (the expectations file is required)",
+                expectations.display()
+            );
+            let ex = Expectations::load(&expectations)?;
+            let base = if baseline.exists() { Some(BaselineFile::load(&baseline)?) } else { None };
+            let shards = reports.iter().map(|p| Ok((p.clone(), merge::load_report(p)?))).collect::<Result<Vec<_>>>()?;
+            let r = merge::merge(shards, &ex, base.as_ref())?;
+            print!("{}", cullproof::check::render(&r));
+            if let Some(p) = &json {
+                write_json(p, &serde_json::to_string_pretty(&r)?)?;
+            }
+            if let Some(p) = &junit {
+                cullproof::check::junit::write(&r, p)?;
             }
             if r.failed() {
                 std::process::exit(1);
@@ -496,7 +549,7 @@ fn run() -> Result<()> {
             let cf = cullproof::corpus::CaseFile::load(&case)?;
             print!("{}", cullproof::corpus::describe(&cf));
             if let Some(out) = &svg {
-                let m = cullproof::bounds::by_id(&cf.method).expect("checked at load");
+                let m = cullproof::corpus::method_of(&cf.method).expect("checked at load");
                 let w = cf.witness.as_ref().map(|w| w.sample).unwrap_or_else(|| {
                     let (x, y) = cf.tile.center();
                     [x as f64, y as f64, 0.0, 0.0, 0.5]

@@ -56,7 +56,12 @@ impl Settings {
     /// The settings of a run (None for a timed or sharded run, which has no fixed
     /// case set to compare).
     pub fn of(cfg: &CheckConfig) -> Option<Settings> {
-        (cfg.time.is_none() && cfg.shard == (0, 1)).then(|| Settings {
+        (cfg.time.is_none() && cfg.shard == (0, 1)).then(|| Settings::whole(cfg))
+    }
+
+    /// The settings of the whole run a (possibly sharded) run belongs to.
+    pub fn whole(cfg: &CheckConfig) -> Settings {
+        Settings {
             seed: cfg.seed,
             cases: cfg.cases,
             regimes: cfg.regimes.iter().map(|r| r.name().to_string()).collect(),
@@ -67,7 +72,7 @@ impl Settings {
             constraint_budget: cfg.constraint_budget,
             limit_every: cfg.limit_every,
             limit_budget: cfg.limit_budget,
-        })
+        }
     }
 }
 
@@ -217,11 +222,17 @@ pub fn compare(row: &super::Row, base: &BaseRow) -> Vec<String> {
 /// Compare every row with the baseline for the run's settings, if there is one; rows
 /// that got worse become [`Status::Regression`].
 pub fn apply(r: &mut CheckReport, cfg: &CheckConfig, file: &BaselineFile) {
-    let Some(settings) = Settings::of(cfg) else {
+    apply_settings(r, Settings::of(cfg).as_ref(), file)
+}
+
+/// [`apply`] for a run with these settings (None: a timed or sharded run, compared
+/// with nothing).
+pub fn apply_settings(r: &mut CheckReport, settings: Option<&Settings>, file: &BaselineFile) {
+    let Some(settings) = settings else {
         r.baseline = None;
         return;
     };
-    let Some(b) = file.find(&settings) else {
+    let Some(b) = file.find(settings) else {
         r.baseline = None;
         return;
     };
@@ -275,6 +286,7 @@ mod tests {
             status: Status::KnownViolation,
             problems: Vec::new(),
             worst: None,
+            sums: Default::default(),
             entry: None,
         }
     }
@@ -336,6 +348,7 @@ mod tests {
             seed: 1,
             cases: 10,
             shard: "0/1".into(),
+            run: crate::check::merge::RunInfo::of(&cfg),
             rows: vec![row(n, &[], 0.5)],
             cross_check: vec![],
             solver_boxes: 0,

@@ -21,6 +21,8 @@
 pub mod baseline;
 pub mod expect;
 pub mod judge;
+pub mod junit;
+pub mod merge;
 pub mod power;
 pub mod report;
 pub mod tiles;
@@ -120,7 +122,7 @@ impl CheckConfig {
 }
 
 /// A violation, with what is needed to replay it.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Witness {
     pub case_index: u64,
     pub case: Case,
@@ -132,7 +134,7 @@ pub struct Witness {
     pub bound: String,
     /// Padding of that bound that would admit the witness ("inf" in JSON when a
     /// covered tile was culled).
-    #[serde(serialize_with = "crate::corpus::num_or_inf::serialize")]
+    #[serde(with = "crate::corpus::num_or_inf")]
     pub margin: f64,
     /// Embree's verdict on the witness ray (None: not a physical case).
     pub embree_hit: Option<bool>,

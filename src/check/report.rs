@@ -3,13 +3,14 @@
 
 use super::expect::{Allowance, Entry, Expectations, Expected};
 use super::judge::{Judgement, Verdict};
+use super::merge::{fixed, RowSums, RunInfo};
 use super::{CheckConfig, Witness};
 use crate::gen::Regime;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// A row's standing.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Status {
     /// Expected conservative: every case proven.
@@ -61,7 +62,7 @@ pub struct BoundStat {
 }
 
 /// The row of the verdict table.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Row {
     pub method: String,
     pub regime: String,
@@ -95,25 +96,31 @@ pub struct Row {
     pub pass_fraction: f64,
     /// Largest margin needed over the violations (0 when none; "inf" in JSON when a
     /// covered tile was culled).
-    #[serde(serialize_with = "crate::corpus::num_or_inf::serialize")]
+    #[serde(with = "crate::corpus::num_or_inf")]
     pub margin_needed: f64,
     pub expected: Expected,
     pub status: Status,
     /// What made the status (signature breaches, unproven beyond the allowance,
     /// differences from the baseline).
     pub problems: Vec<String>,
-    /// The violation with the largest margin.
+    /// The violation with the largest margin (the later case on a tie).
     pub worst: Option<Witness>,
+    /// The row's sums in exact fixed point, from which its means are computed: shard
+    /// reports carry them so that `cullproof merge` gives the very numbers of the
+    /// unsharded run (a float sum would depend on the order of addition).
+    pub sums: RowSums,
     #[serde(skip)]
     pub(crate) entry: Option<Entry>,
 }
 
 /// The result of a run.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct CheckReport {
     pub seed: u64,
     pub cases: u64,
     pub shard: String,
+    /// The run's methods and settings (what `cullproof merge` checks shards against).
+    pub run: RunInfo,
     pub rows: Vec<Row>,
     /// The sampled cross-check of Embree against the exact oracle, per regime.
     pub cross_check: Vec<CrossCheck>,
@@ -133,7 +140,7 @@ impl CheckReport {
 
 /// The sampled cross-check of the two ground truths on one case: the gate's uniform
 /// tile samples judged exactly and by Embree (physical cases only).
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct CrossCheck {
     pub regime: String,
     /// Samples judged by both oracles.
@@ -150,8 +157,8 @@ pub struct CrossCheck {
 pub(crate) struct Accumulator<'a> {
     ex: &'a Expectations,
     rows: BTreeMap<(usize, usize), Row>,
-    /// Sums of the pass fraction, the admit fraction and the limit slack.
-    pass_sum: BTreeMap<(usize, usize), (f64, f64, f64)>,
+    /// Exact sums of the pass fraction, the admit fraction and the limit slack.
+    pass_sum: BTreeMap<(usize, usize), RowSums>,
     cross: BTreeMap<usize, CrossCheck>,
     boxes: u64,
 }
@@ -205,15 +212,16 @@ impl<'a> Accumulator<'a> {
                     status: Status::Proven,
                     problems: Vec::new(),
                     worst: None,
+                    sums: RowSums::default(),
                     entry: Some(entry),
                 }
             });
-            let sums = self.pass_sum.entry((mi, ri)).or_insert((0.0, 0.0, 0.0));
+            let sums = self.pass_sum.entry((mi, ri)).or_default();
             let (p, a) = pass.get(mi).copied().unwrap_or((0.0, 0.0));
-            sums.0 += p;
-            sums.1 += a;
+            sums.pass += fixed::fraction(p);
+            sums.admit += fixed::fraction(a);
             if let Some(sl) = j.limit_slack {
-                sums.2 += sl;
+                sums.slack += fixed::slack(sl);
                 row.limit_found += 1;
             }
             row.cases += 1;
@@ -249,17 +257,15 @@ impl<'a> Accumulator<'a> {
 
     pub fn finish(mut self, cfg: &CheckConfig, judged: u64, seconds: f64) -> CheckReport {
         for (key, row) in self.rows.iter_mut() {
-            let (p, a, sl) = self.pass_sum[key];
-            row.pass_fraction = p / row.cases.max(1) as f64;
-            row.admit_fraction = a / row.cases.max(1) as f64;
-            row.limit_slack = if row.limit_found > 0 { sl / row.limit_found as f64 } else { 0.0 };
-            set_status(row);
+            row.sums = self.pass_sum[key];
+            finish_row(row);
         }
         let (k, n) = cfg.shard;
         CheckReport {
             seed: cfg.seed,
             cases: judged,
             shard: format!("{k}/{n}"),
+            run: RunInfo::of(cfg),
             rows: self.rows.into_values().collect(),
             cross_check: self.cross.into_values().collect(),
             solver_boxes: self.boxes,
@@ -267,6 +273,14 @@ impl<'a> Accumulator<'a> {
             baseline: None,
         }
     }
+}
+
+/// A row's means from its exact sums, and its status.
+pub(crate) fn finish_row(row: &mut Row) {
+    row.pass_fraction = fixed::mean_fraction(row.sums.pass, row.cases);
+    row.admit_fraction = fixed::mean_fraction(row.sums.admit, row.cases);
+    row.limit_slack = fixed::mean_slack(row.sums.slack, row.limit_found);
+    set_status(row);
 }
 
 /// The status of a row against its expectation.

@@ -1,0 +1,154 @@
+//! The gate's report as JUnit XML, the format CI systems show natively: one test
+//! suite per method, one test case per method x regime row. A failing row is a
+//! `<failure>` whose text says why (the status and its problems) and, when the row
+//! has a witness, names the case file written for it, which `cullproof replay FILE`
+//! re-judges and `cullproof explain FILE` explains. A row that is not gated
+//! (expectation "unknown") is `<skipped/>`.
+//!
+//! Witness files go to a directory beside the XML file (`gate.xml` ->
+//! `gate.witnesses/<method>/<hash>.json`, the corpus's case-file format); an existing
+//! file is never overwritten (the same witness has the same name).
+
+use super::report::{CheckReport, Row, Status};
+use crate::corpus::{CaseFile, Provenance, Verdict, WitnessRecord};
+use anyhow::{Context, Result};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The witness directory that goes with a JUnit file: `<stem>.witnesses` beside it.
+pub fn witness_dir(junit: &Path) -> PathBuf {
+    let stem = junit.file_stem().map_or_else(|| "cullproof".into(), |s| s.to_string_lossy().into_owned());
+    junit.with_file_name(format!("{stem}.witnesses"))
+}
+
+/// XML text escaping (attributes and text).
+fn esc(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => o.push_str("&amp;"),
+            '<' => o.push_str("&lt;"),
+            '>' => o.push_str("&gt;"),
+            '"' => o.push_str("&quot;"),
+            '\'' => o.push_str("&apos;"),
+            c if (c as u32) < 0x20 && c != '\n' && c != '\t' => o.push(' '),
+            c => o.push(c),
+        }
+    }
+    o
+}
+
+/// Write a failing row's worst witness as a case file under `dir`; its path (the
+/// existing file's when the same witness was written before).
+fn write_witness(r: &CheckReport, row: &Row, dir: &Path) -> Result<Option<PathBuf>> {
+    let Some(w) = &row.worst else { return Ok(None) };
+    let cf = CaseFile {
+        format: crate::corpus::FORMAT.into(),
+        method: row.method.clone(),
+        case: w.case,
+        tile: w.tile,
+        expected: Verdict::Violation,
+        witness: Some(WitnessRecord {
+            sample: w.sample,
+            bound: w.bound.clone(),
+            margin: w.margin,
+            embree_hit: w.embree_hit,
+        }),
+        provenance: Provenance {
+            found_by: "check".into(),
+            seed: r.seed,
+            case_index: w.case_index,
+            regime: row.regime.clone(),
+            tool_version: env!("CARGO_PKG_VERSION").into(),
+            shrink_steps: Vec::new(),
+        },
+        note: format!("the worst violation of {} / {} in a gate run ({})", row.method, row.regime, row.status.text()),
+    };
+    let path = dir.join(&cf.method).join(format!("{}.json", cf.short_hash()));
+    cf.write_new(dir)?;
+    Ok(Some(path))
+}
+
+/// The JUnit XML of a report; failing rows' witnesses are written under `dir`.
+pub fn render(r: &CheckReport, dir: &Path) -> Result<String> {
+    let failures = r.rows.iter().filter(|x| x.status.fails()).count();
+    let mut s = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    let _ = writeln!(
+        s,
+        "<testsuites name=\"cullproof check\" tests=\"{}\" failures=\"{failures}\" time=\"{:.3}\">",
+        r.rows.len(),
+        r.seconds
+    );
+    let mut methods: Vec<&str> = Vec::new();
+    for row in &r.rows {
+        if !methods.contains(&row.method.as_str()) {
+            methods.push(&row.method);
+        }
+    }
+    for m in methods {
+        let rows: Vec<&Row> = r.rows.iter().filter(|x| x.method == m).collect();
+        let f = rows.iter().filter(|x| x.status.fails()).count();
+        let skipped = rows.iter().filter(|x| x.status == Status::NotGated).count();
+        let _ = writeln!(
+            s,
+            "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{f}\" skipped=\"{skipped}\">",
+            esc(m),
+            rows.len()
+        );
+        for row in rows {
+            let _ = write!(
+                s,
+                "    <testcase classname=\"cullproof.{}\" name=\"{}\" time=\"0\">",
+                esc(&row.method),
+                esc(&row.regime)
+            );
+            let counts = format!(
+                "{} cases: {} proven, {} violated, {} unproven (seed {}, shard {})",
+                row.cases, row.proven, row.violations, row.unproven, r.seed, r.shard
+            );
+            if row.status.fails() {
+                let mut text = format!("{}: {}\n{counts}\n", row.status.text(), row.problems.join("; "));
+                if let Some(p) = write_witness(r, row, dir)? {
+                    let _ = writeln!(
+                        text,
+                        "witness: {} (re-judge: cullproof replay {0}; picture: cullproof explain {0} --svg OUT.svg)",
+                        p.display()
+                    );
+                }
+                let _ = write!(
+                    s,
+                    "\n      <failure type=\"{}\" message=\"{}\">{}</failure>\n    ",
+                    esc(row.status.text()),
+                    esc(&format!("{} / {}: {}", row.method, row.regime, row.status.text())),
+                    esc(&text)
+                );
+            } else if row.status == Status::NotGated {
+                let _ = write!(s, "<skipped message=\"not gated (expectation unknown); {}\"/>", esc(&counts));
+            } else {
+                let _ = write!(s, "<system-out>{}: {}</system-out>", esc(row.status.text()), esc(&counts));
+            }
+            s.push_str("</testcase>\n");
+        }
+        s.push_str("  </testsuite>\n");
+    }
+    s.push_str("</testsuites>\n");
+    Ok(s)
+}
+
+/// Write the JUnit XML of a report to `path` (its witnesses beside it, see
+/// [`witness_dir`]).
+pub fn write(r: &CheckReport, path: &Path) -> Result<()> {
+    let xml = render(r, &witness_dir(path))?;
+    std::fs::write(path, xml).with_context(|| format!("writing {}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn escapes_and_names() {
+        assert_eq!(esc("a<b & \"c\"'"), "a&lt;b &amp; &quot;c&quot;&apos;");
+        assert_eq!(witness_dir(Path::new("out/gate.xml")), PathBuf::from("out/gate.witnesses"));
+    }
+}

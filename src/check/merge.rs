@@ -1,0 +1,293 @@
+//! Merging shard reports: `cullproof merge` turns the JSON reports of `check --shard
+//! K/N` (for K = 0..N-1 of one run) into the report the unsharded run gives, number for
+//! number.
+//!
+//! Everything a row holds is a count, a maximum or a mean. Counts and maxima combine in
+//! any order. The means are the reason for [`RowSums`]: a row's means are computed from
+//! sums kept in fixed point (integers, see [`fixed`]), and integer sums do not depend on
+//! the order of addition, so the shards' sums added together are the unsharded run's
+//! sums, bit for bit. The worst witness of a row is the one with the largest margin,
+//! the later case on a tie, as in the unsharded run. Statuses are then recomputed from
+//! the merged counts against the expectations and (when the merged run has the
+//! settings of a stored baseline) the baseline, exactly as `check` does.
+//!
+//! A merge refuses shards of different runs (seed, cases, methods, regimes, tile,
+//! budgets), a missing or repeated shard, and timed runs (`--time`: their case set
+//! depends on the machine), each with an error naming the file and the field.
+
+use super::baseline::{self, BaselineFile, Settings};
+use super::expect::Expectations;
+use super::report::{finish_row, CheckReport, CrossCheck, Row};
+use super::CheckConfig;
+use anyhow::{anyhow, bail, Result};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Exact sums behind a row's means: the pass fraction and the admit fraction (each a
+/// number in [0, 1] per case) and the limit slack (per case whose limit tiles were
+/// placed), in the fixed point of [`fixed`]. Written as decimal strings (JSON numbers
+/// do not hold 128-bit integers).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RowSums {
+    #[serde(with = "i128_text")]
+    pub pass: i128,
+    #[serde(with = "i128_text")]
+    pub admit: i128,
+    #[serde(with = "i128_text")]
+    pub slack: i128,
+}
+
+impl std::ops::Add for RowSums {
+    type Output = RowSums;
+    fn add(self, o: RowSums) -> RowSums {
+        RowSums { pass: self.pass + o.pass, admit: self.admit + o.admit, slack: self.slack + o.slack }
+    }
+}
+
+/// Fixed-point conversion of the per-case numbers a row averages.
+///
+/// A fraction `f` in [0, 1] becomes the integer nearest `f 2^96` (the scaling by a
+/// power of two is exact in f64; only the rounding to an integer loses anything, at
+/// most 2^-97 per case). A limit slack `s` (tile sizes) is clamped to [-2^40, 2^40] and
+/// becomes the integer nearest `s 2^48`. 10^9 cases of either stay far below 2^127.
+/// A NaN counts as 0.
+pub mod fixed {
+    const FRACTION_SCALE: f64 = (1u128 << 96) as f64;
+    const SLACK_SCALE: f64 = (1u64 << 48) as f64;
+    const SLACK_CLAMP: f64 = (1u64 << 40) as f64;
+
+    fn to_fixed(x: f64, scale: f64) -> i128 {
+        if x.is_nan() {
+            0
+        } else {
+            (x * scale).round() as i128
+        }
+    }
+
+    /// A fraction in [0, 1] (clamped to it).
+    pub fn fraction(f: f64) -> i128 {
+        to_fixed(f.clamp(0.0, 1.0), FRACTION_SCALE)
+    }
+
+    /// A limit slack.
+    pub fn slack(s: f64) -> i128 {
+        to_fixed(s.clamp(-SLACK_CLAMP, SLACK_CLAMP), SLACK_SCALE)
+    }
+
+    /// The mean of `n` fractions summed in fixed point (0 when n = 0).
+    pub fn mean_fraction(sum: i128, n: u64) -> f64 {
+        sum as f64 / FRACTION_SCALE / n.max(1) as f64
+    }
+
+    /// The mean of `n` slacks summed in fixed point (0 when n = 0).
+    pub fn mean_slack(sum: i128, n: u64) -> f64 {
+        if n == 0 {
+            0.0
+        } else {
+            sum as f64 / SLACK_SCALE / n as f64
+        }
+    }
+}
+
+mod i128_text {
+    use serde::{Deserialize, Deserializer, Serializer};
+    pub fn serialize<S: Serializer>(v: &i128, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&v.to_string())
+    }
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<i128, D::Error> {
+        let s = String::deserialize(d)?;
+        s.parse().map_err(|_| serde::de::Error::custom(format!("expected a whole number as a string, found {s:?}")))
+    }
+}
+
+/// What a run was: its methods and settings, for checking that shards belong together.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunInfo {
+    /// Method ids, in the run's order.
+    pub methods: Vec<String>,
+    /// The settings (seed, cases of the whole run, regimes, tile, budgets).
+    pub settings: Settings,
+    /// Shard `[k, n]` of the run.
+    pub shard: [u64; 2],
+    /// A run for a time (`--time`): its cases depend on the machine; not mergeable.
+    pub timed: bool,
+}
+
+impl RunInfo {
+    /// The run described by a configuration.
+    pub fn of(cfg: &CheckConfig) -> RunInfo {
+        RunInfo {
+            methods: cfg.methods.iter().map(|m| m.info().id.to_string()).collect(),
+            settings: Settings::whole(cfg),
+            shard: [cfg.shard.0, cfg.shard.1],
+            timed: cfg.time.is_some(),
+        }
+    }
+}
+
+/// Read one shard report (the JSON of `check --json`); errors name the file and field.
+pub fn load_report(path: &Path) -> Result<CheckReport> {
+    let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+    let de = &mut serde_json::Deserializer::from_str(&text);
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let field = e.path().to_string();
+        anyhow!(
+            "{}: field `{}`: {} (expected the JSON report of `cullproof check --json`)",
+            path.display(),
+            if field == "." { "(top level)".into() } else { field },
+            e.inner()
+        )
+    })
+}
+
+/// Merge the shard reports of one run (each with the file it came from, for errors)
+/// into the report of the whole run, with statuses against `ex` and, when it holds an
+/// entry for the run's settings, the baseline `base`.
+pub fn merge(
+    shards: Vec<(PathBuf, CheckReport)>,
+    ex: &Expectations,
+    base: Option<&BaselineFile>,
+) -> Result<CheckReport> {
+    let Some((first_path, first)) = shards.first() else { bail!("merge: no shard reports given") };
+    let run = first.run.clone();
+    let n = run.shard[1];
+    let mut seen = vec![None::<&Path>; n as usize];
+    for (p, r) in &shards {
+        if r.run.timed {
+            bail!("{}: field `run.timed` = true: a run for a time (--time) cannot be merged (its cases depend on the machine); shard a run of --cases N", p.display());
+        }
+        if r.run.methods != run.methods {
+            bail!(
+                "{}: field `run.methods` = {:?} differs from {}'s {:?}: shards of different runs",
+                p.display(),
+                r.run.methods,
+                first_path.display(),
+                run.methods
+            );
+        }
+        if r.run.settings != run.settings {
+            bail!(
+                "{}: field `run.settings` = {:?} differs from {}'s {:?}: shards of different runs",
+                p.display(),
+                r.run.settings,
+                first_path.display(),
+                run.settings
+            );
+        }
+        let [k, rn] = r.run.shard;
+        if rn != n {
+            bail!("{}: field `run.shard` = {k}/{rn}: {} is a shard of {n}", p.display(), first_path.display());
+        }
+        if let Some(other) = seen[k as usize] {
+            bail!("{}: field `run.shard` = {k}/{n}: shard {k} is also {}", p.display(), other.display());
+        }
+        seen[k as usize] = Some(p);
+    }
+    if let Some(k) = seen.iter().position(|s| s.is_none()) {
+        bail!("merge: shard {k}/{n} is missing (give the reports of all {n} shards)");
+    }
+
+    let regimes = &run.settings.regimes;
+    let pos = |list: &[String], x: &str, what: &str, p: &Path| -> Result<usize> {
+        list.iter()
+            .position(|y| y == x)
+            .ok_or_else(|| anyhow!("{}: a row names {what} {x:?}, not in `run`", p.display()))
+    };
+    let mut rows: BTreeMap<(usize, usize), Row> = BTreeMap::new();
+    let mut cross: BTreeMap<usize, CrossCheck> = BTreeMap::new();
+    let (mut cases, mut boxes, mut seconds) = (0u64, 0u64, 0f64);
+    for (p, r) in &shards {
+        cases += r.cases;
+        boxes += r.solver_boxes;
+        seconds = seconds.max(r.seconds);
+        for c in &r.cross_check {
+            let ri = pos(regimes, &c.regime, "the regime", p)?;
+            let x = cross.entry(ri).or_insert_with(|| CrossCheck { regime: c.regime.clone(), ..Default::default() });
+            x.samples += c.samples;
+            x.interior += c.interior;
+            x.embree_over += c.embree_over;
+            x.embree_under += c.embree_under;
+        }
+        for row in &r.rows {
+            let key = (pos(&run.methods, &row.method, "the method", p)?, pos(regimes, &row.regime, "the regime", p)?);
+            match rows.get_mut(&key) {
+                None => {
+                    rows.insert(key, row.clone());
+                }
+                Some(acc) => add_row(acc, row),
+            }
+        }
+    }
+    for row in rows.values_mut() {
+        row.entry = Some(ex.entry(&row.method, &row.regime));
+        row.expected = row.entry.as_ref().map_or(row.expected, |e| e.expect);
+        finish_row(row);
+    }
+    let mut rep = CheckReport {
+        seed: first.seed,
+        cases,
+        shard: "0/1".into(),
+        run: RunInfo { shard: [0, 1], ..run.clone() },
+        rows: rows.into_values().collect(),
+        cross_check: cross.into_values().collect(),
+        solver_boxes: boxes,
+        seconds,
+        baseline: None,
+    };
+    if let Some(b) = base {
+        baseline::apply_settings(&mut rep, Some(&run.settings), b);
+    }
+    Ok(rep)
+}
+
+/// Fold row `o` (the same method and regime, other cases) into `acc`.
+fn add_row(acc: &mut Row, o: &Row) {
+    acc.cases += o.cases;
+    acc.proven += o.proven;
+    acc.violations += o.violations;
+    acc.unproven += o.unproven;
+    for (k, v) in &o.unproven_by {
+        *acc.unproven_by.entry(k.clone()).or_insert(0) += v;
+    }
+    for (k, b) in &o.bounds {
+        let e = acc.bounds.entry(k.clone()).or_default();
+        e.cases += b.cases;
+        e.max_margin = e.max_margin.max(b.max_margin);
+    }
+    acc.boundary_only += o.boundary_only;
+    acc.f32_witnessed += o.f32_witnessed;
+    acc.limit_tiles += o.limit_tiles;
+    acc.limit_violations += o.limit_violations;
+    acc.limit_found += o.limit_found;
+    acc.sums = acc.sums + o.sums;
+    if let Some(w) = &o.worst {
+        let later = acc.worst.as_ref().is_none_or(|a| (w.margin, w.case_index) > (a.margin, a.case_index));
+        if later {
+            acc.margin_needed = w.margin;
+            acc.worst = Some(w.clone());
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixed;
+
+    #[test]
+    fn fixed_point_sums_do_not_depend_on_order() {
+        let xs: Vec<f64> = (0..1000).map(|i| ((i * 7919) % 1000) as f64 / 1000.0 * 0.999 + 1e-9 * i as f64).collect();
+        let fwd: i128 = xs.iter().map(|&x| fixed::fraction(x)).sum();
+        let rev: i128 = xs.iter().rev().map(|&x| fixed::fraction(x)).sum();
+        assert_eq!(fwd, rev);
+        let mean = fixed::mean_fraction(fwd, xs.len() as u64);
+        let float_mean = xs.iter().sum::<f64>() / xs.len() as f64;
+        assert!((mean - float_mean).abs() < 1e-12, "{mean} vs {float_mean}");
+        assert_eq!(fixed::fraction(f64::NAN), 0);
+        assert_eq!(fixed::fraction(1.0), 1i128 << 96);
+        assert_eq!(fixed::mean_slack(fixed::slack(-2.5) + fixed::slack(0.5), 2), -1.0);
+        assert_eq!(fixed::mean_slack(0, 0), 0.0);
+        assert_eq!(fixed::slack(f64::INFINITY), 1i128 << 88);
+    }
+}
