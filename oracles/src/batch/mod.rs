@@ -180,15 +180,27 @@ impl Ring for Lanes {
     }
     #[inline(always)]
     fn add(&self, o: &Self) -> Self {
-        Lanes(std::array::from_fn(|l| self.0[l] + o.0[l]))
+        let mut r = [0.0; LANES];
+        for l in 0..LANES {
+            r[l] = self.0[l] + o.0[l];
+        }
+        Lanes(r)
     }
     #[inline(always)]
     fn sub(&self, o: &Self) -> Self {
-        Lanes(std::array::from_fn(|l| self.0[l] - o.0[l]))
+        let mut r = [0.0; LANES];
+        for l in 0..LANES {
+            r[l] = self.0[l] - o.0[l];
+        }
+        Lanes(r)
     }
     #[inline(always)]
     fn mul(&self, o: &Self) -> Self {
-        Lanes(std::array::from_fn(|l| self.0[l] * o.0[l]))
+        let mut r = [0.0; LANES];
+        for l in 0..LANES {
+            r[l] = self.0[l] * o.0[l];
+        }
+        Lanes(r)
     }
 }
 
@@ -253,32 +265,48 @@ impl Direct<Cst> {
 }
 
 impl<R: Ring> Direct<R> {
+    /// Coordinate j of vertex i at the sample's time.
+    #[inline(always)]
+    fn at<const MOTION: bool>(&self, i: usize, j: usize, t: &R) -> R {
+        if MOTION {
+            self.base[i][j].add(&t.mul(&self.slope[i][j]))
+        } else {
+            self.base[i][j].clone()
+        }
+    }
+
+    /// Vertex i sheared to the sample's lens position and translated to its pixel:
+    /// `(P_i.x, P_i.y, w_i)`.
+    #[inline(always)]
+    fn vertex<const MOTION: bool, const LENS: bool>(&self, i: usize, s: &Coords<R>, kv: &R) -> [R; 3] {
+        let [x, y, u, _, t] = s;
+        let (mut a, mut b, w) = (self.at::<MOTION>(i, 0, t), self.at::<MOTION>(i, 1, t), self.at::<MOTION>(i, 2, t));
+        if LENS {
+            let g = self.at::<MOTION>(i, 3, t);
+            a = a.add(&u.mul(&g));
+            b = b.add(&kv.mul(&g));
+        }
+        [a.sub(&x.mul(&w)), b.sub(&y.mul(&w)), w]
+    }
+
     #[inline(always)]
     fn eval<const MOTION: bool, const LENS: bool>(&self, s: &Coords<R>) -> [R; 4] {
-        let [x, y, u, v, t] = s;
-        let kv = self.k.mul(v);
-        let vertex = |i: usize| {
-            let at = |j: usize| {
-                if MOTION {
-                    self.base[i][j].add(&t.mul(&self.slope[i][j]))
-                } else {
-                    self.base[i][j].clone()
-                }
-            };
-            let (mut a, mut b, w) = (at(0), at(1), at(2));
-            if LENS {
-                let g = at(3);
-                a = a.add(&u.mul(&g));
-                b = b.add(&kv.mul(&g));
-            }
-            [a.sub(&x.mul(&w)), b.sub(&y.mul(&w)), w]
-        };
-        let p = [vertex(0), vertex(1), vertex(2)];
-        let e = |i: usize, j: usize| p[i][0].mul(&p[j][1]).sub(&p[i][1].mul(&p[j][0]));
-        let (e0, e1, e2) = (e(1, 2), e(2, 0), e(0, 1));
-        let d = p[0][2].mul(&e0).add(&p[1][2].mul(&e1)).add(&p[2][2].mul(&e2));
+        let kv = self.k.mul(&s[3]);
+        let p0 = self.vertex::<MOTION, LENS>(0, s, &kv);
+        let p1 = self.vertex::<MOTION, LENS>(1, s, &kv);
+        let p2 = self.vertex::<MOTION, LENS>(2, s, &kv);
+        let e0 = edge(&p1, &p2);
+        let e1 = edge(&p2, &p0);
+        let e2 = edge(&p0, &p1);
+        let d = p0[2].mul(&e0).add(&p1[2].mul(&e1)).add(&p2[2].mul(&e2));
         [e0, e1, e2, d]
     }
+}
+
+/// The edge value `P_i.x P_j.y - P_i.y P_j.x`.
+#[inline(always)]
+fn edge<R: Ring>(pi: &[R; 3], pj: &[R; 3]) -> R {
+    pi[0].mul(&pj[1]).sub(&pi[1].mul(&pj[0]))
 }
 
 /// The triangle's regime, with its coefficients.
@@ -388,10 +416,15 @@ impl Batch {
     }
 
     fn defer(&self, s: [f64; 5], out: &mut Vec<Coverage>, st: &mut BatchStats) {
+        out.push(self.deferred(s, st));
+    }
+
+    /// The scalar oracle's class of a sample the lanes did not decide.
+    fn deferred(&self, s: [f64; 5], st: &mut BatchStats) -> Coverage {
         let (c, exact) = classify_traced(&self.tri, s);
         st.deferred += 1;
         st.exact_fallbacks += exact as u64;
-        out.push(c);
+        c
     }
 
     /// Blocks of samples: one bound per block, then the lanes.
@@ -404,24 +437,46 @@ impl Batch {
         lanes: impl Fn(&Coords<Lanes>) -> [Lanes; 4],
         bound: impl Fn(&Coords<Mag>) -> [Mag; 4],
     ) {
+        // The block's coordinates, one array per coordinate (a short last chunk repeats
+        // the block's first sample, which is already within the maxima).
+        let mut soa = [[0.0f64; BLOCK]; 5];
+        let lane = |soa: &[[f64; BLOCK]; 5], c: usize| -> Coords<Lanes> {
+            std::array::from_fn(|j| Lanes(soa[j][c * LANES..][..LANES].try_into().unwrap()))
+        };
         for block in samples.chunks(BLOCK) {
-            let Some(max) = block_maxima(block) else {
-                for &s in block {
-                    self.defer(s, out, st);
+            let n = block.len();
+            let chunks = n.div_ceil(LANES);
+            for (i, smp) in block.iter().enumerate() {
+                for j in 0..5 {
+                    soa[j][i] = smp[j];
+                }
+            }
+            for i in n..chunks * LANES {
+                for j in 0..5 {
+                    soa[j][i] = block[0][j];
+                }
+            }
+            let base = out.len();
+            let Some(max) = block_maxima(&soa, chunks) else {
+                for &smp in block {
+                    self.defer(smp, out, st);
                 }
                 continue;
             };
             let b = bound(&max.map(|m| Mag { m, e: 0.0 })).map(|z| z.e);
-            for chunk in block.chunks(LANES) {
-                // A short last chunk repeats its first sample (already within the maxima).
-                let s: Coords<Lanes> =
-                    std::array::from_fn(|j| Lanes(std::array::from_fn(|l| chunk.get(l).unwrap_or(&chunk[0])[j])));
-                let codes = certified(&lanes(&s), &b);
-                for (l, &smp) in chunk.iter().enumerate() {
-                    match codes[l] {
-                        INTERIOR => out.push(Coverage::Interior),
-                        OUTSIDE => out.push(Coverage::Outside),
-                        _ => self.defer(smp, out, st),
+            out.resize(base + n, Coverage::Outside);
+            for c in 0..chunks {
+                let codes = certified(&lanes(&lane(&soa, c)), &b);
+                let m = LANES.min(n - c * LANES);
+                let dst = &mut out[base + c * LANES..][..m];
+                for l in 0..m {
+                    dst[l] = if codes[l] == INTERIOR { Coverage::Interior } else { Coverage::Outside };
+                }
+                if codes[..m].contains(&UNDECIDED) {
+                    for l in 0..m {
+                        if codes[l] == UNDECIDED {
+                            out[base + c * LANES + l] = self.deferred(block[c * LANES + l], st);
+                        }
                     }
                 }
             }
@@ -429,40 +484,57 @@ impl Batch {
     }
 }
 
-/// The largest magnitude of each coordinate over a block, or None when a coordinate is
-/// not finite (then the block goes to the scalar oracle, which answers such samples).
-fn block_maxima(block: &[[f64; 5]]) -> Option<[f64; 5]> {
+/// The largest magnitude of each coordinate over the first `chunks` lanes of a block,
+/// or None when a coordinate is not finite (then the block goes to the scalar oracle,
+/// which answers such samples).
+#[inline(always)]
+fn block_maxima(soa: &[[f64; BLOCK]; 5], chunks: usize) -> Option<[f64; 5]> {
     let mut max = [0.0f64; 5];
-    let mut finite = [0.0f64; 5];
-    for s in block {
-        for j in 0..5 {
-            let a = s[j].abs();
-            max[j] = if a > max[j] { a } else { max[j] };
-            // 0 for a finite number, NaN for an infinite or NaN one; NaN sticks.
-            finite[j] += s[j] * 0.0;
+    for j in 0..5 {
+        let (mut m, mut finite) = ([0.0f64; LANES], [0.0f64; LANES]);
+        for c in 0..chunks {
+            for l in 0..LANES {
+                let x = soa[j][c * LANES + l];
+                let a = x.abs();
+                m[l] = if a > m[l] { a } else { m[l] };
+                // 0 for a finite number, NaN for an infinite or NaN one; NaN sticks.
+                finite[l] += x * 0.0;
+            }
         }
+        if finite.iter().any(|f| *f != 0.0) {
+            return None;
+        }
+        max[j] = m.iter().fold(0.0, |a, &b| if b > a { b } else { a });
     }
-    (finite.iter().all(|f| *f == 0.0)).then_some(max)
+    Some(max)
 }
 
 /// The lane codes from certified signs of `E_0, E_1, E_2, D` (bounds `b`).
 #[inline(always)]
 fn certified(v: &[Lanes; 4], b: &[f64; 4]) -> [u8; LANES] {
-    std::array::from_fn(|l| {
-        let pos: [bool; 4] = std::array::from_fn(|k| v[k].0[l] > b[k]);
-        let neg: [bool; 4] = std::array::from_fn(|k| -v[k].0[l] > b[k]);
-        let any_pos = pos[0] | pos[1] | pos[2] | pos[3];
-        let any_neg = neg[0] | neg[1] | neg[2] | neg[3];
-        let all_pos = pos[0] & pos[1] & pos[2] & pos[3];
-        let all_neg = neg[0] & neg[1] & neg[2] & neg[3];
-        if any_pos & any_neg {
+    let (mut any_pos, mut any_neg, mut all_pos, mut all_neg) = ([false; LANES], [false; LANES], [true; LANES], [true; LANES]);
+    for k in 0..4 {
+        for l in 0..LANES {
+            let (pos, neg) = (v[k].0[l] > b[k], -v[k].0[l] > b[k]);
+            any_pos[l] |= pos;
+            any_neg[l] |= neg;
+            all_pos[l] &= pos;
+            all_neg[l] &= neg;
+        }
+    }
+    let mut codes = [UNDECIDED; LANES];
+    for l in 0..LANES {
+        let outside = any_pos[l] & any_neg[l];
+        let interior = all_pos[l] | all_neg[l];
+        codes[l] = if outside {
             OUTSIDE
-        } else if all_pos | all_neg {
+        } else if interior {
             INTERIOR
         } else {
             UNDECIDED
-        }
-    })
+        };
+    }
+    codes
 }
 
 /// Classify many samples of one triangle in lanes (see [`Batch`]).
