@@ -319,6 +319,21 @@ enum Kind {
     Moving(bool, bool, Direct<Cst>),
 }
 
+/// The exact sign of D for a triangle that neither moves nor defocuses: certified in
+/// floating point when its bound allows, else in dyadic arithmetic.
+fn static_det_sign(tri: &Tri) -> i8 {
+    let z = Cst::c(0.0);
+    let d = crate::coverage::det_of(&crate::coverage::sheared(tri, &z, &z, &z));
+    if d.v > d.e {
+        1
+    } else if -d.v > d.e {
+        -1
+    } else {
+        let z = Dyadic::zero();
+        crate::coverage::det_of(&crate::coverage::sheared(tri, &z, &z, &z)).signum()
+    }
+}
+
 /// How a batch was decided.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BatchStats {
@@ -360,10 +375,7 @@ impl Batch {
             let motion = tri.q != tri.r || tri.c0 != tri.c1;
             let lens = !tri.is_pinhole();
             if !motion && !lens {
-                let c = Dyadic::from_f64;
-                let z = c(0.0);
-                let p = crate::coverage::sheared(tri, &z, &z, &z);
-                Kind::Static(Linear::new(tri, crate::coverage::det_of(&p).signum()))
+                Kind::Static(Linear::new(tri, static_det_sign(tri)))
             } else {
                 Kind::Moving(motion, lens, Direct::new(tri))
             }
@@ -446,15 +458,12 @@ impl Batch {
         for block in samples.chunks(BLOCK) {
             let n = block.len();
             let chunks = n.div_ceil(LANES);
-            for (i, smp) in block.iter().enumerate() {
-                for j in 0..5 {
-                    soa[j][i] = smp[j];
+            for (j, col) in soa.iter_mut().enumerate() {
+                let (head, pad) = col[..chunks * LANES].split_at_mut(n);
+                for (d, smp) in head.iter_mut().zip(block) {
+                    *d = smp[j];
                 }
-            }
-            for i in n..chunks * LANES {
-                for j in 0..5 {
-                    soa[j][i] = block[0][j];
-                }
+                pad.fill(block[0][j]);
             }
             let base = out.len();
             let Some(max) = block_maxima(&soa, chunks) else {
