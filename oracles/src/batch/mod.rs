@@ -24,7 +24,8 @@
 //!
 //! # The certified error bound (the soundness argument)
 //!
-//! One generic formula (`eval`) is evaluated in two rings. On lanes ([`Lanes`]) it is
+//! One generic formula (`eval`, written with fused multiply-adds where they save an
+//! operation) is evaluated in two rings. On lanes ([`Lanes`]) it is
 //! plain round-to-nearest `f64`. In the bound ring ([`Mag`]) each quantity `z` carries
 //! two numbers `(m, e)`, with the invariant, for every lane of a block of samples:
 //! `|z^| <= m` and `|z^ - z| <= e`, where `z^` is the lane's computed value and `z`
@@ -38,7 +39,11 @@
 //!   exact, so no eta);
 //! - `z = a * b`: `|z^| <= (1 + u) m_a m_b + eta` and, since
 //!   `a^ b^ - a b = a^ (b^ - b) + b (a^ - a)` with `|b| <= m_b + e_b`,
-//!   `|z^ - z| <= m_a e_b + m_b e_a + e_a e_b + u m_a m_b + eta`.
+//!   `|z^ - z| <= m_a e_b + m_b e_a + e_a e_b + u m_a m_b + eta`;
+//! - `z = a * b + c` rounded once (`f64::mul_add`, a fused multiply-add on every
+//!   platform): `|z^| <= (1 + u)(m_a m_b + m_c) + eta` and
+//!   `|z^ - z| <= m_a e_b + m_b e_a + e_a e_b + e_c + u (m_a m_b + m_c) + eta`;
+//! - `z = -a` is exact: `(m_a, e_a)`.
 //!
 //! Coefficients precomputed per triangle ([`Cst`]) carry their value and an error bound
 //! by the same rules with `m = |value|` (for a rounded result `|z^ - z| <= u |z^| +
@@ -130,6 +135,28 @@ impl Ring for Mag {
     }
 }
 
+/// The lane arithmetic: the ring operations, plus the fused multiply-add `a * b + c`
+/// (one rounding) and the negation (exact).
+pub trait Fused: Ring {
+    fn fma(&self, b: &Self, c: &Self) -> Self;
+    fn neg(&self) -> Self;
+}
+
+impl Fused for Mag {
+    #[inline(always)]
+    fn fma(&self, b: &Self, c: &Self) -> Self {
+        let s = up(up(self.m * b.m) + c.m);
+        let m = up(up(s * ONE_2U) + ETA);
+        let cross = up(up(self.m * b.e) + up(b.m * self.e));
+        let rest = up(up(self.e * b.e) + up(s * U));
+        Mag { m, e: up(up(up(cross + rest) + c.e) + ETA) }
+    }
+    #[inline(always)]
+    fn neg(&self) -> Self {
+        *self
+    }
+}
+
 /// A coefficient computed once per triangle: its rounded value and a bound on its
 /// error (the rules of [`Mag`] with `m = |v|`).
 #[derive(Clone, Copy, Debug)]
@@ -204,6 +231,25 @@ impl Ring for Lanes {
     }
 }
 
+impl Fused for Lanes {
+    #[inline(always)]
+    fn fma(&self, b: &Self, c: &Self) -> Self {
+        let mut r = [0.0; LANES];
+        for l in 0..LANES {
+            r[l] = self.0[l].mul_add(b.0[l], c.0[l]);
+        }
+        Lanes(r)
+    }
+    #[inline(always)]
+    fn neg(&self) -> Self {
+        let mut r = [0.0; LANES];
+        for l in 0..LANES {
+            r[l] = -self.0[l];
+        }
+        Lanes(r)
+    }
+}
+
 /// The sample coordinates `x, y, u, v, t`, in a ring.
 type Coords<R> = [R; 5];
 
@@ -229,14 +275,19 @@ impl Linear<Cst> {
         Linear { a, b, c, d: Cst::c(d_sign as f64) }
     }
     fn map<R>(&self, f: impl Fn(&Cst) -> R) -> Linear<R> {
-        Linear { a: self.a.each_ref().map(&f), b: self.b.each_ref().map(&f), c: self.c.each_ref().map(&f), d: f(&self.d) }
+        Linear {
+            a: self.a.each_ref().map(&f),
+            b: self.b.each_ref().map(&f),
+            c: self.c.each_ref().map(&f),
+            d: f(&self.d),
+        }
     }
 }
 
-impl<R: Ring> Linear<R> {
+impl<R: Fused> Linear<R> {
     #[inline(always)]
     fn eval(&self, s: &Coords<R>) -> [R; 4] {
-        let e = |k: usize| self.a[k].add(&self.b[k].mul(&s[0])).add(&self.c[k].mul(&s[1]));
+        let e = |k: usize| self.c[k].fma(&s[1], &self.b[k].fma(&s[0], &self.a[k]));
         [e(0), e(1), e(2), self.d.clone()]
     }
 }
@@ -254,7 +305,8 @@ struct Direct<R> {
 impl Direct<Cst> {
     fn new(tri: &Tri) -> Self {
         let base = std::array::from_fn(|i| [tri.q[i][0], tri.q[i][1], tri.q[i][3], tri.c0[i]].map(Cst::c));
-        let end: [[Cst; 4]; 3] = std::array::from_fn(|i| [tri.r[i][0], tri.r[i][1], tri.r[i][3], tri.c1[i]].map(Cst::c));
+        let end: [[Cst; 4]; 3] =
+            std::array::from_fn(|i| [tri.r[i][0], tri.r[i][1], tri.r[i][3], tri.c1[i]].map(Cst::c));
         let slope = std::array::from_fn(|i| std::array::from_fn(|j| end[i][j].sub(&base[i][j])));
         Direct { base, slope, k: Cst::c(tri.k) }
     }
@@ -264,12 +316,12 @@ impl Direct<Cst> {
     }
 }
 
-impl<R: Ring> Direct<R> {
+impl<R: Fused> Direct<R> {
     /// Coordinate j of vertex i at the sample's time.
     #[inline(always)]
     fn at<const MOTION: bool>(&self, i: usize, j: usize, t: &R) -> R {
         if MOTION {
-            self.base[i][j].add(&t.mul(&self.slope[i][j]))
+            t.fma(&self.slope[i][j], &self.base[i][j])
         } else {
             self.base[i][j].clone()
         }
@@ -278,35 +330,36 @@ impl<R: Ring> Direct<R> {
     /// Vertex i sheared to the sample's lens position and translated to its pixel:
     /// `(P_i.x, P_i.y, w_i)`.
     #[inline(always)]
-    fn vertex<const MOTION: bool, const LENS: bool>(&self, i: usize, s: &Coords<R>, kv: &R) -> [R; 3] {
-        let [x, y, u, _, t] = s;
+    fn vertex<const MOTION: bool, const LENS: bool>(&self, i: usize, s: &Coords<R>, kv: &R, nxy: &[R; 2]) -> [R; 3] {
+        let (u, t) = (&s[2], &s[4]);
         let (mut a, mut b, w) = (self.at::<MOTION>(i, 0, t), self.at::<MOTION>(i, 1, t), self.at::<MOTION>(i, 2, t));
         if LENS {
             let g = self.at::<MOTION>(i, 3, t);
-            a = a.add(&u.mul(&g));
-            b = b.add(&kv.mul(&g));
+            a = u.fma(&g, &a);
+            b = kv.fma(&g, &b);
         }
-        [a.sub(&x.mul(&w)), b.sub(&y.mul(&w)), w]
+        [nxy[0].fma(&w, &a), nxy[1].fma(&w, &b), w]
     }
 
     #[inline(always)]
     fn eval<const MOTION: bool, const LENS: bool>(&self, s: &Coords<R>) -> [R; 4] {
         let kv = self.k.mul(&s[3]);
-        let p0 = self.vertex::<MOTION, LENS>(0, s, &kv);
-        let p1 = self.vertex::<MOTION, LENS>(1, s, &kv);
-        let p2 = self.vertex::<MOTION, LENS>(2, s, &kv);
+        let nxy = [s[0].neg(), s[1].neg()];
+        let p0 = self.vertex::<MOTION, LENS>(0, s, &kv, &nxy);
+        let p1 = self.vertex::<MOTION, LENS>(1, s, &kv, &nxy);
+        let p2 = self.vertex::<MOTION, LENS>(2, s, &kv, &nxy);
         let e0 = edge(&p1, &p2);
         let e1 = edge(&p2, &p0);
         let e2 = edge(&p0, &p1);
-        let d = p0[2].mul(&e0).add(&p1[2].mul(&e1)).add(&p2[2].mul(&e2));
+        let d = p0[2].fma(&e0, &p1[2].fma(&e1, &p2[2].mul(&e2)));
         [e0, e1, e2, d]
     }
 }
 
 /// The edge value `P_i.x P_j.y - P_i.y P_j.x`.
 #[inline(always)]
-fn edge<R: Ring>(pi: &[R; 3], pj: &[R; 3]) -> R {
-    pi[0].mul(&pj[1]).sub(&pi[1].mul(&pj[0]))
+fn edge<R: Fused>(pi: &[R; 3], pj: &[R; 3]) -> R {
+    pi[0].fma(&pj[1], &pi[1].mul(&pj[0]).neg())
 }
 
 /// The triangle's regime, with its coefficients.
@@ -521,7 +574,8 @@ fn block_maxima(soa: &[[f64; BLOCK]; 5], chunks: usize) -> Option<[f64; 5]> {
 /// The lane codes from certified signs of `E_0, E_1, E_2, D` (bounds `b`).
 #[inline(always)]
 fn certified(v: &[Lanes; 4], b: &[f64; 4]) -> [u8; LANES] {
-    let (mut any_pos, mut any_neg, mut all_pos, mut all_neg) = ([false; LANES], [false; LANES], [true; LANES], [true; LANES]);
+    let (mut any_pos, mut any_neg, mut all_pos, mut all_neg) =
+        ([false; LANES], [false; LANES], [true; LANES], [true; LANES]);
     for k in 0..4 {
         for l in 0..LANES {
             let (pos, neg) = (v[k].0[l] > b[k], -v[k].0[l] > b[k]);

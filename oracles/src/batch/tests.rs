@@ -19,8 +19,15 @@ enum Shape {
     BehindLens,
 }
 
-const SHAPES: [Shape; 7] =
-    [Shape::Static, Shape::Defocus, Shape::Motion, Shape::Both, Shape::FocalCrossing, Shape::WNearZero, Shape::BehindLens];
+const SHAPES: [Shape; 7] = [
+    Shape::Static,
+    Shape::Defocus,
+    Shape::Motion,
+    Shape::Both,
+    Shape::FocalCrossing,
+    Shape::WNearZero,
+    Shape::BehindLens,
+];
 
 /// A random triangle of a regime, all coordinates multiplied by `scale`.
 fn tri_of(rng: &mut ChaCha8Rng, shape: Shape, scale: f64) -> Tri {
@@ -34,11 +41,7 @@ fn tri_of(rng: &mut ChaCha8Rng, shape: Shape, scale: f64) -> Tri {
     };
     let q = [vert(rng), vert(rng), vert(rng)];
     let moving = matches!(shape, Shape::Motion | Shape::Both | Shape::FocalCrossing | Shape::WNearZero);
-    let r = if moving {
-        q.map(|p| p.map(|c: f64| c + rng.gen_range(-0.5..0.5) * c.abs().max(0.1)))
-    } else {
-        q
-    };
+    let r = if moving { q.map(|p| p.map(|c: f64| c + rng.gen_range(-0.5..0.5) * c.abs().max(0.1))) } else { q };
     let lens = matches!(shape, Shape::Defocus | Shape::Both | Shape::FocalCrossing | Shape::BehindLens);
     let c0: [f64; 3] = if lens { std::array::from_fn(|_| rng.gen_range(-1.0..1.0)) } else { [0.0; 3] };
     let c1 = match shape {
