@@ -85,8 +85,9 @@ fn coverage(c: &mut Criterion) {
     for (t, (_, s)) in tris.iter().zip(&cs) {
         bs = bs.merge(oracles::batch::classify_batch(t, s, &mut Vec::new()));
     }
+    let regimes: Vec<_> = tris.iter().map(|t| oracles::batch::Batch::new(t).regime()).collect();
     eprintln!(
-        "exact_batch on all samples: {} of {} deferred to the scalar oracle, {} of them exact",
+        "exact_batch on all samples: {} of {} deferred to the scalar oracle, {} of them exact; regimes {regimes:?}",
         bs.deferred, bs.samples, bs.exact_fallbacks
     );
 }

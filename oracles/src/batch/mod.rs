@@ -200,6 +200,8 @@ impl Ring for Cst {
 #[derive(Clone, Copy, Debug)]
 pub struct Lanes(pub [f64; LANES]);
 
+// Index loops over the fixed-size lane arrays: the form the compiler vectorizes best.
+#[allow(clippy::needless_range_loop)]
 impl Ring for Lanes {
     #[inline(always)]
     fn c(x: f64) -> Self {
@@ -231,6 +233,8 @@ impl Ring for Lanes {
     }
 }
 
+// Index loops over the fixed-size lane arrays: the form the compiler vectorizes best.
+#[allow(clippy::needless_range_loop)]
 impl Fused for Lanes {
     #[inline(always)]
     fn fma(&self, b: &Self, c: &Self) -> Self {
@@ -369,7 +373,7 @@ enum Kind {
     NotFinite,
     Static(Linear<Cst>),
     /// Moving and/or defocused: (motion, lens, coefficients).
-    Moving(bool, bool, Direct<Cst>),
+    Moving(bool, bool, Box<Direct<Cst>>),
 }
 
 /// The exact sign of D for a triangle that neither moves nor defocuses: certified in
@@ -430,7 +434,7 @@ impl Batch {
             if !motion && !lens {
                 Kind::Static(Linear::new(tri, static_det_sign(tri)))
             } else {
-                Kind::Moving(motion, lens, Direct::new(tri))
+                Kind::Moving(motion, lens, Box::new(Direct::new(tri)))
             }
         };
         Batch { tri: *tri, kind }
