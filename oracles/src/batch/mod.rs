@@ -79,7 +79,7 @@ use crate::ring::Ring;
 use crate::tri::Tri;
 
 /// Samples evaluated side by side.
-pub const LANES: usize = 8;
+pub const LANES: usize = 16;
 /// Samples sharing one error bound (computed from their largest coordinates).
 pub const BLOCK: usize = 256;
 
