@@ -31,7 +31,7 @@ const SHAPES: [Shape; 7] = [
 
 /// A random triangle of a regime, all coordinates multiplied by `scale`.
 fn tri_of(rng: &mut ChaCha8Rng, shape: Shape, scale: f64) -> Tri {
-    let mut vert = |rng: &mut ChaCha8Rng| {
+    let vert = |rng: &mut ChaCha8Rng| {
         let w = match shape {
             Shape::WNearZero => rng.gen_range(-1e-6..1e-6),
             Shape::BehindLens => rng.gen_range(-2.0..0.5),
