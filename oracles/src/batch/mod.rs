@@ -5,7 +5,8 @@
 //! needs and no more:
 //! - **static** (no motion, no defocus): each edge value is linear in the pixel,
 //!   `E_k = A_k + B_k x + C_k y`, and the determinant `D` is a constant whose exact sign
-//!   is computed once in dyadic arithmetic;
+//!   is computed once (certified in floating point by the bounds below, else in dyadic
+//!   arithmetic);
 //! - **defocus**, **motion**, **both**: the sheared vertex of [`crate::coverage`]
 //!   `P_i = (a_i(t) + u g_i(t) - x w_i(t),  b_i(t) + k v g_i(t) - y w_i(t),  w_i(t))`
 //!   with `a_i, b_i, w_i, g_i` either constants (no motion) or `q + t (r - q)` with the
