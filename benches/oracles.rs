@@ -37,6 +37,18 @@ fn coverage(c: &mut Criterion) {
             black_box(k)
         })
     });
+    // The same samples in lanes; the per-triangle precomputation is timed too.
+    g.bench_function("exact_batch", |b| {
+        let mut out = Vec::new();
+        b.iter(|| {
+            let mut k = 0u64;
+            for (t, (_, s)) in tris.iter().zip(&cs) {
+                oracles::batch::Batch::new(t).classify(s, &mut out);
+                k += out.iter().filter(|&&c| c == oracles::Coverage::Interior).count() as u64;
+            }
+            black_box(k)
+        })
+    });
     let ors: Vec<_> = cs.iter().map(|(c, _)| EmbreeOracle::new(&lens_tri(c).unwrap()).unwrap()).collect();
     g.bench_function("embree_single", |b| {
         b.iter(|| {
@@ -69,6 +81,15 @@ fn coverage(c: &mut Criterion) {
         st = st.merge(oracles::coverage::classify_all(t, &uni, &mut out));
     }
     eprintln!("exact fallbacks on uniform samples: {} of {}", st.exact_fallbacks, st.samples);
+    let mut bs = oracles::batch::BatchStats::default();
+    for (t, (_, s)) in tris.iter().zip(&cs) {
+        bs = bs.merge(oracles::batch::classify_batch(t, s, &mut Vec::new()));
+    }
+    let regimes: Vec<_> = tris.iter().map(|t| oracles::batch::Batch::new(t).regime()).collect();
+    eprintln!(
+        "exact_batch on all samples: {} of {} deferred to the scalar oracle, {} of them exact; regimes {regimes:?}",
+        bs.deferred, bs.samples, bs.exact_fallbacks
+    );
 }
 
 fn extents(c: &mut Criterion) {

@@ -175,9 +175,9 @@ fn run_case(seed: u64, index: u64, per_case: usize) -> (Regime, AgreeCounts, Vec
     let samples = samples_for(&case, &mut rng, per_case);
     let mut hits = Vec::new();
     oracle.hits(&samples, &mut hits);
-    for (s, &hit) in samples.iter().zip(&hits) {
-        let (cov, ex) = oracles::coverage::classify_traced(&tri, *s);
-        c.exact_fallbacks += ex as u64;
+    let mut covs = Vec::new();
+    c.exact_fallbacks += oracles::batch::classify_batch(&tri, &samples, &mut covs).exact_fallbacks;
+    for ((s, &hit), &cov) in samples.iter().zip(&hits).zip(&covs) {
         c.samples += 1;
         match (cov, hit) {
             (Coverage::Boundary, _) => c.boundary += 1,

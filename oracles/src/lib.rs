@@ -4,6 +4,7 @@
 //! never imports the code under test, so one mistake cannot sit on both sides.
 //! See the repository's `docs/model.md` for the model that every function here follows.
 
+pub mod batch;
 pub mod coverage;
 pub mod dyadic;
 pub mod embree;

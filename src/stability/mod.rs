@@ -50,7 +50,7 @@ use crate::gen::{rng_for, tile_sample};
 use crate::model::Sample;
 use anyhow::{ensure, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use oracles::{classify, Coverage};
+use oracles::Coverage;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -252,7 +252,10 @@ fn eval_case(cfg: &Config, ccfg: &CheckConfig, family: Family, step: usize, para
     let samples: Vec<Sample> = (0..cfg.samples).map(|_| tile_sample(&mut srng, &b.tile)).collect();
     let tri = b.case.triangle;
     let otri = tri.to_oracle();
-    let covered: Vec<bool> = samples.iter().map(|s| classify(&otri, s.to_oracle()) == Coverage::Interior).collect();
+    let points: Vec<[f64; 5]> = samples.iter().map(Sample::to_oracle).collect();
+    let mut classes = Vec::new();
+    oracles::batch::classify_batch(&otri, &points, &mut classes);
+    let covered: Vec<bool> = classes.iter().map(|c| *c == Coverage::Interior).collect();
     let out = cfg
         .methods
         .iter()
