@@ -114,6 +114,7 @@ fn a_hand_made_static_triangle() {
         name: "t".into(),
         tris: vec![[[-0.5, -0.5, 2.0], [0.5, -0.5, 2.0], [-0.5, 0.5, 2.0]]],
         motion: scene::RigidMotion::none(),
+        wobble: 0.0,
     };
     let s = Scene { name: "one".into(), width: 16, height: 16, camera: cam, objects: vec![obj] };
     let p = Pattern::new(PatternKind::Stratified, 1, 1);
