@@ -1,8 +1,8 @@
 //! The `tightness` command: arguments, the run, the tables and the output files.
 
-use super::pattern::{Pattern, PatternKind};
 use super::cost::{self, CostRow, OpTable};
 use super::mesh::{self, MeshControls};
+use super::pattern::{Pattern, PatternKind};
 use super::scene::{self, Scene, Setting};
 use super::{chart, measure_with, CeilingRow, CertifiedRow, Config, MethodRow, SampleTable, SettingSummary};
 use crate::bounds::Method;

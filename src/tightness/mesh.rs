@@ -202,7 +202,13 @@ fn value(flag: &str, v: Option<f64>, default: f64, lo: f64, hi: f64) -> Result<f
 
 /// The OBJ scene at `path` with the controls `c` (see the module documentation), and
 /// the settings used.
-pub fn from_obj_with(path: &Path, seed: u64, width: u32, height: u32, c: &MeshControls) -> Result<(Scene, MeshSettings)> {
+pub fn from_obj_with(
+    path: &Path,
+    seed: u64,
+    width: u32,
+    height: u32,
+    c: &MeshControls,
+) -> Result<(Scene, MeshSettings)> {
     ensure!(width >= 1 && height >= 1, "the screen must be at least 1x1 pixels (got {width}x{height})");
     let fov = value("--fov", c.fov, 45.0, 1.0, 170.0)?;
     let distance = value("--distance", c.distance, 1.0, 0.05, 100.0)?;

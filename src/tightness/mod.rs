@@ -259,7 +259,11 @@ impl SampleTable {
             })
             .collect();
         let samples = rows.concat();
-        let uvt = [samples.iter().map(|s| s.u).collect(), samples.iter().map(|s| s.v).collect(), samples.iter().map(|s| s.t).collect()];
+        let uvt = [
+            samples.iter().map(|s| s.u).collect(),
+            samples.iter().map(|s| s.v).collect(),
+            samples.iter().map(|s| s.t).collect(),
+        ];
         SampleTable { width, height, spp: pattern.spp as usize, samples, uvt }
     }
     /// Where pixel (px, py)'s samples start.
@@ -538,10 +542,17 @@ struct Ctx<'a> {
 #[derive(Default)]
 struct Scratch {
     covered: Vec<bool>,
+    mask: Vec<bool>,
     rows: Vec<(usize, usize, usize)>,
 }
 
-fn measure_triangle(ctx: &Ctx, scratch: &mut Scratch, tri: &Triangle, fp: Footprint, chosen: &[(usize, u64)]) -> TriCounts {
+fn measure_triangle(
+    ctx: &Ctx,
+    scratch: &mut Scratch,
+    tri: &Triangle,
+    fp: Footprint,
+    chosen: &[(usize, u64)],
+) -> TriCounts {
     let Ctx { methods, cfg, table, setting } = *ctx;
     let (width, height) = (table.width, table.height);
     let nt = cfg.tiles.len();
@@ -593,6 +604,7 @@ fn measure_triangle(ctx: &Ctx, scratch: &mut Scratch, tri: &Triangle, fp: Footpr
         *d = p.disabled().is_some();
     }
     let mut rows = std::mem::take(&mut scratch.rows);
+    let mut mask = std::mem::take(&mut scratch.mask);
     for (ti, &s) in cfg.tiles.iter().enumerate() {
         for (mi, w) in out.work[ti].iter_mut().enumerate() {
             w.add_setup(out.disabled[mi]);
@@ -613,7 +625,9 @@ fn measure_triangle(ctx: &Ctx, scratch: &mut Scratch, tri: &Triangle, fp: Footpr
                     if let Some(b) = covered_box(table, &local, &rows, dims) {
                         let tested = rows
                             .iter()
-                            .map(|&(ts, _, n)| table.samples[ts..ts + n].iter().filter(|x| in_box(&b, x)).count() as u64)
+                            .map(|&(ts, _, n)| {
+                                table.samples[ts..ts + n].iter().filter(|x| in_box(&b, x)).count() as u64
+                            })
                             .sum::<u64>();
                         out.ceiling[ti].0 += tested;
                         out.ceiling[ti].1 += cov_here;
@@ -629,7 +643,7 @@ fn measure_triangle(ctx: &Ctx, scratch: &mut Scratch, tri: &Triangle, fp: Footpr
                         }
                         TileResult::Bounds(b) => {
                             w.add_tile(out.disabled[mi], n_here);
-                            count_admitted(&b, table, &local, &rows, n_here, cov_here, c)
+                            count_admitted(&mut mask, &b, table, &local, &rows, n_here, cov_here, c)
                         }
                     }
                 }
@@ -641,6 +655,7 @@ fn measure_triangle(ctx: &Ctx, scratch: &mut Scratch, tri: &Triangle, fp: Footpr
         }
     }
     scratch.rows = rows;
+    scratch.mask = mask;
     scratch.covered = local.covered;
     out
 }
@@ -648,7 +663,9 @@ fn measure_triangle(ctx: &Ctx, scratch: &mut Scratch, tri: &Triangle, fp: Footpr
 /// Count the samples of a tile that `b` admits (`n` samples, `cov` of them covered).
 /// An answer with the whole (u, v, t) domain and no per-sample constraint admits every
 /// sample ([`TileBounds::admits`] would say so sample by sample).
+#[allow(clippy::too_many_arguments)]
 fn count_admitted(
+    mask: &mut Vec<bool>,
     b: &TileBounds,
     table: &SampleTable,
     local: &Local,
@@ -679,10 +696,14 @@ fn count_admitted(
             tested += t_row as u64;
             hits += h_row as u64;
         } else {
-            // The intervals first, the constraints only inside them (as `admits`).
-            for i in 0..n {
-                let a = (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1);
-                if a && !b.constraints.iter().any(|k| k.eval(&table.samples[ts + i]) < 0.0) {
+            // The intervals first (side by side), the constraints only inside them (as
+            // `admits`: a sample passes when no constraint is negative).
+            mask.clear();
+            mask.extend((0..n).map(|i| {
+                (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1)
+            }));
+            for (i, _) in mask.iter().enumerate().filter(|(_, &m)| m) {
+                if !b.constraints.iter().any(|k| k.eval(&table.samples[ts + i]) < 0.0) {
                     tested += 1;
                     hits += cv[i] as u64;
                 }

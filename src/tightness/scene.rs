@@ -442,9 +442,9 @@ pub fn interior(seed: u64, width: u32, height: u32) -> Scene {
         height,
         camera: with_lens(cam, 6.0, 5.0 * px(height), z1),
         objects: vec![
-            Object { name: "room".into(), tris: room, motion: pan , wobble: 0.0 },
-            Object { name: "crate".into(), tris: crate_, motion: crate_motion , wobble: 0.0 },
-            Object { name: "ball".into(), tris: ball, motion: ball_motion , wobble: 0.0 },
+            Object { name: "room".into(), tris: room, motion: pan, wobble: 0.0 },
+            Object { name: "crate".into(), tris: crate_, motion: crate_motion, wobble: 0.0 },
+            Object { name: "ball".into(), tris: ball, motion: ball_motion, wobble: 0.0 },
         ],
     }
 }
@@ -470,7 +470,7 @@ pub fn forest(seed: u64, width: u32, height: u32) -> Scene {
     let mut objects = Vec::new();
     let mut ground = Vec::new();
     grid(&mut ground, [-14.0, ground_y, 2.0], [28.0, 0.0, 0.0], [0.0, 0.0, 38.0], 4, 6);
-    objects.push(Object { name: "ground".into(), tris: ground, motion: with_drift(RigidMotion::none()) , wobble: 0.0 });
+    objects.push(Object { name: "ground".into(), tris: ground, motion: with_drift(RigidMotion::none()), wobble: 0.0 });
     for k in 0..10 {
         let base: V3 = [rng.gen_range(-7.0f32..7.0), ground_y, rng.gen_range(7.0f32..32.0)];
         let height_t = rng.gen_range(2.5f32..4.0);
@@ -502,7 +502,7 @@ pub fn forest(seed: u64, width: u32, height: u32) -> Scene {
             angle: rng.gen_range(0.02f32..0.06),
             shift: [0.0; 3],
         };
-        objects.push(Object { name: format!("tree-{k}"), tris: tree, motion: with_drift(sway) , wobble: 0.0 });
+        objects.push(Object { name: format!("tree-{k}"), tris: tree, motion: with_drift(sway), wobble: 0.0 });
     }
     // The character: feet on the ground at depth 5.5.
     let (cx, cz) = (0.6f32, 5.5f32);
@@ -514,7 +514,7 @@ pub fn forest(seed: u64, width: u32, height: u32) -> Scene {
         cuboid(&mut body, [cx + dx - 0.05, ground_y - y0, cz - 0.05], [cx + dx + 0.05, ground_y - y1, cz + 0.05]);
     } // limbs: 48
     let walk = seeded_motion(&mut rng, &cam, [cx, ground_y - 0.9, cz], 14.0 * px(height), 0.03, 0.12);
-    objects.push(Object { name: "character".into(), tris: body, motion: with_drift(walk) , wobble: 0.0 });
+    objects.push(Object { name: "character".into(), tris: body, motion: with_drift(walk), wobble: 0.0 });
     Scene { name: "forest".into(), width, height, camera: with_lens(cam, cz, 4.0 * px(height), 30.0), objects }
 }
 
