@@ -17,7 +17,8 @@ use std::time::Instant;
 pub struct TightnessArgs {
     /// The scene: `hairball` (10,000 hair ribbons of 0.1-5 px^2), `interior` (a room of
     /// large triangles), `forest` (leaves, trees, a walking character) or a Wavefront
-    /// FILE.obj (fitted into the view, with a seeded rigid motion).
+    /// FILE.obj (fitted into the view; camera, lens and motion set by the OBJ flags
+    /// below, by default a seeded rigid motion).
     #[arg(long, default_value = "forest")]
     pub scene: String,
     /// The blur setting: `static` (no motion, pinhole), `blur` (the scene's motion and

@@ -50,6 +50,15 @@
 //!   A tile where the solver left boxes open (over budget) is counted `undecided`; its
 //!   outer enclosure still holds (an unknown side is the whole range).
 //!
+//! # How it runs
+//! The whole screen's sample pattern is built once ([`SampleTable`]) and shared by every
+//! triangle, setting and method; each triangle is set up once per method and the setup
+//! serves every tile size; the samples of a tile are counted row by row (u, v, t side by
+//! side, the per-sample constraints evaluated only inside the intervals), nothing per
+//! sample is stored but the triangle's coverage, in a buffer reused by each worker.
+//! Exact coverage goes through one function ([`exact_coverage`]). Each count also feeds
+//! the cost model ([`Work`], [`cost`]).
+//!
 //! Results are integer counts summed in triangle order: identical at any thread count.
 
 pub mod chart;
