@@ -1,10 +1,14 @@
-//! The STE-against-cost chart (`ste_vs_cost.svg`): one panel per setting; x = relative
-//! time of the timing pass (log axis), y = STE (%) at the timing pass's tile size; one
-//! colour per method; published methods as filled circles, reconstructions
-//! (`MethodInfo::reconstruction`) as hollow triangles; a method that culled covered
-//! samples gets a red cross over its marker and is left out of the Pareto front; the
-//! front (no other conservative method is both faster and tighter) is joined by a black
-//! line and ringed. A conservative variant `<id>-safe` takes the colour of its original,
+//! The STE-against-cost chart (`ste_vs_cost.svg`): one panel per setting, each with its
+//! own log x axis (so no panel's range squashes another's); x = estimated cost relative
+//! to bbox on the same setting ([`super::cost`]), the median over the timing rounds with
+//! the rounds' range as a horizontal error bar; y = STE (%) at the cost's tile size (exact
+//! counts: no error bar); one colour per method; published methods as filled circles,
+//! reconstructions (`MethodInfo::reconstruction`) as hollow triangles; a method that
+//! culled covered samples gets a red cross over its marker and is left out of the Pareto
+//! front; the front is joined by a black line and ringed. The front marks only
+//! differences larger than the noise: a conservative point is off it when another is
+//! tighter and not surely costlier (its interval starts at or below this one's end), or
+//! as tight and surely cheaper (its interval ends below this one's start). A conservative variant `<id>-safe` takes the colour of its original,
 //! is drawn as a hollow square, and is joined to the original by a thin line in that
 //! colour: the segment is the price of safety (its length along x the time added, its
 //! drop in y the STE lost). The legend is a column of its own at the right, drawn in pixel
@@ -14,7 +18,7 @@
 //! measures text with its built-in estimate and the SVG backend writes the labels as
 //! SVG `<text>` elements (the viewer picks the font), so no system font is needed.
 
-use super::raster::TimingRow;
+use super::cost::CostRow;
 use super::scene::Setting;
 use super::MethodRow;
 use plotters::prelude::*;
@@ -26,25 +30,31 @@ pub struct Point {
     pub reconstruction: bool,
     /// Covered samples the method culled.
     pub missed: u64,
-    /// Relative time (x).
+    /// Relative cost (x): median over the rounds, and the rounds' range.
     pub cost: f64,
+    pub cost_lo: f64,
+    pub cost_hi: f64,
     /// STE in percent (y).
     pub ste: f64,
 }
 
-/// The points of each setting: STE at `tile` and the timing pass's relative cost.
-pub fn points(rows: &[MethodRow], timing: &[TimingRow], tile: u32) -> Vec<(Setting, Vec<Point>)> {
+/// The points of each setting: STE at `tile` and the relative cost.
+pub fn points(rows: &[MethodRow], costs: &[CostRow], tile: u32) -> Vec<(Setting, Vec<Point>)> {
     let mut out: Vec<(Setting, Vec<Point>)> = Vec::new();
-    for t in timing {
+    for t in costs.iter().filter(|c| c.tile == tile) {
         let Some(r) = rows.iter().find(|r| r.method == t.method && r.setting == t.setting && r.tile == tile) else {
             continue;
         };
-        let (Some(ste), true) = (r.ste, t.relative.is_finite() && t.relative > 0.0) else { continue };
+        let c = t.relative;
+        let ok = |x: f64| x.is_finite() && x > 0.0;
+        let (Some(ste), true) = (r.ste, ok(c.median) && ok(c.lo) && ok(c.hi)) else { continue };
         let p = Point {
             method: r.method.clone(),
             reconstruction: r.reconstruction,
             missed: r.counts.missed,
-            cost: t.relative,
+            cost: c.median,
+            cost_lo: c.lo,
+            cost_hi: c.hi,
             ste: 100.0 * ste,
         };
         match out.iter_mut().find(|(s, _)| *s == t.setting) {
@@ -55,19 +65,19 @@ pub fn points(rows: &[MethodRow], timing: &[TimingRow], tile: u32) -> Vec<(Setti
     out
 }
 
-/// Indices of the Pareto front (lower cost, higher STE) among the points that missed
-/// no covered sample, in order of cost.
+/// True when `a` dominates `b` beyond the noise: tighter and not surely costlier, or as
+/// tight and surely cheaper.
+pub fn dominates(a: &Point, b: &Point) -> bool {
+    (a.ste > b.ste && a.cost_lo <= b.cost_hi) || (a.ste >= b.ste && a.cost_hi < b.cost_lo)
+}
+
+/// Indices of the Pareto front (lower cost, higher STE, differences beyond the noise,
+/// see [`dominates`]) among the points that missed no covered sample, in order of cost.
 pub fn pareto(pts: &[Point]) -> Vec<usize> {
-    let mut idx: Vec<usize> = (0..pts.len()).filter(|&i| pts[i].missed == 0).collect();
-    idx.sort_by(|&a, &b| pts[a].cost.total_cmp(&pts[b].cost).then(pts[b].ste.total_cmp(&pts[a].ste)));
-    let mut front = Vec::new();
-    let mut best = f64::NEG_INFINITY;
-    for i in idx {
-        if pts[i].ste > best {
-            best = pts[i].ste;
-            front.push(i);
-        }
-    }
+    let ok: Vec<usize> = (0..pts.len()).filter(|&i| pts[i].missed == 0).collect();
+    let mut front: Vec<usize> =
+        ok.iter().copied().filter(|&b| !ok.iter().any(|&a| a != b && dominates(&pts[a], &pts[b]))).collect();
+    front.sort_by(|&a, &b| pts[a].cost.total_cmp(&pts[b].cost).then(pts[b].ste.total_cmp(&pts[a].ste)));
     front
 }
 
@@ -190,8 +200,8 @@ pub fn svg(panels: &[(Setting, Vec<Point>)], methods: &[String], title: &str) ->
             .map_err(|e| err(&e))?;
         let areas = body.split_evenly((1, n));
         for (area, (setting, pts)) in areas.iter().zip(panels) {
-            let xmin = pts.iter().map(|p| p.cost).fold(f64::INFINITY, f64::min);
-            let xmax = pts.iter().map(|p| p.cost).fold(f64::NEG_INFINITY, f64::max);
+            let xmin = pts.iter().map(|p| p.cost_lo).fold(f64::INFINITY, f64::min);
+            let xmax = pts.iter().map(|p| p.cost_hi).fold(f64::NEG_INFINITY, f64::max);
             let (xmin, xmax) = if xmin.is_finite() { (xmin / 1.3, xmax * 1.3) } else { (0.1, 10.0) };
             let ymax = pts.iter().map(|p| p.ste).fold(1.0, f64::max) * 1.1;
             let mut chart = ChartBuilder::on(area)
@@ -203,7 +213,7 @@ pub fn svg(panels: &[(Setting, Vec<Point>)], methods: &[String], title: &str) ->
                 .map_err(|e| err(&e))?;
             chart
                 .configure_mesh()
-                .x_desc("time relative to the reference (log)")
+                .x_desc("cost relative to bbox (log; bars: range of the rounds)")
                 .y_desc("STE (%)")
                 .x_label_formatter(&|x| format!("{x}"))
                 .y_label_formatter(&|y| format!("{y:.0}"))
@@ -230,6 +240,17 @@ pub fn svg(panels: &[(Setting, Vec<Point>)], methods: &[String], title: &str) ->
             for p in pts {
                 let c = colour_of(&p.method);
                 let xy = (p.cost, p.ste);
+                // The error bar: the range of the rounds, with end caps.
+                chart
+                    .draw_series(LineSeries::new([(p.cost_lo, p.ste), (p.cost_hi, p.ste)], c.stroke_width(1)))
+                    .map_err(|e| err(&e))?;
+                for x in [p.cost_lo, p.cost_hi] {
+                    chart
+                        .draw_series(std::iter::once(
+                            EmptyElement::at((x, p.ste)) + PathElement::new(vec![(0, -4), (0, 4)], c.stroke_width(1)),
+                        ))
+                        .map_err(|e| err(&e))?;
+                }
                 if base(&p.method) != p.method {
                     chart.draw_series(std::iter::once(
                         EmptyElement::at(xy) + PathElement::new(square(5), c.stroke_width(2)),
@@ -257,7 +278,21 @@ mod tests {
     use super::*;
 
     fn p(m: &str, cost: f64, ste: f64, missed: u64) -> Point {
-        Point { method: m.into(), reconstruction: m.starts_with('r'), missed, cost, ste }
+        Point { method: m.into(), reconstruction: m.starts_with('r'), missed, cost, cost_lo: cost, cost_hi: cost, ste }
+    }
+
+    #[test]
+    fn the_front_ignores_differences_within_the_noise() {
+        let mut a = p("a", 1.0, 5.0, 0);
+        let mut b = p("b", 1.1, 5.0, 0);
+        // Same STE, b surely costlier: b is off the front.
+        assert_eq!(pareto(&[a.clone(), b.clone()]), vec![0]);
+        // Their intervals overlap: neither is surely cheaper, both stay.
+        (a.cost_lo, a.cost_hi, b.cost_lo, b.cost_hi) = (0.9, 1.15, 1.0, 1.2);
+        assert_eq!(pareto(&[a.clone(), b.clone()]), vec![0, 1]);
+        // b tighter and not surely costlier: a is dominated.
+        b.ste = 6.0;
+        assert_eq!(pareto(&[a, b]), vec![1]);
     }
 
     #[test]

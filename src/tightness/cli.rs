@@ -1,9 +1,10 @@
 //! The `tightness` command: arguments, the run, the tables and the output files.
 
+use super::cost::{self, CostRow, OpTable};
+use super::mesh::{self, MeshControls};
 use super::pattern::{Pattern, PatternKind};
-use super::raster::{self, TimingRow};
 use super::scene::{self, Scene, Setting};
-use super::{chart, measure, CeilingRow, CertifiedRow, Config, MethodRow, SettingSummary};
+use super::{chart, measure_with, CeilingRow, CertifiedRow, Config, MethodRow, SampleTable, SettingSummary};
 use crate::bounds::Method;
 use anyhow::{bail, ensure, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -16,7 +17,8 @@ use std::time::Instant;
 pub struct TightnessArgs {
     /// The scene: `hairball` (10,000 hair ribbons of 0.1-5 px^2), `interior` (a room of
     /// large triangles), `forest` (leaves, trees, a walking character) or a Wavefront
-    /// FILE.obj (fitted into the view, with a seeded rigid motion).
+    /// FILE.obj (fitted into the view; camera, lens and motion set by the OBJ flags
+    /// below, by default a seeded rigid motion).
     #[arg(long, default_value = "forest")]
     pub scene: String,
     /// The blur setting: `static` (no motion, pinhole), `blur` (the scene's motion and
@@ -57,12 +59,19 @@ pub struct TightnessArgs {
     /// the oracles' tile solver at resolution 1e-2, 2,000 boxes per extent); 0 for none.
     #[arg(long, default_value_t = 16)]
     pub certified: usize,
-    /// Skip the timing pass (then there is no cost column and no chart).
+    /// Skip the cost timing (then there is no cost column and no chart).
     #[arg(long)]
     pub no_timing: bool,
-    /// Timing passes per method and setting (run round robin; 1 to 1000); the fastest is kept.
-    #[arg(long, default_value_t = 3)]
+    /// Timing rounds of the per-operation costs (run round robin over the methods; 1 to
+    /// 1000): the cost is the median over the rounds, their range its error bar.
+    #[arg(long, default_value_t = 5)]
     pub repeats: u32,
+    /// Triangles per setting the per-operation costs are timed on (spread evenly over
+    /// the scene; 1 to 100000).
+    #[arg(long, default_value_t = 256)]
+    pub cost_triangles: usize,
+    #[command(flatten)]
+    pub mesh: MeshControls,
 }
 
 /// The JSON report (`ste.json`).
@@ -88,11 +97,15 @@ pub struct TightnessReport {
     pub ceiling: Vec<CeilingRow>,
     /// The certified ceiling on a random subset of tiles (a lower bound on it there).
     pub certified: Vec<CertifiedRow>,
-    /// Tile size of the timing pass.
-    pub timing_tile: Option<u32>,
-    /// What `timing[].relative` is relative to.
-    pub timing_reference: String,
-    pub timing: Vec<TimingRow>,
+    /// The OBJ scene's camera, lens and motion (None for a procedural scene): with
+    /// `scene_path` and `seed`, what reproduces the scene.
+    pub mesh: Option<mesh::MeshSettings>,
+    /// Tile size of the cost estimates.
+    pub cost_tile: Option<u32>,
+    /// The estimated cost per method and setting (relative to bbox on the same setting).
+    pub cost: Vec<CostRow>,
+    /// The timed per-operation costs behind `cost`.
+    pub op_costs: Option<OpTable>,
     /// Wall time of the whole run (s).
     pub seconds: f64,
     pub notes: Vec<String>,
@@ -372,47 +385,53 @@ pub fn render(r: &TightnessReport, md: bool) -> String {
         s += "lower: samples inside the certified outer box of the exact (u, v, t) extents (contains the exact box); \
               upper: the sample ceiling of the same tiles. The true interval-only ceiling on these tiles lies between.\n";
     }
-    // Timing.
-    if !r.timing.is_empty() {
-        let t = r.timing_tile.unwrap_or(0);
+    // Cost.
+    if !r.cost.is_empty() {
+        let t = r.cost_tile.unwrap_or(0);
         s += &format!(
-            "\n{h2}Time relative to {} ({t}x{t} tiles, one thread, f32 coverage, shade, framebuffer write)\n\n",
-            r.timing_reference
+            "\n{h2}Estimated cost relative to bbox on the same setting ({t}x{t} tiles): median over {} timing \
+             rounds [lowest, highest]; per-operation ns (setup / tile test / sample test)\n\n",
+            r.op_costs.as_ref().map(|o| o.rounds).unwrap_or(0)
         );
         if md {
             s += "| method |";
             for st in &settings {
-                s += &format!(" {} |", st.name());
+                s += &format!(" {} | {} ns |", st.name(), st.name());
             }
-            s += &format!("\n|---|{}\n", "---:|".repeat(settings.len()));
+            s += &format!("\n|---|{}\n", "---:|".repeat(2 * settings.len()));
         } else {
             s += &format!("{:<26}", "method");
             for st in &settings {
-                s += &format!(" {:>18}", st.name());
+                s += &format!(" {:>20} {:>18}", st.name(), "ns");
             }
             s += "\n";
         }
         for m in &methods {
-            let cells: Vec<String> = settings
-                .iter()
-                .map(|&st| {
-                    r.timing
-                        .iter()
-                        .find(|x| x.method == m.method && x.setting == st)
-                        .map(|x| format!("{:.2} ({:.3} s)", x.relative, x.seconds))
-                        .unwrap_or_else(|| "-".into())
-                })
-                .collect();
+            let mut cells: Vec<String> = Vec::new();
+            for &st in &settings {
+                match r.cost.iter().find(|x| x.method == m.method && x.setting == st) {
+                    Some(x) => {
+                        let e = x.relative;
+                        cells.push(format!("{:.2} [{:.2}, {:.2}]", e.median, e.lo, e.hi));
+                        cells.push(format!("{:.0}/{:.0}/{:.1}", x.setup_ns, x.tile_ns, x.sample_ns));
+                    }
+                    None => cells.extend(["-".to_string(), "-".to_string()]),
+                }
+            }
             if md {
                 s += &format!("| {} | {} |\n", m.method, cells.join(" | "));
             } else {
                 s += &format!("{:<26}", m.method);
-                for c in cells {
-                    s += &format!(" {c:>18}");
+                for pair in cells.chunks(2) {
+                    s += &format!(" {:>20} {:>18}", pair[0], pair[1]);
                 }
                 s += "\n";
             }
         }
+        s += "cost: counts of setups, tile tests, sample tests and samples let through (exact, from the STE \
+              measurement) times per-operation costs timed on a subset of the triangles (work where a method \
+              disabled itself is charged at bbox's costs); ns: the method's own median per-operation costs \
+              (NaN: enabled on no timed triangle).\n";
     }
     s += &price_of_safety(r, &cols, md);
     for n in &r.notes {
@@ -440,7 +459,8 @@ fn price_of_safety(r: &TightnessReport, cols: &[(Setting, u32)], md: bool) -> St
     let ste = |m: &str, st: Setting, t: u32| {
         r.rows.iter().find(|x| x.method == m && x.setting == st && x.tile == t).and_then(|x| x.ste)
     };
-    let time = |m: &str, st: Setting| r.timing.iter().find(|x| x.method == m && x.setting == st).map(|x| x.seconds);
+    let time =
+        |m: &str, st: Setting| r.cost.iter().find(|x| x.method == m && x.setting == st).map(|x| x.seconds.median);
     let settings: Vec<Setting> = r.settings.iter().map(|x| x.setting).collect();
     let mut s = format!(
         "\n{}The price of safety: STE lost by each -safe variant, points (share of the original's STE), per \
@@ -491,7 +511,7 @@ fn price_of_safety(r: &TightnessReport, cols: &[(Setting, u32)], md: bool) -> St
     }
     s += "A negative loss means the variant's STE is higher: the original culls covered samples there (see \
           MISSED), which costs it hits, or the variant's correction lets fewer samples through. Time: the \
-          rasterizer pass's wall time, one thread; differences of a few percent are within its noise.\n";
+          estimated cost's median (see the cost table for its range).\n";
     s
 }
 
@@ -511,12 +531,17 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
     let (w, h) = parse_size(&args.size)?;
     let jobs = crate::args::jobs(args.jobs)?;
     ensure!((1..=1000).contains(&args.repeats), "--repeats {}: must be 1..1000", args.repeats);
-    // The timing pass holds the whole screen's pattern (20 bytes a sample) and a framebuffer.
-    let table = w as u64 * h as u64 * args.spp as u64;
     ensure!(
-        args.no_timing || table <= 64 << 20,
-        "--size {} with --spp {}: the timing pass would hold {table} samples (over 64 Mi); use a smaller \
-         screen or spp, or --no-timing",
+        (1..=100_000).contains(&args.cost_triangles),
+        "--cost-triangles {}: must be 1..100000",
+        args.cost_triangles
+    );
+    // The whole screen's pattern is held once (20 bytes a sample).
+    let table_len = w as u64 * h as u64 * args.spp as u64;
+    ensure!(
+        table_len <= 64 << 20,
+        "--size {} with --spp {}: the sample table would hold {table_len} samples (over 64 Mi); use a smaller \
+         screen or spp",
         args.size,
         args.spp
     );
@@ -528,7 +553,14 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
             check_replaceable(j)?;
         }
     }
-    let scene: Scene = scene::by_name(&args.scene, args.seed, w, h)?;
+    let is_obj = args.scene.to_ascii_lowercase().ends_with(".obj");
+    let (scene, mesh) = if is_obj {
+        let (s, m) = mesh::from_obj_with(Path::new(&args.scene), args.seed, w, h, &args.mesh)?;
+        (s, Some(m))
+    } else {
+        args.mesh.refuse_for(&args.scene)?;
+        (scene::by_name(&args.scene, args.seed, w, h)?, None)
+    };
     check_scene_finite(&scene, &settings, &args.scene)?;
     let pattern = Pattern::new(args.pattern, args.spp, args.seed);
     let mut cfg = Config::new(tiles.clone(), pattern);
@@ -536,7 +568,7 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
     cfg.seed = args.seed;
     let threads = jobs.unwrap_or_else(rayon::current_num_threads).max(1);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().context("building the thread pool")?;
-    let timing_tile = if tiles.contains(&2) { 2 } else { tiles[0] };
+    let cost_tile = if tiles.contains(&2) { 2 } else { tiles[0] };
     let repeats = args.repeats;
     let total = (scene.triangle_count() * settings.len()) as u64
         + if args.no_timing { 0 } else { (methods.len() * settings.len()) as u64 * repeats as u64 };
@@ -545,23 +577,25 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} {elapsed_precise} eta {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
+    pb.set_message("sample pattern");
+    pb.enable_steady_tick(std::time::Duration::from_millis(200));
+    let table = pool.install(|| SampleTable::new(&pattern, w, h));
     pb.set_message("triangles (STE)");
-    let m = pool.install(|| measure(&scene, &methods, &settings, &cfg, &pb));
-    let timing = if args.no_timing {
-        Vec::new()
-    } else {
-        pb.set_message("timing passes");
-        raster::time_methods(&scene, &methods, &settings, timing_tile, &pattern, repeats, &pb)
-    };
+    let m = pool.install(|| measure_with(&scene, &table, &methods, &settings, &cfg, &pb));
+    let ops = (!args.no_timing).then(|| {
+        pb.set_message("per-operation costs");
+        cost::time_ops(&scene, &table, &methods, &settings, cost_tile, repeats, args.cost_triangles, &pb)
+    });
     pb.finish_and_clear();
+    let costs = ops.as_ref().map(|o| cost::costs(&m.rows, o, cost_tile)).unwrap_or_default();
     let mut notes = vec![
         "a method's STE counts only covered samples it let through (hits / tested); MISSED counts covered samples \
          it culled"
             .to_string(),
         "depth intervals (z^) are not applied: they cull against a depth buffer, not coverage".to_string(),
     ];
-    if args.scene.to_ascii_lowercase().ends_with(".obj") {
-        notes.push(format!("{}: placed in front of the camera and given a seeded rigid motion", args.scene));
+    if let Some(ms) = &mesh {
+        notes.push(format!("{}: {}", args.scene, ms.describe()));
     }
     let report = TightnessReport {
         kind: KIND,
@@ -579,9 +613,10 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
         rows: m.rows,
         ceiling: m.ceiling,
         certified: m.certified,
-        timing_tile: (!timing.is_empty()).then_some(timing_tile),
-        timing_reference: raster::reference_name(&timing),
-        timing,
+        mesh,
+        cost_tile: (!costs.is_empty()).then_some(cost_tile),
+        cost: costs,
+        op_costs: ops,
         seconds: start.elapsed().as_secs_f64(),
         notes,
     };
@@ -600,12 +635,12 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
         Ok(p)
     };
     let mut written = vec![write("ste.md", &render(&report, true))?, write("ste.json", &json)?];
-    if !report.timing.is_empty() {
-        let panels = chart::points(&report.rows, &report.timing, timing_tile);
+    if !report.cost.is_empty() {
+        let panels = chart::points(&report.rows, &report.cost, cost_tile);
         let ids: Vec<String> = methods.iter().map(|m| m.info().id.to_string()).collect();
         let title = format!(
-            "STE vs time, {} ({}x{}, {} spp, {}x{} tiles)",
-            report.scene, w, h, report.spp, timing_tile, timing_tile
+            "STE vs cost, {} ({}x{}, {} spp, {}x{} tiles)",
+            report.scene, w, h, report.spp, cost_tile, cost_tile
         );
         written.push(write("ste_vs_cost.svg", &chart::svg(&panels, &ids, &title)?)?);
     } else if args.out.join("ste_vs_cost.svg").exists() {
@@ -663,6 +698,8 @@ mod tests {
             certified: 0,
             no_timing: true,
             repeats: 1,
+            cost_triangles: 16,
+            mesh: MeshControls::default(),
         };
         let e = run_cli(&args).unwrap_err().to_string();
         assert!(e.contains("not a directory"), "{e}");

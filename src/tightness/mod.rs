@@ -50,10 +50,21 @@
 //!   A tile where the solver left boxes open (over budget) is counted `undecided`; its
 //!   outer enclosure still holds (an unknown side is the whole range).
 //!
+//! # How it runs
+//! The whole screen's sample pattern is built once ([`SampleTable`]) and shared by every
+//! triangle, setting and method; each triangle is set up once per method and the setup
+//! serves every tile size; the samples of a tile are counted row by row (u, v, t side by
+//! side, the per-sample constraints evaluated only inside the intervals), nothing per
+//! sample is stored but the triangle's coverage, in a buffer reused by each worker.
+//! Exact coverage goes through one function ([`exact_coverage`]). Each count also feeds
+//! the cost model ([`Work`], [`cost`]).
+//!
 //! Results are integer counts summed in triangle order: identical at any thread count.
 
 pub mod chart;
 mod cli;
+pub mod cost;
+pub mod mesh;
 pub mod obj;
 pub mod pattern;
 pub mod raster;
@@ -193,6 +204,83 @@ impl Counts {
     }
 }
 
+/// The operations a method performed (the work the cost model charges, see [`cost`]):
+/// on the triangles where it was enabled, and on those where it disabled itself (its
+/// answer then is the whole domain: bbox's work, and charged as bbox's).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Work {
+    /// Triangles set up.
+    pub setups: u64,
+    /// Tile tests.
+    pub tile_tests: u64,
+    /// Samples given the per-sample test (every sample of a tile not culled).
+    pub sample_tests: u64,
+    pub disabled_setups: u64,
+    pub disabled_tile_tests: u64,
+    pub disabled_sample_tests: u64,
+}
+
+impl Work {
+    fn add_setup(&mut self, disabled: bool) {
+        *if disabled { &mut self.disabled_setups } else { &mut self.setups } += 1;
+    }
+    fn add_tile(&mut self, disabled: bool, samples: u64) {
+        if disabled {
+            self.disabled_tile_tests += 1;
+            self.disabled_sample_tests += samples;
+        } else {
+            self.tile_tests += 1;
+            self.sample_tests += samples;
+        }
+    }
+    fn add(&mut self, o: &Work) {
+        self.setups += o.setups;
+        self.tile_tests += o.tile_tests;
+        self.sample_tests += o.sample_tests;
+        self.disabled_setups += o.disabled_setups;
+        self.disabled_tile_tests += o.disabled_tile_tests;
+        self.disabled_sample_tests += o.disabled_sample_tests;
+    }
+}
+
+/// The whole screen's sample pattern, pixel-major: the `spp` samples of pixel (px, py)
+/// start at `(py * width + px) * spp`. Built once per run (every pixel's samples depend
+/// only on the pattern, see [`pattern`]) and shared by every triangle, setting and method.
+pub struct SampleTable {
+    pub width: u32,
+    pub height: u32,
+    pub spp: usize,
+    pub samples: Vec<Sample>,
+    /// The samples' u, v and t side by side (the interval tests run over these).
+    pub uvt: [Vec<f32>; 3],
+}
+
+impl SampleTable {
+    /// The pattern over a `width x height` screen (rows built in parallel; the table
+    /// does not depend on the thread count).
+    pub fn new(pattern: &Pattern, width: u32, height: u32) -> Self {
+        let rows: Vec<Vec<Sample>> = (0..height)
+            .into_par_iter()
+            .map(|py| {
+                let mut v = Vec::with_capacity(width as usize * pattern.spp as usize);
+                pattern.region(0, py, width - 1, py, &mut v);
+                v
+            })
+            .collect();
+        let samples = rows.concat();
+        let uvt = [
+            samples.iter().map(|s| s.u).collect(),
+            samples.iter().map(|s| s.v).collect(),
+            samples.iter().map(|s| s.t).collect(),
+        ];
+        SampleTable { width, height, spp: pattern.spp as usize, samples, uvt }
+    }
+    /// Where pixel (px, py)'s samples start.
+    pub fn start(&self, px: u32, py: u32) -> usize {
+        (py as usize * self.width as usize + px as usize) * self.spp
+    }
+}
+
 /// `a / b`, None when b = 0.
 fn ratio(a: u64, b: u64) -> Option<f64> {
     (b > 0).then(|| a as f64 / b as f64)
@@ -214,6 +302,8 @@ pub struct MethodRow {
     pub ste: Option<f64>,
     /// Triangles for which the method reported itself disabled (full bounds).
     pub disabled_triangles: u64,
+    /// The operations performed.
+    pub work: Work,
 }
 
 /// The sample ceiling at one tile size and setting (an upper bound on the STE of the
@@ -292,30 +382,37 @@ struct TriCounts {
     exact: u64,
     /// [tile index][method index]
     counts: Vec<Vec<Counts>>,
+    /// [tile index][method index]
+    work: Vec<Vec<Work>>,
     /// [tile index]: (tested, covered)
     ceiling: Vec<(u64, u64)>,
     certified: Vec<CertifiedRow>,
     disabled: Vec<bool>,
 }
 
-/// The samples of a region, their coverage, and how to find a pixel's samples.
+/// The coverage of the samples of a region (the union of a triangle's tiles of every
+/// size), pixel-major like the [`SampleTable`]; the pixels outside the footprint are
+/// not covered.
 struct Local {
     rect: PixelRect,
     spp: usize,
-    samples: Vec<Sample>,
     covered: Vec<bool>,
 }
 
 impl Local {
-    fn range(&self, px: u32, py: u32) -> std::ops::Range<usize> {
+    fn start(&self, px: u32, py: u32) -> usize {
         let w = (self.rect.x1 - self.rect.x0 + 1) as usize;
-        let i = ((py - self.rect.y0) as usize * w + (px - self.rect.x0) as usize) * self.spp;
-        i..i + self.spp
+        ((py - self.rect.y0) as usize * w + (px - self.rect.x0) as usize) * self.spp
     }
-    /// Indices of the samples of the pixels in `p`.
-    fn indices(&self, p: &PixelRect) -> impl Iterator<Item = usize> + '_ {
-        let p = *p;
-        (p.y0..=p.y1).flat_map(move |py| (p.x0..=p.x1).flat_map(move |px| self.range(px, py)))
+}
+
+/// The rows of a tile: per pixel row, the start of its samples in the table and in the
+/// [`Local`] coverage, and the row's sample count.
+fn tile_rows(table: &SampleTable, local: &Local, p: &PixelRect, rows: &mut Vec<(usize, usize, usize)>) {
+    rows.clear();
+    let n = (p.x1 - p.x0 + 1) as usize * table.spp;
+    for py in p.y0..=p.y1 {
+        rows.push((table.start(p.x0, py), local.start(p.x0, py), n));
     }
 }
 
@@ -323,19 +420,26 @@ fn uvt(s: &Sample) -> [f32; 3] {
     [s.u, s.v, s.t]
 }
 
-/// Per tile: the box of the covered samples' (u, v, t), widened to the whole range in
-/// each of u, v (lens) and t (time) that the triangle's coverage does not depend on
-/// (there the exact extents are the whole range as soon as one sample is covered);
-/// None if no sample is covered.
-fn covered_box(local: &Local, p: &PixelRect, dims: Dims) -> Option<[[f32; 2]; 3]> {
+/// The box of the covered samples' (u, v, t) over the rows of a tile, widened to the
+/// whole range in each of u, v (lens) and t (time) that the triangle's coverage does
+/// not depend on (there the exact extents are the whole range as soon as one sample is
+/// covered); None if no sample is covered.
+fn covered_box(
+    table: &SampleTable,
+    local: &Local,
+    rows: &[(usize, usize, usize)],
+    dims: Dims,
+) -> Option<[[f32; 2]; 3]> {
     let mut b: Option<[[f32; 2]; 3]> = None;
-    for i in local.indices(p) {
-        if local.covered[i] {
-            let c = uvt(&local.samples[i]);
-            let bb = b.get_or_insert([[c[0], c[0]], [c[1], c[1]], [c[2], c[2]]]);
-            for k in 0..3 {
-                bb[k][0] = bb[k][0].min(c[k]);
-                bb[k][1] = bb[k][1].max(c[k]);
+    for &(ts, ls, n) in rows {
+        for (s, &cov) in table.samples[ts..ts + n].iter().zip(&local.covered[ls..ls + n]) {
+            if cov {
+                let c = uvt(s);
+                let bb = b.get_or_insert([[c[0], c[0]], [c[1], c[1]], [c[2], c[2]]]);
+                for k in 0..3 {
+                    bb[k][0] = bb[k][0].min(c[k]);
+                    bb[k][1] = bb[k][1].max(c[k]);
+                }
             }
         }
     }
@@ -357,9 +461,11 @@ fn in_box(b: &[[f32; 2]; 3], s: &Sample) -> bool {
 }
 
 /// The certified ceiling of one tile.
+#[allow(clippy::too_many_arguments)]
 fn certify(
     tri: &oracles::Tri,
     dims: Dims,
+    table: &SampleTable,
     local: &Local,
     p: &PixelRect,
     cfg: &ExtentsConfig,
@@ -367,13 +473,15 @@ fn certify(
     s: u32,
 ) -> CertifiedRow {
     let t = tile_of(p);
+    let mut rows = Vec::new();
+    tile_rows(table, local, p, &mut rows);
     let mut solver = TileSolver::new(
         tri,
         [t.x0 as f64, t.x1 as f64, t.y0 as f64, t.y1 as f64],
         [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]],
         cfg,
     );
-    let covered = local.indices(p).filter(|&i| local.covered[i]).count() as u64;
+    let covered = rows.iter().map(|&(_, ls, n)| local.covered[ls..ls + n].iter().filter(|&&c| c).count() as u64).sum();
     let mut row = CertifiedRow { setting, tile: s, tiles: 1, covered, ..Default::default() };
     let outer: Option<[[f64; 2]; 3]> = match solver.occupancy() {
         Occupancy::Empty => None,
@@ -398,36 +506,68 @@ fn certify(
         row.undecided_tiles = 1;
     }
     row.boxes = solver.boxes;
-    let sample_box = covered_box(local, p, dims);
-    for i in local.indices(p) {
-        let smp = &local.samples[i];
-        let c = uvt(smp);
-        if let Some(b) = &outer {
-            row.tested_certified += (0..3).all(|k| b[k][0] <= c[k] as f64 && c[k] as f64 <= b[k][1]) as u64;
-        } else if local.covered[i] {
-            row.tested_certified += 1;
-        }
-        if let Some(b) = &sample_box {
-            row.tested_sample_box += in_box(b, smp) as u64;
+    let sample_box = covered_box(table, local, &rows, dims);
+    for &(ts, ls, n) in &rows {
+        for (smp, &cov) in table.samples[ts..ts + n].iter().zip(&local.covered[ls..ls + n]) {
+            let c = uvt(smp);
+            if let Some(b) = &outer {
+                row.tested_certified += (0..3).all(|k| b[k][0] <= c[k] as f64 && c[k] as f64 <= b[k][1]) as u64;
+            } else if cov {
+                row.tested_certified += 1;
+            }
+            if let Some(b) = &sample_box {
+                row.tested_sample_box += in_box(b, smp) as u64;
+            }
         }
     }
     row
+}
+
+/// The exact coverage of `samples` by `tri`, one entry per sample (interior only:
+/// boundary samples are not covered), appended to `out`; returns (covered, boundary,
+/// exact fallbacks). The one place the measurement asks the exact oracle, sample by
+/// sample: a batched oracle plugs in here.
+pub fn exact_coverage(tri: &oracles::Tri, samples: &[Sample], out: &mut [bool]) -> (u64, u64, u64) {
+    let (mut covered, mut boundary, mut exact) = (0u64, 0u64, 0u64);
+    for (s, o) in samples.iter().zip(out.iter_mut()) {
+        let (c, ex) = oracles::coverage::classify_traced(tri, s.to_oracle());
+        exact += ex as u64;
+        *o = c == Coverage::Interior;
+        covered += *o as u64;
+        boundary += (c == Coverage::Boundary) as u64;
+    }
+    (covered, boundary, exact)
 }
 
 /// What every triangle of one setting shares.
 struct Ctx<'a> {
     methods: &'a [&'static dyn Method],
     cfg: &'a Config,
-    width: u32,
-    height: u32,
+    table: &'a SampleTable,
     setting: Setting,
 }
 
-fn measure_triangle(ctx: &Ctx, tri: &Triangle, fp: Footprint, chosen: &[(usize, u64)]) -> TriCounts {
-    let Ctx { methods, cfg, width, height, setting } = *ctx;
+/// Buffers reused from triangle to triangle (one per worker).
+#[derive(Default)]
+struct Scratch {
+    covered: Vec<bool>,
+    mask: Vec<bool>,
+    rows: Vec<(usize, usize, usize)>,
+}
+
+fn measure_triangle(
+    ctx: &Ctx,
+    scratch: &mut Scratch,
+    tri: &Triangle,
+    fp: Footprint,
+    chosen: &[(usize, u64)],
+) -> TriCounts {
+    let Ctx { methods, cfg, table, setting } = *ctx;
+    let (width, height) = (table.width, table.height);
     let nt = cfg.tiles.len();
     let mut out = TriCounts {
         counts: vec![vec![Counts::default(); methods.len()]; nt],
+        work: vec![vec![Work::default(); methods.len()]; nt],
         ceiling: vec![(0, 0); nt],
         disabled: vec![false; methods.len()],
         ..Default::default()
@@ -452,72 +592,136 @@ fn measure_triangle(ctx: &Ctx, tri: &Triangle, fp: Footprint, chosen: &[(usize, 
         u.x1 = u.x1.max(((tx1 + 1) * s).min(width) - 1);
         u.y1 = u.y1.max(((ty1 + 1) * s).min(height) - 1);
     }
-    let mut samples = Vec::new();
-    cfg.pattern.region(u.x0, u.y0, u.x1, u.y1, &mut samples);
-    let mut local = Local { rect: u, spp: cfg.pattern.spp as usize, covered: vec![false; samples.len()], samples };
+    let spp = table.spp;
+    let mut covered = std::mem::take(&mut scratch.covered);
+    covered.clear();
+    covered.resize(u.pixels() as usize * spp, false);
+    let mut local = Local { rect: u, spp, covered };
     let otri = tri.to_oracle();
+    let n_row = (r.x1 - r.x0 + 1) as usize * spp;
     for py in r.y0..=r.y1 {
-        for px in r.x0..=r.x1 {
-            for i in local.range(px, py) {
-                let (c, exact) = oracles::coverage::classify_traced(&otri, local.samples[i].to_oracle());
-                out.classified += 1;
-                out.exact += exact as u64;
-                match c {
-                    Coverage::Interior => {
-                        local.covered[i] = true;
-                        out.covered += 1;
-                    }
-                    Coverage::Boundary => out.boundary += 1,
-                    Coverage::Outside => {}
-                }
-            }
-        }
+        let (ts, ls) = (table.start(r.x0, py), local.start(r.x0, py));
+        let (c, b, e) = exact_coverage(&otri, &table.samples[ts..ts + n_row], &mut local.covered[ls..ls + n_row]);
+        out.classified += n_row as u64;
+        out.covered += c;
+        out.boundary += b;
+        out.exact += e;
     }
     let dims = tri.dims();
     let preps: Vec<Box<dyn Prepared>> = methods.iter().map(|m| m.setup(tri)).collect();
     for (d, p) in out.disabled.iter_mut().zip(&preps) {
         *d = p.disabled().is_some();
     }
+    let mut rows = std::mem::take(&mut scratch.rows);
+    let mut mask = std::mem::take(&mut scratch.mask);
     for (ti, &s) in cfg.tiles.iter().enumerate() {
+        for (mi, w) in out.work[ti].iter_mut().enumerate() {
+            w.add_setup(out.disabled[mi]);
+        }
         let (tx0, ty0, tx1, ty1) = tile_range(&r, s);
         let ntx = (tx1 - tx0 + 1) as u64;
         for ty in ty0..=ty1 {
             for tx in tx0..=tx1 {
                 let p = tile_pixels(tx, ty, s, width, height);
                 let tile = tile_of(&p);
-                let cov_here = local.indices(&p).filter(|&i| local.covered[i]).count() as u64;
-                if let Some(b) = covered_box(&local, &p, dims) {
-                    let tested = local.indices(&p).filter(|&i| in_box(&b, &local.samples[i])).count() as u64;
-                    out.ceiling[ti].0 += tested;
-                    out.ceiling[ti].1 += cov_here;
+                tile_rows(table, &local, &p, &mut rows);
+                let n_here = rows.iter().map(|r| r.2 as u64).sum::<u64>();
+                let cov_here = rows
+                    .iter()
+                    .map(|&(_, ls, n)| local.covered[ls..ls + n].iter().filter(|&&c| c).count() as u64)
+                    .sum::<u64>();
+                if cov_here > 0 {
+                    if let Some(b) = covered_box(table, &local, &rows, dims) {
+                        let tested = rows
+                            .iter()
+                            .map(|&(ts, _, n)| {
+                                table.samples[ts..ts + n].iter().filter(|x| in_box(&b, x)).count() as u64
+                            })
+                            .sum::<u64>();
+                        out.ceiling[ti].0 += tested;
+                        out.ceiling[ti].1 += cov_here;
+                    }
                 }
                 for (mi, prep) in preps.iter().enumerate() {
                     let c = &mut out.counts[ti][mi];
+                    let w = &mut out.work[ti][mi];
                     match prep.tile(&tile) {
-                        TileResult::Empty => c.missed += cov_here,
-                        TileResult::Bounds(b) => count_admitted(&b, &local, &p, c),
+                        TileResult::Empty => {
+                            w.add_tile(out.disabled[mi], 0);
+                            c.missed += cov_here
+                        }
+                        TileResult::Bounds(b) => {
+                            w.add_tile(out.disabled[mi], n_here);
+                            count_admitted(&mut mask, &b, table, &local, &rows, n_here, cov_here, c)
+                        }
                     }
                 }
                 let l = (ty - ty0) as u64 * ntx + (tx - tx0) as u64;
                 if chosen.contains(&(ti, l)) {
-                    out.certified.push(certify(&otri, dims, &local, &p, &cfg.certified, setting, s));
+                    out.certified.push(certify(&otri, dims, table, &local, &p, &cfg.certified, setting, s));
                 }
             }
         }
     }
+    scratch.rows = rows;
+    scratch.mask = mask;
+    scratch.covered = local.covered;
     out
 }
 
-fn count_admitted(b: &TileBounds, local: &Local, p: &PixelRect, c: &mut Counts) {
-    for i in local.indices(p) {
-        let cov = local.covered[i];
-        if b.admits(&local.samples[i]) {
-            c.tested += 1;
-            c.hits += cov as u64;
+/// Count the samples of a tile that `b` admits (`n` samples, `cov` of them covered).
+/// An answer with the whole (u, v, t) domain and no per-sample constraint admits every
+/// sample ([`TileBounds::admits`] would say so sample by sample).
+#[allow(clippy::too_many_arguments)]
+fn count_admitted(
+    mask: &mut Vec<bool>,
+    b: &TileBounds,
+    table: &SampleTable,
+    local: &Local,
+    rows: &[(usize, usize, usize)],
+    n: u64,
+    cov: u64,
+    c: &mut Counts,
+) {
+    let whole = b.u[0] <= -1.0 && b.u[1] >= 1.0 && b.v[0] <= -1.0 && b.v[1] >= 1.0 && b.t[0] <= 0.0 && b.t[1] >= 1.0;
+    if whole && b.constraints.is_empty() {
+        c.tested += n;
+        c.hits += cov;
+        return;
+    }
+    let (mut tested, mut hits) = (0u64, 0u64);
+    let ([u0, u1], [v0, v1], [t0, t1]) = (b.u, b.v, b.t);
+    for &(ts, ls, n) in rows {
+        let (us, vs, tv) = (&table.uvt[0][ts..ts + n], &table.uvt[1][ts..ts + n], &table.uvt[2][ts..ts + n]);
+        let cv = &local.covered[ls..ls + n];
+        if b.constraints.is_empty() {
+            // The interval test of `TileBounds::admits`, side by side (vectorised).
+            let (mut t_row, mut h_row) = (0u32, 0u32);
+            for i in 0..n {
+                let a = (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1);
+                t_row += a as u32;
+                h_row += (a & cv[i]) as u32;
+            }
+            tested += t_row as u64;
+            hits += h_row as u64;
         } else {
-            c.missed += cov as u64;
+            // The intervals first (side by side), the constraints only inside them (as
+            // `admits`: a sample passes when no constraint is negative).
+            mask.clear();
+            mask.extend((0..n).map(|i| {
+                (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1)
+            }));
+            for (i, _) in mask.iter().enumerate().filter(|(_, &m)| m) {
+                if !b.constraints.iter().any(|k| k.eval(&table.samples[ts + i]) < 0.0) {
+                    tested += 1;
+                    hits += cv[i] as u64;
+                }
+            }
         }
     }
+    c.tested += tested;
+    c.hits += hits;
+    c.missed += cov - hits;
 }
 
 /// The number of tiles of each size traversed for a footprint.
@@ -583,19 +787,34 @@ pub fn measure(
     cfg: &Config,
     pb: &ProgressBar,
 ) -> Measurement {
+    let table = SampleTable::new(&cfg.pattern, scene.width, scene.height);
+    measure_with(scene, &table, methods, settings, cfg, pb)
+}
+
+/// [`measure`] on a sample table built beforehand (`table` must be the pattern of
+/// `cfg` over the scene's screen).
+pub fn measure_with(
+    scene: &Scene,
+    table: &SampleTable,
+    methods: &[&'static dyn Method],
+    settings: &[Setting],
+    cfg: &Config,
+    pb: &ProgressBar,
+) -> Measurement {
     let (w, h) = (scene.width, scene.height);
+    assert_eq!((table.width, table.height, table.spp), (w, h, cfg.pattern.spp as usize), "sample table mismatch");
     let mut m = Measurement::default();
     for &setting in settings {
         let tris = scene.triangles(setting);
         let fps: Vec<Footprint> = tris.iter().map(|t| footprint(t, w, h)).collect();
         let chosen = choose_certified(&fps, cfg, setting, w, h);
-        let ctx = Ctx { methods, cfg, width: w, height: h, setting };
+        let ctx = Ctx { methods, cfg, table, setting };
         let per: Vec<TriCounts> = tris
             .par_iter()
             .zip(fps.par_iter())
             .zip(chosen.par_iter())
-            .map(|((t, &fp), ch)| {
-                let r = measure_triangle(&ctx, t, fp, ch);
+            .map_init(Scratch::default, |scratch, ((t, &fp), ch)| {
+                let r = measure_triangle(&ctx, scratch, t, fp, ch);
                 pb.inc(1);
                 r
             })
@@ -603,6 +822,7 @@ pub fn measure(
         // Merge in triangle order.
         let nt = cfg.tiles.len();
         let mut counts = vec![vec![Counts::default(); methods.len()]; nt];
+        let mut work = vec![vec![Work::default(); methods.len()]; nt];
         let mut ceiling = vec![(0u64, 0u64); nt];
         let mut disabled = vec![0u64; methods.len()];
         let mut certified: Vec<CertifiedRow> =
@@ -615,8 +835,14 @@ pub fn measure(
             sum.covered += r.covered;
             sum.boundary += r.boundary;
             sum.exact_fallbacks += r.exact;
+            if r.off_screen {
+                continue;
+            }
             for ti in 0..nt {
                 for (acc, x) in counts[ti].iter_mut().zip(&r.counts[ti]) {
+                    acc.add(x);
+                }
+                for (acc, x) in work[ti].iter_mut().zip(&r.work[ti]) {
                     acc.add(x);
                 }
                 ceiling[ti].0 += r.ceiling[ti].0;
@@ -649,6 +875,7 @@ pub fn measure(
                     counts: c,
                     ste: ratio(c.hits, c.tested),
                     disabled_triangles: disabled[mi],
+                    work: work[ti][mi],
                 });
             }
             let (tested, covered) = ceiling[ti];

@@ -20,7 +20,6 @@
 //! the documentation (motion, CoC) are for a screen 240 pixels high and scale with the
 //! screen height.
 
-use super::obj;
 use crate::gen::rng_for;
 use crate::model::{ThinLens, Triangle};
 use rand::Rng;
@@ -95,12 +94,47 @@ impl RigidMotion {
     }
 }
 
-/// A rigid object: triangles in their rest pose and one motion.
+/// An object: triangles in their rest pose, one rigid motion and an optional per-vertex
+/// wobble (non-rigid).
 #[derive(Clone, Debug)]
 pub struct Object {
     pub name: String,
     pub tris: Vec<[V3; 3]>,
     pub motion: RigidMotion,
+    /// Per-vertex wobble amplitude (camera-space units, 0 for none): at motion time tau
+    /// a vertex moves by `tau * wobble` along a unit direction drawn from a hash of its
+    /// rest position ([`wobble_dir`]), so vertices shared by triangles move together.
+    pub wobble: f32,
+}
+
+/// The wobble direction of a rest-pose vertex: a unit vector from a hash of its
+/// coordinates' bits.
+pub fn wobble_dir(p: V3) -> V3 {
+    let h = |k: u64| {
+        let x = super::pattern::hash(&[k, p[0].to_bits() as u64, p[1].to_bits() as u64, p[2].to_bits() as u64]);
+        (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for k in 0..64u64 {
+        let v = [h(3 * k), h(3 * k + 1), h(3 * k + 2)];
+        let l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        if l2 > 1e-4 && l2 <= 1.0 {
+            let l = l2.sqrt();
+            return v.map(|x| (x / l) as f32);
+        }
+    }
+    [0.0, 1.0, 0.0]
+}
+
+impl Object {
+    /// The pose of rest vertex `p` at motion time `tau`.
+    pub fn pose(&self, p: V3, tau: f32) -> V3 {
+        let q = self.motion.apply(p, tau);
+        if self.wobble == 0.0 || tau == 0.0 {
+            return q;
+        }
+        let d = wobble_dir(p);
+        std::array::from_fn(|i| q[i] + tau * self.wobble * d[i])
+    }
 }
 
 /// A scene: camera (its `radius` is the lens radius of the `blur` setting), screen and
@@ -128,7 +162,7 @@ impl Scene {
         let mut out = Vec::with_capacity(self.triangle_count());
         for o in &self.objects {
             for t in &o.tris {
-                out.push((t.map(|p| o.motion.apply(p, -half)), t.map(|p| o.motion.apply(p, half))));
+                out.push((t.map(|p| o.pose(p, -half)), t.map(|p| o.pose(p, half))));
             }
         }
         out
@@ -213,7 +247,7 @@ fn norm(a: V3) -> V3 {
         [0.0, 1.0, 0.0]
     }
 }
-fn unit_vector(rng: &mut ChaCha8Rng) -> V3 {
+pub(super) fn unit_vector(rng: &mut ChaCha8Rng) -> V3 {
     loop {
         let v = [rng.gen_range(-1.0f32..1.0), rng.gen_range(-1.0f32..1.0), rng.gen_range(-1.0f32..1.0)];
         let l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
@@ -226,13 +260,13 @@ fn unit_vector(rng: &mut ChaCha8Rng) -> V3 {
 /// Pixel amounts below (motion, CoC) are given for a screen 240 pixels high and scale
 /// with the screen height, so a scene looks the same at any resolution (rotations
 /// scale by themselves: the focal length grows with the screen).
-fn px(height: u32) -> f32 {
+pub(super) fn px(height: u32) -> f32 {
     height as f32 / 240.0
 }
 
 /// A pinhole camera for the screen with vertical field of view `fov_y` (degrees),
 /// square pixels (k = 1), the principal point at the screen centre.
-fn pinhole(width: u32, height: u32, fov_y: f64) -> ThinLens {
+pub(super) fn pinhole(width: u32, height: u32, fov_y: f64) -> ThinLens {
     let fy = (0.5 * height as f64 / (0.5 * fov_y.to_radians()).tan()) as f32;
     ThinLens {
         fx: fy,
@@ -248,7 +282,7 @@ fn pinhole(width: u32, height: u32, fov_y: f64) -> ThinLens {
 
 /// Focus at `focus` and the lens radius that gives a CoC radius of `coc_px` pixels at
 /// depth `z_ref` (CoC in pixels = fx R |1/F - 1/z|).
-fn with_lens(cam: ThinLens, focus: f32, coc_px: f32, z_ref: f32) -> ThinLens {
+pub(super) fn with_lens(cam: ThinLens, focus: f32, coc_px: f32, z_ref: f32) -> ThinLens {
     let d = (1.0 / focus - 1.0 / z_ref).abs().max(1e-6);
     ThinLens { focus, radius: coc_px / (cam.fx * d), ..cam }
 }
@@ -256,7 +290,7 @@ fn with_lens(cam: ThinLens, focus: f32, coc_px: f32, z_ref: f32) -> ThinLens {
 /// A seeded motion around `pivot` at depth `depth`: a screen-plane shift of up to
 /// `px` pixels (random direction, 50-100 %), a depth shift of up to `dz_frac` of the
 /// depth, and a rotation of up to `max_angle` radians about a random axis.
-fn seeded_motion(
+pub(super) fn seeded_motion(
     rng: &mut ChaCha8Rng,
     cam: &ThinLens,
     pivot: V3,
@@ -369,7 +403,7 @@ pub fn hairball(seed: u64, width: u32, height: u32) -> Scene {
         width,
         height,
         camera: with_lens(cam, 5.0, 3.0 * px(height), 7.6),
-        objects: vec![Object { name: "hairball".into(), tris, motion }],
+        objects: vec![Object { name: "hairball".into(), tris, motion, wobble: 0.0 }],
     }
 }
 
@@ -408,9 +442,9 @@ pub fn interior(seed: u64, width: u32, height: u32) -> Scene {
         height,
         camera: with_lens(cam, 6.0, 5.0 * px(height), z1),
         objects: vec![
-            Object { name: "room".into(), tris: room, motion: pan },
-            Object { name: "crate".into(), tris: crate_, motion: crate_motion },
-            Object { name: "ball".into(), tris: ball, motion: ball_motion },
+            Object { name: "room".into(), tris: room, motion: pan, wobble: 0.0 },
+            Object { name: "crate".into(), tris: crate_, motion: crate_motion, wobble: 0.0 },
+            Object { name: "ball".into(), tris: ball, motion: ball_motion, wobble: 0.0 },
         ],
     }
 }
@@ -436,7 +470,7 @@ pub fn forest(seed: u64, width: u32, height: u32) -> Scene {
     let mut objects = Vec::new();
     let mut ground = Vec::new();
     grid(&mut ground, [-14.0, ground_y, 2.0], [28.0, 0.0, 0.0], [0.0, 0.0, 38.0], 4, 6);
-    objects.push(Object { name: "ground".into(), tris: ground, motion: with_drift(RigidMotion::none()) });
+    objects.push(Object { name: "ground".into(), tris: ground, motion: with_drift(RigidMotion::none()), wobble: 0.0 });
     for k in 0..10 {
         let base: V3 = [rng.gen_range(-7.0f32..7.0), ground_y, rng.gen_range(7.0f32..32.0)];
         let height_t = rng.gen_range(2.5f32..4.0);
@@ -468,7 +502,7 @@ pub fn forest(seed: u64, width: u32, height: u32) -> Scene {
             angle: rng.gen_range(0.02f32..0.06),
             shift: [0.0; 3],
         };
-        objects.push(Object { name: format!("tree-{k}"), tris: tree, motion: with_drift(sway) });
+        objects.push(Object { name: format!("tree-{k}"), tris: tree, motion: with_drift(sway), wobble: 0.0 });
     }
     // The character: feet on the ground at depth 5.5.
     let (cx, cz) = (0.6f32, 5.5f32);
@@ -480,51 +514,13 @@ pub fn forest(seed: u64, width: u32, height: u32) -> Scene {
         cuboid(&mut body, [cx + dx - 0.05, ground_y - y0, cz - 0.05], [cx + dx + 0.05, ground_y - y1, cz + 0.05]);
     } // limbs: 48
     let walk = seeded_motion(&mut rng, &cam, [cx, ground_y - 0.9, cz], 14.0 * px(height), 0.03, 0.12);
-    objects.push(Object { name: "character".into(), tris: body, motion: with_drift(walk) });
+    objects.push(Object { name: "character".into(), tris: body, motion: with_drift(walk), wobble: 0.0 });
     Scene { name: "forest".into(), width, height, camera: with_lens(cam, cz, 4.0 * px(height), 30.0), objects }
 }
 
-/// An OBJ mesh (every object and group of the file, faces triangulated as fans) viewed
-/// from the front: turned 180 degrees about x (OBJ's +y up and -z forward become the
-/// camera's -y up and +z forward), its bounding sphere of radius r placed at depth
-/// D = 1.15 r / sin(half the smaller field of view) so that it fills the view, focus
-/// at D, R giving a CoC of 4 px at depth D + r, and a seeded rigid motion about its
-/// centre (a shift of up to 10 px and a rotation moving its rim up to about 8 px).
+/// An OBJ mesh with the default controls (see [`super::mesh`]).
 pub fn from_obj(path: &Path, seed: u64, width: u32, height: u32) -> anyhow::Result<Scene> {
-    let tris = obj::load(path)?;
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for t in &tris {
-        for p in t {
-            for i in 0..3 {
-                lo[i] = lo[i].min(p[i] as f64);
-                hi[i] = hi[i].max(p[i] as f64);
-            }
-        }
-    }
-    let c: [f64; 3] = std::array::from_fn(|i| 0.5 * (lo[i] + hi[i]));
-    let r = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt() * 0.5;
-    let r = if r > 0.0 { r } else { 1.0 };
-    let cam = pinhole(width, height, 45.0);
-    let half_fov = (0.5 * width.min(height) as f64 / cam.fy as f64).atan();
-    let depth = 1.15 * r / half_fov.sin();
-    let place = |p: [f32; 3]| -> V3 {
-        [(p[0] as f64 - c[0]) as f32, (-(p[1] as f64 - c[1])) as f32, (depth - (p[2] as f64 - c[2])) as f32]
-    };
-    let placed: Vec<[V3; 3]> = tris.iter().map(|t| t.map(place)).collect();
-    let mut rng = rng_for(seed, 0x0b1);
-    let centre: V3 = [0.0, 0.0, depth as f32];
-    let rim_px = 8.0 * px(height);
-    let max_angle = rim_px * depth as f32 / (cam.fx * r as f32);
-    let motion = seeded_motion(&mut rng, &cam, centre, 10.0 * px(height), 0.02, max_angle);
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "mesh.obj".into());
-    Ok(Scene {
-        name,
-        width,
-        height,
-        camera: with_lens(cam, depth as f32, 4.0 * px(height), (depth + r) as f32),
-        objects: vec![Object { name: path.display().to_string(), tris: placed, motion }],
-    })
+    Ok(super::mesh::from_obj_with(path, seed, width, height, &super::mesh::MeshControls::default())?.0)
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@ use super::pattern::{Pattern, PatternKind};
 use super::scene::{self, Scene, Setting};
 use super::*;
 use crate::bounds::registry;
+use crate::tightness::cli::TightnessArgs;
 
 fn tiny(name: &str, w: u32, h: u32) -> Scene {
     scene::by_name(name, 7, w, h).unwrap()
@@ -114,6 +115,7 @@ fn a_hand_made_static_triangle() {
         name: "t".into(),
         tris: vec![[[-0.5, -0.5, 2.0], [0.5, -0.5, 2.0], [-0.5, 0.5, 2.0]]],
         motion: scene::RigidMotion::none(),
+        wobble: 0.0,
     };
     let s = Scene { name: "one".into(), width: 16, height: 16, camera: cam, objects: vec![obj] };
     let p = Pattern::new(PatternKind::Stratified, 1, 1);
@@ -161,4 +163,218 @@ fn footprints_fall_back_or_skip() {
         [[0.0, 0.0, 2.0], [0.25, 0.0, 2.0], [0.0, 0.25, 2.0]],
     );
     assert_eq!(footprint(&on, 16, 16), Footprint::Region(PixelRect { x0: 7, y0: 7, x1: 10, y1: 10 }));
+}
+
+/// A bumpy UV sphere as OBJ text (`seg` around, `rings` rings: 2 seg (rings - 1) triangles).
+fn bumpy_sphere(seg: usize, rings: usize) -> String {
+    let r = |th: f64, ph: f64| 1.0 + 0.18 * (3.0 * th).sin() * (4.0 * ph).cos();
+    let mut text = format!("v 0 {} 0\n", -r(0.0, 0.0));
+    for j in 1..rings {
+        let th = std::f64::consts::PI * j as f64 / rings as f64;
+        for i in 0..seg {
+            let ph = std::f64::consts::TAU * i as f64 / seg as f64;
+            let rr = r(th, ph);
+            text += &format!("v {} {} {}\n", rr * th.sin() * ph.cos(), -rr * th.cos(), rr * th.sin() * ph.sin());
+        }
+    }
+    text += &format!("v 0 {} 0\n", r(std::f64::consts::PI, 0.0));
+    let idx = |i: usize, j: usize| 2 + (j - 1) * seg + i % seg;
+    for i in 0..seg {
+        text += &format!("f 1 {} {}\n", idx(i + 1, 1), idx(i, 1));
+    }
+    for j in 1..rings - 1 {
+        for i in 0..seg {
+            text += &format!(
+                "f {} {} {}\nf {} {} {}\n",
+                idx(i, j),
+                idx(i + 1, j),
+                idx(i + 1, j + 1),
+                idx(i, j),
+                idx(i + 1, j + 1),
+                idx(i, j + 1)
+            );
+        }
+    }
+    let top = 2 + (rings - 1) * seg;
+    for i in 0..seg {
+        text += &format!("f {} {} {top}\n", idx(i, rings - 1), idx(i + 1, rings - 1));
+    }
+    text
+}
+
+fn temp_obj(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("cullproof-tight-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn more_work_never_costs_less() {
+    let s = tiny("forest", 48, 36);
+    let cfg = Config::new(vec![2], Pattern::new(PatternKind::Stratified, 2, 3));
+    let methods = registry();
+    let table = SampleTable::new(&cfg.pattern, s.width, s.height);
+    let m = measure_with(&s, &table, &methods, &Setting::ALL, &cfg, &ProgressBar::hidden());
+    let ops = cost::time_ops(&s, &table, &methods, &Setting::ALL, 2, 3, 24, &ProgressBar::hidden());
+    let costs = cost::costs(&m.rows, &ops, 2);
+    assert_eq!(costs.len(), m.rows.len());
+    let mut checked = 0;
+    for c in &costs {
+        let row = m.rows.iter().find(|r| r.method == c.method && r.setting == c.setting).unwrap();
+        let bbox = costs.iter().find(|b| b.method == "bbox" && b.setting == c.setting).unwrap();
+        // A method disabled on every triangle does bbox's work (or more): never cheaper.
+        if row.work.setups == 0 && row.work.disabled_setups > 0 {
+            let e = 1e-9 * bbox.seconds.hi;
+            assert!(c.seconds.lo >= bbox.seconds.lo - e, "{c:?} vs {bbox:?}");
+            assert!(c.seconds.median >= bbox.seconds.median - e, "{c:?} vs {bbox:?}");
+            assert!(c.seconds.hi >= bbox.seconds.hi - e, "{c:?} vs {bbox:?}");
+            checked += 1;
+        }
+        assert!(c.seconds.lo <= c.seconds.median && c.seconds.median <= c.seconds.hi, "{c:?}");
+    }
+    assert!(checked > 0, "the static setting disables the motion-only methods");
+    // The estimate grows with every count at the same per-operation costs.
+    let r = &m.rows[0];
+    let base = cost::total(r, [10.0, 3.0, 1.0], [7.0, 2.0, 1.0], 5.0);
+    for k in 0..7 {
+        let mut more = r.clone();
+        let w = &mut more.work;
+        [
+            &mut w.setups,
+            &mut w.tile_tests,
+            &mut w.sample_tests,
+            &mut w.disabled_setups,
+            &mut w.disabled_tile_tests,
+            &mut w.disabled_sample_tests,
+            &mut more.counts.tested,
+        ][k]
+            .clone_from(
+                &(1 + [
+                    r.work.setups,
+                    r.work.tile_tests,
+                    r.work.sample_tests,
+                    r.work.disabled_setups,
+                    r.work.disabled_tile_tests,
+                    r.work.disabled_sample_tests,
+                    r.counts.tested,
+                ][k]),
+            );
+        assert!(cost::total(&more, [10.0, 3.0, 1.0], [7.0, 2.0, 1.0], 5.0) > base, "count {k}");
+    }
+}
+
+#[test]
+fn work_counts_match_the_traversal() {
+    let s = tiny("interior", 32, 24);
+    let m = run(&s, 2, PatternKind::Stratified, 0);
+    for sum in &m.settings {
+        let on = sum.triangles - sum.off_screen;
+        for r in m.rows.iter().filter(|r| r.setting == sum.setting) {
+            assert_eq!(r.work.setups + r.work.disabled_setups, on, "{r:?}");
+            assert_eq!(r.work.disabled_setups, r.disabled_triangles, "{r:?}");
+            // Every sample let through was given the sample test.
+            assert!(r.work.sample_tests + r.work.disabled_sample_tests >= r.counts.tested, "{r:?}");
+        }
+    }
+}
+
+#[test]
+fn mesh_controls_are_recorded_and_reproducible() {
+    let p = temp_obj("bumpy.obj", &bumpy_sphere(12, 7));
+    let c = mesh::MeshControls {
+        motion: Some("rigid,dolly,rotate,wobble".into()),
+        dolly: Some(0.4),
+        rotate_deg: Some(20.0),
+        wobble: Some(0.05),
+        focus_at: Some(-0.5),
+        fov: Some(50.0),
+        ..Default::default()
+    };
+    let (a, sa) = mesh::from_obj_with(&p, 5, 40, 30, &c).unwrap();
+    let (b, sb) = mesh::from_obj_with(&p, 5, 40, 30, &c).unwrap();
+    let (d, _) = mesh::from_obj_with(&p, 6, 40, 30, &c).unwrap();
+    assert_eq!(a.triangle_count(), 2 * 12 * 6);
+    assert_eq!(a.camera_space(Setting::Blur2), b.camera_space(Setting::Blur2));
+    assert_ne!(a.camera_space(Setting::Blur2), d.camera_space(Setting::Blur2), "the seed is ignored");
+    assert_eq!(sa, sb);
+    assert_eq!(sa.path, p.display().to_string());
+    assert_eq!(sa.motion, ["rigid", "dolly", "rotate", "wobble"]);
+    // The focal plane lies in the mesh, halfway between its front and its centre.
+    assert!((sa.focus - (sa.depth - 0.5 * sa.radius)).abs() < 1e-9 * sa.depth, "{sa:?}");
+    // Dolly: the mesh comes towards the camera over the shutter.
+    let (q, r) = a.camera_space(Setting::Blur).into_iter().fold((0.0, 0.0), |(x, y), (q, r)| {
+        (x + q.iter().map(|p| p[2] as f64).sum::<f64>(), y + r.iter().map(|p| p[2] as f64).sum::<f64>())
+    });
+    assert!(r < q, "{q} {r}");
+    // Wobble is not rigid: a shared vertex moves the same in every triangle, but
+    // differently from its neighbours beyond the rigid motion.
+    let rigid_only = mesh::MeshControls { wobble: None, motion: Some("rigid,dolly,rotate".into()), ..c.clone() };
+    let (e, _) = mesh::from_obj_with(&p, 5, 40, 30, &rigid_only).unwrap();
+    assert_ne!(a.camera_space(Setting::Blur), e.camera_space(Setting::Blur));
+    assert_eq!(a.camera_space(Setting::Static), e.camera_space(Setting::Static));
+}
+
+#[test]
+fn mesh_controls_refuse_bad_values_by_name() {
+    let p = temp_obj("ok.obj", &bumpy_sphere(6, 4));
+    let bad = |c: mesh::MeshControls| mesh::from_obj_with(&p, 1, 16, 16, &c).unwrap_err().to_string();
+    let e = bad(mesh::MeshControls { motion: Some("dolly".into()), dolly: Some(2.0), ..Default::default() });
+    assert!(e.contains("--dolly") && e.contains('2'), "{e}");
+    let e = bad(mesh::MeshControls { wobble: Some(0.1), ..Default::default() });
+    assert!(e.contains("--wobble") && e.contains("--motion wobble"), "{e}");
+    let e = bad(mesh::MeshControls { motion: Some("spin".into()), ..Default::default() });
+    assert!(e.contains("spin"), "{e}");
+    let e = bad(mesh::MeshControls { fov: Some(f64::NAN), ..Default::default() });
+    assert!(e.contains("--fov"), "{e}");
+    let e = bad(mesh::MeshControls { focus: Some(-1.0), ..Default::default() });
+    assert!(e.contains("--focus"), "{e}");
+    let e = mesh::MeshControls { fov: Some(30.0), ..Default::default() }.refuse_for("forest").unwrap_err().to_string();
+    assert!(e.contains("--fov") && e.contains("FILE.obj"), "{e}");
+    // A bad OBJ file names the file and the line.
+    let q = temp_obj("broken.obj", "v 0 0 0\nv 1 0 0\nv 0 x 0\nf 1 2 3\n");
+    let e = mesh::from_obj_with(&q, 1, 16, 16, &Default::default()).unwrap_err().to_string();
+    assert!(e.contains("broken.obj") && e.contains(":3:"), "{e}");
+}
+
+#[test]
+fn the_same_seed_gives_the_same_report() {
+    let p = temp_obj("rep.obj", &bumpy_sphere(8, 5));
+    let dir = p.parent().unwrap().to_path_buf();
+    let args = |json: &str| TightnessArgs {
+        scene: p.display().to_string(),
+        setting: "all".into(),
+        spp: 2,
+        tile: Some(4),
+        pattern: PatternKind::Sobol,
+        seed: 9,
+        out: dir.join("out"),
+        json: Some(dir.join(json)),
+        jobs: Some(2),
+        size: "24x16".into(),
+        method: "bbox,lc".into(),
+        certified: 2,
+        no_timing: true,
+        repeats: 1,
+        cost_triangles: 8,
+        mesh: mesh::MeshControls {
+            motion: Some("dolly,wobble".into()),
+            focus_at: Some(0.3),
+            lens_radius: Some(0.05),
+            ..Default::default()
+        },
+    };
+    let read = |name: &str| {
+        let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join(name)).unwrap()).unwrap();
+        v.as_object_mut().unwrap().remove("seconds");
+        v
+    };
+    run_cli(&args("a.json")).unwrap();
+    run_cli(&args("b.json")).unwrap();
+    let (a, b) = (read("a.json"), read("b.json"));
+    assert_eq!(a, b);
+    assert_eq!(a["mesh"]["path"], p.display().to_string());
+    assert_eq!(a["mesh"]["motion"], serde_json::json!(["dolly", "wobble"]));
+    assert_eq!(a["mesh"]["lens_radius"], 0.05);
 }
