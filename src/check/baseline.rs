@@ -341,6 +341,7 @@ mod tests {
             solver_boxes: 0,
             seconds: 0.0,
             baseline: None,
+            samples: None,
         };
         let mut f = BaselineFile::default();
         f.record(&cfg, &rep(1)).unwrap();
