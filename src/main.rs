@@ -121,6 +121,8 @@ enum Cmd {
         /// the file is kept.
         #[arg(long)]
         write_baseline: bool,
+        #[command(flatten)]
+        sample: cullproof::args::SampleFlags,
     },
     /// Randomized counterexample search for one method: random cases of every regime
     /// (or one), each judged like `check`; every violation is shrunk (freeze the motion,
@@ -167,6 +169,8 @@ enum Cmd {
         /// Worker threads (default: all cores; at most 4 per core). Results do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,
+        #[command(flatten)]
+        sample: cullproof::args::SampleFlags,
     },
     /// Re-judge case files (default: every file under corpus/cases). The stored witness
     /// is re-decided exactly and the method judged afresh; exit 1 when a file no longer
@@ -178,6 +182,10 @@ enum Cmd {
         /// Write the JSON report to this file ("-" for standard output).
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Flags given here judge the files under another sample set, snap or viewport
+        /// than the one each file records.
+        #[command(flatten)]
+        sample: cullproof::args::SampleFlags,
     },
     /// Explain one case file: what the method answered, the exact extents of the
     /// covered set over the tile, the witness decided exactly (and by Embree); with
@@ -188,6 +196,10 @@ enum Cmd {
         /// Write the picture here (refuses to overwrite an existing file).
         #[arg(long)]
         svg: Option<PathBuf>,
+        /// Flags given here explain the case under another sample set, snap or viewport
+        /// than the one the file records.
+        #[command(flatten)]
+        sample: cullproof::args::SampleFlags,
     },
     /// Sample test efficiency (STE) of every culling method on a scene.
     ///
@@ -354,10 +366,12 @@ fn run() -> Result<()> {
             limit_every,
             baseline,
             write_baseline,
+            sample,
         } => {
             use cullproof::args;
             let methods = args::methods("--method", &method, false)?;
             let mut cfg = cullproof::check::CheckConfig::default_with(methods);
+            sample.parse()?.apply(&mut cfg);
             cfg.regimes = parse_regimes(&regime)?;
             if let Some(t) = tile {
                 args::tile("--tile", t)?;
@@ -408,10 +422,11 @@ fn run() -> Result<()> {
                 std::process::exit(1);
             }
         }
-        Cmd::Search { method, time, max, min_margin, seed, regime, tile, out, dry_run, json, jobs } => {
+        Cmd::Search { method, time, max, min_margin, seed, regime, tile, out, dry_run, json, jobs, sample } => {
             use cullproof::args;
             let m = args::method("--method", &method, true)?;
             let mut cfg = cullproof::check::CheckConfig::default_with(vec![m]);
+            sample.parse()?.apply(&mut cfg);
             cfg.regimes = parse_regimes(&regime)?;
             if let Some(t) = tile {
                 args::tile("--tile", t)?;
@@ -459,13 +474,14 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
         }
-        Cmd::Replay { paths, json } => {
+        Cmd::Replay { paths, json, sample } => {
+            let over = sample.parse()?;
             let paths = if paths.is_empty() { vec![PathBuf::from("corpus/cases")] } else { paths };
             let files = cullproof::corpus::case_files(&paths)?;
             let cfg = cullproof::check::CheckConfig::default_with(cullproof::bounds::registry());
             let mut out = Vec::new();
             for f in &files {
-                out.push(cullproof::corpus::replay(f, &cfg)?);
+                out.push(cullproof::corpus::replay_with(f, &cfg, &over)?);
             }
             let bad = out.iter().filter(|r| !r.ok).count();
             for r in &out {
@@ -492,8 +508,12 @@ fn run() -> Result<()> {
                 std::process::exit(1);
             }
         }
-        Cmd::Explain { case, svg } => {
-            let cf = cullproof::corpus::CaseFile::load(&case)?;
+        Cmd::Explain { case, svg, sample } => {
+            let mut cf = cullproof::corpus::CaseFile::load(&case)?;
+            let over = sample.parse()?;
+            cf.samples = over.samples.unwrap_or(cf.samples);
+            cf.snap = over.snap.or(cf.snap);
+            cf.viewport = over.viewport.or(cf.viewport);
             print!("{}", cullproof::corpus::describe(&cf));
             if let Some(out) = &svg {
                 let m = cullproof::bounds::by_id(&cf.method).expect("checked at load");

@@ -273,6 +273,16 @@ pub fn place_case(seed: u64, i: u64, regime: Regime, vp: Viewport) -> Option<(Ca
     None
 }
 
+/// True when the case and tile keep to the run's viewport (always without one): the
+/// footprint inside the guard band, the tile inside the viewport. The shrinker and the
+/// search keep only such cases.
+pub fn placed_in(cfg: &CheckConfig, case: &Case, tile: &Tile) -> bool {
+    let Some(vp) = cfg.viewport else { return true };
+    let g = vp.guard_rect();
+    vp.holds_tile(tile)
+        && footprint(&case.triangle).is_some_and(|f| f[0] >= g[0] && f[1] <= g[1] && f[2] >= g[2] && f[3] <= g[3])
+}
+
 /// The tile moved (by whole tiles) into the viewport: the nearest tile of the same grid
 /// inside it (the viewport is at least one tile wide, else the tile is clamped to it).
 pub fn tile_in_viewport(t: Tile, vp: Viewport) -> Tile {
@@ -307,6 +317,18 @@ impl SetNote {
     pub fn of(cfg: &CheckConfig, outside_viewport: u64) -> Option<SetNote> {
         let default = cfg.sample_set.is_any() && cfg.snap.is_none() && cfg.viewport.is_none();
         (!default).then_some(SetNote { set: cfg.sample_set, snap: cfg.snap, viewport: cfg.viewport, outside_viewport })
+    }
+    /// The short form the baseline's settings carry: `centres`, `msaa4 snap 8
+    /// viewport 1920x1080+64`.
+    pub fn key(&self) -> String {
+        let mut s = self.set.to_string();
+        if let Some(n) = self.snap {
+            s += &format!(" snap {n}");
+        }
+        if let Some(v) = self.viewport {
+            s += &format!(" viewport {v}");
+        }
+        s
     }
     /// One line for the table's header.
     pub fn line(&self) -> String {

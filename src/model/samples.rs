@@ -172,6 +172,11 @@ impl SampleSet {
     }
 }
 
+/// True for [`SampleSet::Any`] (for serde's `skip_serializing_if`).
+pub fn is_any(s: &SampleSet) -> bool {
+    s.is_any()
+}
+
 impl fmt::Display for SampleSet {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
