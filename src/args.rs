@@ -181,7 +181,7 @@ pub fn method(flag: &str, s: &str, broken: bool) -> Result<&'static dyn Method> 
     }
 }
 
-/// The flags that declare the samples a bound promises to keep (`docs/model.md`, §8).
+/// The flags that declare the samples a bound promises to keep (`docs/model.md`, §7).
 /// `check` and `search` take the defaults for flags not given; `replay` and `explain`
 /// take what the case file records, and a flag given overrides it.
 #[derive(Clone, Debug, Default, clap::Args)]

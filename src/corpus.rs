@@ -9,7 +9,7 @@
 //! judged afresh on the case.
 //!
 //! A case file found under a declared sample set, vertex snapping or viewport
-//! (`docs/model.md`, §8) records them (`samples`, `snap`, `viewport`); a file without
+//! (`docs/model.md`, §7) records them (`samples`, `snap`, `viewport`); a file without
 //! those fields was found under the defaults (any position, no snap, no viewport).
 //! Replay and explain judge a file under what it records.
 
@@ -302,10 +302,8 @@ pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared)
     let m = by_id(&cf.method).expect("checked at load");
     let mut cfg = CheckConfig { side_stall: 0, ..cf.settings(cfg) };
     over.apply(&mut cfg);
-    let witness = cf
-        .witness
-        .as_ref()
-        .map(|w| witness_holds_in(m, &cf.case, &cf.tile, w.sample, cfg.sample_set, cfg.snap));
+    let witness =
+        cf.witness.as_ref().map(|w| witness_holds_in(m, &cf.case, &cf.tile, w.sample, cfg.sample_set, cfg.snap));
     let (js, _) = judge(&cfg, &[crate::bounds::shared(m)], &cf.case, &cf.tile, cf.provenance.case_index);
     let j = &js[0];
     let judged = judged_word(j);
@@ -756,7 +754,8 @@ mod tests {
 
     /// A conservative bbox case file built from generated case `index`.
     fn fixture(index: u64) -> CaseFile {
-        let (regime, case, tile) = crate::check::make_case(&CheckConfig::default_with(crate::bounds::registry()), index);
+        let (regime, case, tile) =
+            crate::check::make_case(&CheckConfig::default_with(crate::bounds::registry()), index);
         CaseFile {
             format: FORMAT.into(),
             method: "bbox".into(),

@@ -76,7 +76,7 @@ impl Gate {
     }
     /// The pixel positions your bound promises to keep (default [`SampleSet::Any`]:
     /// every position, the stochastic case). A violation is then a covered sample of
-    /// this set that the bound culls (`docs/model.md`, §8).
+    /// this set that the bound culls (`docs/model.md`, §7).
     pub fn samples(mut self, set: SampleSet) -> Self {
         self.cfg.sample_set = set;
         self

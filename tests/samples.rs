@@ -1,4 +1,4 @@
-//! The samples a bound promises to keep (`docs/model.md`, §8), through the public API:
+//! The samples a bound promises to keep (`docs/model.md`, §7), through the public API:
 //!
 //! - a user's culler that is exact at the points of a sample set (it culls a tile when
 //!   no point of the set in it is covered by the static triangle) is proven
@@ -48,7 +48,8 @@ struct Prep {
 /// magnitude: "no" only when some value is certainly of the wrong sign for both
 /// windings.
 fn maybe_covered(t: &Triangle, x: f64, y: f64) -> bool {
-    let p: Vec<[f64; 3]> = t.q.iter().map(|v| [v[0] as f64 - x * v[3] as f64, v[1] as f64 - y * v[3] as f64, v[3] as f64]).collect();
+    let p: Vec<[f64; 3]> =
+        t.q.iter().map(|v| [v[0] as f64 - x * v[3] as f64, v[1] as f64 - y * v[3] as f64, v[3] as f64]).collect();
     let mut e = [(0.0, 0.0); 3];
     for (k, (i, j)) in [(1, 2), (2, 0), (0, 1)].into_iter().enumerate() {
         let (a, b) = (p[i][0] * p[j][1], p[i][1] * p[j][0]);
@@ -219,7 +220,10 @@ fn case_files_record_the_set_and_old_files_read_as_the_defaults() {
         // Written back, an old file has the same fields (none added for the defaults).
         let old: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(f).unwrap()).unwrap();
         let new = serde_json::to_value(&cf).unwrap();
-        assert_eq!(old.as_object().unwrap().keys().collect::<Vec<_>>(), new.as_object().unwrap().keys().collect::<Vec<_>>());
+        assert_eq!(
+            old.as_object().unwrap().keys().collect::<Vec<_>>(),
+            new.as_object().unwrap().keys().collect::<Vec<_>>()
+        );
     }
     let mut cf = CaseFile::load(&files[0]).unwrap();
     cf.samples = SampleSet::Msaa(8);

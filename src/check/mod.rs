@@ -36,13 +36,13 @@ use crate::gen::{physical_case, rng_for, samples_for, tile_sample, Regime};
 use crate::model::{Case, Sample, SampleSet, Snap, Tile, Viewport};
 use indicatif::{ProgressBar, ProgressStyle};
 use judge::TileJudge;
-use samples::SetJudge;
 use oracles::extents::ExtentsConfig;
 use oracles::{classify, Coverage};
 use rand::seq::SliceRandom;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use samples::SetJudge;
 use serde::Serialize;
 
 /// Settings of a run.
@@ -297,6 +297,10 @@ pub fn judge_limit_tiles(
     else {
         return (None, 0);
     };
+    // Under a viewport only tiles inside it, of a case inside its guard band.
+    if !(samples::placed_in(cfg, &lc, &kept) && samples::placed_in(cfg, &lc, &culled)) {
+        return (None, 0);
+    }
     let Ok((_, tri)) = samples::judged_triangles(cfg.snap, &lc) else {
         return (None, 0);
     };

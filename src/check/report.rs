@@ -123,7 +123,7 @@ pub struct CheckReport {
     /// Whether a baseline for these settings was found and compared.
     pub baseline: Option<String>,
     /// The sample set, snapping and viewport when any differs from the default
-    /// (`docs/model.md`, §8), with the cases the viewport could not place.
+    /// (`docs/model.md`, §7), with the cases the viewport could not place.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub samples: Option<super::samples::SetNote>,
 }

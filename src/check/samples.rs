@@ -1,5 +1,5 @@
 //! The judge under a declared sample set, vertex snapping and viewport
-//! (`docs/model.md`, §8).
+//! (`docs/model.md`, §7).
 //!
 //! [`SetJudge`] wraps the tile judge ([`TileJudge`]). Under [`SampleSet::Any`] it is the
 //! tile judge itself, unchanged. Under a smaller set:
@@ -52,9 +52,7 @@ impl<'a> SetJudge<'a> {
 
     /// Boxes the solvers examined.
     pub fn boxes(&self) -> u64 {
-        self.tj.solver.boxes
-            + self.extra_boxes
-            + self.points.iter().flatten().map(|p| p.solver.boxes).sum::<u64>()
+        self.tj.solver.boxes + self.extra_boxes + self.points.iter().flatten().map(|p| p.solver.boxes).sum::<u64>()
     }
 
     /// Judge one tile answer on the set's samples.
@@ -265,7 +263,8 @@ pub fn place_case(seed: u64, i: u64, regime: Regime, vp: Viewport) -> Option<(Ca
         let dx = prng.gen_range(lo_x..=hi_x) as f32;
         let dy = prng.gen_range(lo_y..=hi_y) as f32;
         let moved = shifted(&case, dx, dy);
-        let inside = footprint(&moved.triangle).is_some_and(|m| m[0] >= g[0] && m[1] <= g[1] && m[2] >= g[2] && m[3] <= g[3]);
+        let inside =
+            footprint(&moved.triangle).is_some_and(|m| m[0] >= g[0] && m[1] <= g[1] && m[2] >= g[2] && m[3] <= g[3]);
         if inside && moved.validate().is_ok() {
             return Some((moved, rng));
         }

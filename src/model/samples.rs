@@ -1,4 +1,4 @@
-//! The samples a bound promises to keep (see `docs/model.md`, §8): the sample set, the
+//! The samples a bound promises to keep (see `docs/model.md`, §7): the sample set, the
 //! optional vertex snapping and the viewport.
 //!
 //! - [`SampleSet`]: which pixel positions `(x, y)` a sample may have. [`SampleSet::Any`]
