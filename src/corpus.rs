@@ -276,6 +276,9 @@ pub struct Replay {
     pub judged: String,
     pub margin: Option<f64>,
     pub ok: bool,
+    /// The sample set, snap and viewport judged under, when not the defaults.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub samples: Option<String>,
 }
 
 fn judged_word(j: &Judgement) -> String {
@@ -325,6 +328,7 @@ pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared)
         judged,
         margin: j.violation.as_ref().map(|w| w.margin),
         ok,
+        samples: crate::check::samples::SetNote::of(&cfg, 0).map(|n| n.key()),
     })
 }
 

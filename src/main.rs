@@ -491,13 +491,14 @@ fn run() -> Result<()> {
                     None => "no witness".into(),
                 };
                 println!(
-                    "{} {:<22} expected {:<12} judged {:<13} {}  {}",
+                    "{} {:<22} expected {:<12} judged {:<13} {}  {}{}",
                     if r.ok { "ok  " } else { "FAIL" },
                     r.method,
                     format!("{:?}", r.expected).to_lowercase(),
                     r.judged,
                     w,
-                    r.path
+                    r.path,
+                    r.samples.as_ref().map_or(String::new(), |s| format!("  (samples {s})"))
                 );
             }
             println!("{} file(s), {} as expected, {} not", out.len(), out.len() - bad, bad);
@@ -525,7 +526,11 @@ fn run() -> Result<()> {
                     Some(w) => format!("{} culls the witness by {:.3e}", w.bound, w.margin),
                     None => "no witness".into(),
                 };
-                let text = cullproof::explain::svg(&cf.case, &cf.tile, m, w, &caption)?;
+                // Under snapping the picture is of the snapped triangle the method saw.
+                let (seen, _) = cullproof::check::samples::judged_triangles(cf.snap, &cf.case)
+                    .map_err(|e| anyhow::anyhow!("{}: {e}", case.display()))?;
+                let shown = if cf.snap.is_some() { cullproof::Case { triangle: seen, lens: None } } else { cf.case };
+                let text = cullproof::explain::svg(&shown, &cf.tile, m, w, &caption)?;
                 let mut f = std::fs::OpenOptions::new().write(true).create_new(true).open(out).with_context(|| {
                     format!("--svg {}: cannot create (an existing file is never overwritten)", out.display())
                 })?;
