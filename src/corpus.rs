@@ -535,9 +535,7 @@ pub fn search(
         let results: Vec<(u64, Regime, Case, Tile, Judgement)> = ids
             .par_iter()
             .filter_map(|&i| {
-                let Some((regime, case, tile)) = try_make_case(cfg, i) else {
-                    return None;
-                };
+                let (regime, case, tile) = try_make_case(cfg, i)?;
                 let (js, _) = judge(cfg, std::slice::from_ref(&m), &case, &tile, i);
                 let j = js.into_iter().next().unwrap();
                 // Also the tiles at the method's own tile-reject limit (the witness

@@ -1,7 +1,7 @@
 //! The judge under a declared sample set, vertex snapping and viewport
 //! (`docs/model.md`, §7).
 //!
-//! [`SetJudge`] wraps the tile judge ([`TileJudge`]). Under [`SampleSet::Any`] it is the
+//! `SetJudge` wraps the tile judge (`TileJudge`). Under [`SampleSet::Any`] it is the
 //! tile judge itself, unchanged. Under a smaller set:
 //! - a continuous proof stands (the set is a subset of the tile);
 //! - a continuous violation stands when its witness moves to a nearby point of the set
@@ -207,7 +207,7 @@ const PLACE_STREAM: u64 = 0x91ac_e0f5_c4ee_7a11;
 pub fn footprint(t: &Triangle) -> Option<[f64; 4]> {
     let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
     for (p, c) in t.q.iter().zip(t.c0).chain(t.r.iter().zip(t.c1)) {
-        if !(p[3] > 0.0) {
+        if p[3].is_nan() || p[3] <= 0.0 {
             return None;
         }
         for (su, sv) in [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)] {

@@ -282,7 +282,8 @@ pub fn snap_coord(c: f32, w: f32, bits: u32) -> Option<f64> {
     let (c, w) = (c as f64 * scale, w as f64); // exact: a power of two
     let limit = (52.0f64 - 24.0).exp2();
     let mut m = (c / w).round();
-    if !(m.abs() < limit) {
+    let in_range = |m: f64| m.abs() < limit; // false for NaN too
+    if !in_range(m) {
         return None;
     }
     // Make m the nearest integer to c / w exactly: compare c with (m +- 1/2) w, both
@@ -298,7 +299,7 @@ pub fn snap_coord(c: f32, w: f32, bits: u32) -> Option<f64> {
         } else {
             break;
         }
-        if !(m.abs() < limit) {
+        if !in_range(m) {
             return None;
         }
     }
