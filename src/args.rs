@@ -13,9 +13,12 @@
 //! - [`shard`]: `K/N` with 0 <= K < N.
 //! - [`regime`]: a regime name or `all`.
 //! - [`margin`]: a finite, non-negative margin.
+//! - [`SampleFlags`]: `--samples`, `--snap`, `--viewport` (the samples a bound promises
+//!   to keep), shared by `check`, `search`, `replay` and `explain`.
 
 use crate::bounds::{self, Method};
 use crate::gen::Regime;
+use crate::model::{SampleSet, Snap, Viewport};
 use anyhow::{bail, ensure, Result};
 
 /// The largest tile size (pixels) any command takes.
@@ -178,9 +181,96 @@ pub fn method(flag: &str, s: &str, broken: bool) -> Result<&'static dyn Method> 
     }
 }
 
+/// The flags that declare the samples a bound promises to keep (`docs/model.md`, §7).
+/// `check` and `search` take the defaults for flags not given; `replay` and `explain`
+/// take what the case file records, and a flag given overrides it.
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct SampleFlags {
+    /// The pixel positions the bound promises to keep: any (every position, the
+    /// default), centres (pixel centres), msaa2 / msaa4 / msaa8 / msaa16 (the standard
+    /// MSAA patterns) or gridN (the fixed-point grid of 2^-N px, N <= 16).
+    #[arg(long = "samples", value_name = "SET")]
+    pub samples: Option<String>,
+    /// Snap each vertex's pixel position at each motion key to the grid of 2^-BITS px
+    /// (round to nearest, ties to even) before coverage is judged; 0 to 16.
+    #[arg(long = "snap", value_name = "BITS")]
+    pub snap: Option<String>,
+    /// Place the cases in this viewport, WIDTHxHEIGHT[+GUARD] pixels (e.g.
+    /// 1920x1080+64): footprints inside the guard band, tiles inside the viewport.
+    #[arg(long = "viewport", value_name = "WxH[+G]")]
+    pub viewport: Option<String>,
+}
+
+/// What [`SampleFlags`] declare: each None when its flag was not given.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Declared {
+    pub samples: Option<SampleSet>,
+    pub snap: Option<Snap>,
+    pub viewport: Option<Viewport>,
+}
+
+impl SampleFlags {
+    /// Parse the flags given; a bad value is an error naming the flag and the value.
+    pub fn parse(&self) -> Result<Declared> {
+        Ok(Declared {
+            samples: self.samples.as_deref().map(sample_set).transpose()?,
+            snap: self.snap.as_deref().map(snap).transpose()?,
+            viewport: self.viewport.as_deref().map(viewport).transpose()?,
+        })
+    }
+}
+
+impl Declared {
+    /// Put the declared values into a run's settings (flags not given leave them).
+    pub fn apply(&self, cfg: &mut crate::check::CheckConfig) {
+        if let Some(s) = self.samples {
+            cfg.sample_set = s;
+        }
+        if self.snap.is_some() {
+            cfg.snap = self.snap;
+        }
+        if self.viewport.is_some() {
+            cfg.viewport = self.viewport;
+        }
+    }
+}
+
+/// Parse `--samples`.
+pub fn sample_set(s: &str) -> Result<SampleSet> {
+    s.parse().map_err(|e| anyhow::anyhow!("--samples {e}"))
+}
+
+/// Parse `--snap` (bits below the pixel, 0 to 16).
+pub fn snap(s: &str) -> Result<Snap> {
+    s.parse().map_err(|e| anyhow::anyhow!("--snap {e}"))
+}
+
+/// Parse `--viewport` (`WIDTHxHEIGHT[+GUARD]`).
+pub fn viewport(s: &str) -> Result<Viewport> {
+    s.parse().map_err(|e| anyhow::anyhow!("--viewport {e}"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sample_flags_parse_or_name_the_flag() {
+        let f = SampleFlags { samples: Some("msaa4".into()), snap: Some("8".into()), viewport: Some("64x32+8".into()) };
+        let d = f.parse().unwrap();
+        assert_eq!(d.samples, Some(SampleSet::Msaa(4)));
+        assert_eq!(d.snap, Some(Snap { bits: 8 }));
+        assert_eq!(d.viewport, Some(Viewport { width: 64, height: 32, guard: 8 }));
+        assert_eq!(SampleFlags::default().parse().unwrap(), Declared::default());
+        for (f, want) in [
+            (SampleFlags { samples: Some("msaa5".into()), ..Default::default() }, "--samples `msaa5`"),
+            (SampleFlags { snap: Some("99".into()), ..Default::default() }, "--snap `99`"),
+            (SampleFlags { viewport: Some("12".into()), ..Default::default() }, "--viewport `12`"),
+        ] {
+            let e = f.parse().unwrap_err().to_string();
+            assert!(e.starts_with(want), "{e}");
+        }
+    }
 
     #[test]
     fn method_lists() {

@@ -7,11 +7,16 @@
 //! verdict and where it came from. [`replay`] re-judges it: the stored witness is
 //! re-decided exactly (it must still be interior and still culled), and the method is
 //! judged afresh on the case.
+//!
+//! A case file found under a declared sample set, vertex snapping or viewport
+//! (`docs/model.md`, §7) records them (`samples`, `snap`, `viewport`); a file without
+//! those fields was found under the defaults (any position, no snap, no viewport).
+//! Replay and explain judge a file under what it records.
 
 use crate::bounds::{by_id, Method, MethodRef, TileResult};
-use crate::check::{culled_by, judge, make_case, CheckConfig, Judgement};
+use crate::check::{culled_by, judge, try_make_case, CheckConfig, Judgement};
 use crate::gen::Regime;
-use crate::model::{Case, Tile};
+use crate::model::{Case, SampleSet, Snap, Tile, Viewport};
 use anyhow::{anyhow, bail, Context, Result};
 use oracles::{classify, Coverage};
 use serde::{Deserialize, Serialize};
@@ -100,6 +105,15 @@ pub struct CaseFile {
     /// Free text: what the case shows.
     #[serde(default)]
     pub note: String,
+    /// The sample set the method promises to keep (absent: any position).
+    #[serde(default, skip_serializing_if = "crate::model::samples::is_any")]
+    pub samples: SampleSet,
+    /// Vertex snapping the case was judged under (absent: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snap: Option<Snap>,
+    /// The viewport the case was placed in (absent: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viewport: Option<Viewport>,
 }
 
 /// The method a case file names: a registered or plugged id, or a deliberately broken
@@ -139,13 +153,37 @@ impl CaseFile {
             if let Some(k) = w.sample.iter().position(|v| !v.is_finite()) {
                 bail!("{}: field `witness.sample[{k}]` = {} is not finite", path.display(), w.sample[k]);
             }
+            if !cf.samples.contains(w.sample[0], w.sample[1]) {
+                bail!(
+                    "{}: field `witness.sample` = ({}, {}, ...): (x, y) is not a point of the sample set `{}`",
+                    path.display(),
+                    w.sample[0],
+                    w.sample[1],
+                    cf.samples
+                );
+            }
+        }
+        if let Some(v) = cf.viewport {
+            if !v.holds_tile(&cf.tile) {
+                bail!("{}: field `tile` = {:?} does not lie in the viewport {v}", path.display(), cf.tile);
+            }
         }
         Ok(cf)
     }
 
+    /// The run settings `cfg` with this file's sample set, snap and viewport.
+    pub fn settings(&self, cfg: &CheckConfig) -> CheckConfig {
+        CheckConfig { sample_set: self.samples, snap: self.snap, viewport: self.viewport, ..cfg.clone() }
+    }
+
     /// A short content hash (16 hex digits, FNV-1a over the method, case and tile).
+    /// Under a sample set, snap or viewport they are hashed too (a file of the defaults
+    /// keeps the hash it always had).
     pub fn short_hash(&self) -> String {
-        let key = serde_json::to_string(&(&self.method, &self.case, &self.tile)).unwrap_or_default();
+        let mut key = serde_json::to_string(&(&self.method, &self.case, &self.tile)).unwrap_or_default();
+        if !self.samples.is_any() || self.snap.is_some() || self.viewport.is_some() {
+            key += &serde_json::to_string(&(&self.samples, &self.snap, &self.viewport)).unwrap_or_default();
+        }
         let h = key.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ b as u64).wrapping_mul(0x100_0000_01b3));
         format!("{h:016x}")
     }
@@ -177,7 +215,23 @@ pub fn witness_holds(
     tile: &Tile,
     s: [f64; 5],
 ) -> std::result::Result<(String, f64), String> {
-    let tri = case.triangle.to_oracle();
+    witness_holds_in(m, case, tile, s, SampleSet::Any, None)
+}
+
+/// [`witness_holds`] under a sample set (the witness's (x, y) must be a point of it) and
+/// vertex snapping (the method sees the snapped triangle, the oracle judges it exactly).
+pub fn witness_holds_in(
+    m: &dyn Method,
+    case: &Case,
+    tile: &Tile,
+    s: [f64; 5],
+    set: SampleSet,
+    snap: Option<Snap>,
+) -> std::result::Result<(String, f64), String> {
+    let (seen, tri) = crate::check::samples::judged_triangles(snap, case)?;
+    if !set.contains(s[0], s[1]) {
+        return Err(format!("the witness's (x, y) = ({}, {}) is not a point of the sample set `{set}`", s[0], s[1]));
+    }
     let inside = |v: f64, lo: f32, hi: f32| lo as f64 <= v && v <= hi as f64;
     if !(inside(s[0], tile.x0, tile.x1) && inside(s[1], tile.y0, tile.y1)) {
         return Err("the witness is not in the tile".into());
@@ -192,7 +246,7 @@ pub fn witness_holds(
         Coverage::Interior => {}
         c => return Err(format!("the witness is not interior ({c:?})")),
     }
-    match m.setup(&case.triangle).tile(tile) {
+    match m.setup(&seen).tile(tile) {
         TileResult::Empty => Ok(("tile culled".into(), f64::INFINITY)),
         TileResult::Bounds(b) => {
             let mut worst = culled_by(&b, s);
@@ -229,6 +283,9 @@ pub struct Replay {
     pub judged: String,
     pub margin: Option<f64>,
     pub ok: bool,
+    /// The sample set, snap and viewport judged under, when not the defaults.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub samples: Option<String>,
 }
 
 fn judged_word(j: &Judgement) -> String {
@@ -243,11 +300,20 @@ fn judged_word(j: &Judgement) -> String {
 }
 
 /// Re-judge one case file, with the whole side budget (one case: no stall cut-off).
+/// The file's sample set, snap and viewport are used.
 pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
+    replay_with(path, cfg, &crate::args::Declared::default())
+}
+
+/// [`replay`], with the sample set, snap or viewport given in `over` in place of the
+/// file's (to ask whether a case found under one set holds under another).
+pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared) -> Result<Replay> {
     let cf = CaseFile::load(path)?;
     let m = method_of(&cf.method).expect("checked at load");
-    let witness = cf.witness.as_ref().map(|w| witness_holds(m, &cf.case, &cf.tile, w.sample));
-    let cfg = CheckConfig { side_stall: 0, ..cfg.clone() };
+    let mut cfg = CheckConfig { side_stall: 0, ..cf.settings(cfg) };
+    over.apply(&mut cfg);
+    let witness =
+        cf.witness.as_ref().map(|w| witness_holds_in(m, &cf.case, &cf.tile, w.sample, cfg.sample_set, cfg.snap));
     let (js, _) = judge(&cfg, &[crate::bounds::shared(m)], &cf.case, &cf.tile, cf.provenance.case_index);
     let j = &js[0];
     let judged = judged_word(j);
@@ -269,6 +335,7 @@ pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
         judged,
         margin: j.violation.as_ref().map(|w| w.margin),
         ok,
+        samples: crate::check::samples::SetNote::of(&cfg, 0).map(|n| n.key()),
     })
 }
 
@@ -410,7 +477,7 @@ pub fn shrink(
     'outer: for _ in 0..64 {
         let w = j.violation.as_ref().expect("a violation").sample;
         for (name, c, t) in steps(&case, &tile, w) {
-            if c.validate().is_err() {
+            if c.validate().is_err() || !crate::check::samples::placed_in(cfg, &c, &t) {
                 continue;
             }
             let (js, _) = judge(cfg, std::slice::from_ref(m), &c, &t, index);
@@ -474,8 +541,8 @@ pub fn search(
         next += batch;
         let results: Vec<(u64, Regime, Case, Tile, Judgement)> = ids
             .par_iter()
-            .map(|&i| {
-                let (regime, case, tile) = make_case(cfg, i);
+            .filter_map(|&i| {
+                let (regime, case, tile) = try_make_case(cfg, i)?;
                 let (js, _) = judge(cfg, std::slice::from_ref(&m), &case, &tile, i);
                 let j = js.into_iter().next().unwrap();
                 // Also the tiles at the method's own tile-reject limit (the witness
@@ -484,11 +551,13 @@ pub fn search(
                     if let (Some(l), _) = crate::check::judge_limit_tiles(cfg, m.as_ref(), &case, i, 0) {
                         if l.violation.as_ref().is_some_and(|v| v.margin >= min_margin) {
                             let w = l.violation.as_ref().unwrap();
-                            return (i, regime, w.case, w.tile, l);
+                            if crate::check::samples::placed_in(cfg, &w.case, &w.tile) {
+                                return Some((i, regime, w.case, w.tile, l));
+                            }
                         }
                     }
                 }
-                (i, regime, case, tile, j)
+                Some((i, regime, case, tile, j))
             })
             .collect();
         pb.set_message(format!("{} cases, {} found", next, found.len()));
@@ -525,6 +594,9 @@ pub fn search(
                     shrink_steps: steps.clone(),
                 },
                 note: String::new(),
+                samples: cfg.sample_set,
+                snap: cfg.snap,
+                viewport: cfg.viewport,
             };
             let file = match out {
                 Some(dir) => cf.write_new(dir)?.map(|p| p.display().to_string()),
@@ -558,7 +630,10 @@ pub fn describe(cf: &CaseFile) -> String {
     use oracles::extents::{ExtentsConfig, Occupancy, TileSolver};
     let m = method_of(&cf.method).expect("checked at load");
     let info = m.info();
-    let tri = cf.case.triangle.to_oracle();
+    let (seen, tri) = match crate::check::samples::judged_triangles(cf.snap, &cf.case) {
+        Ok(x) => x,
+        Err(e) => return format!("{}: the case cannot be snapped: {e}\n", info.id),
+    };
     let mut s =
         format!("{} ({}{})\n", info.id, info.source, if info.reconstruction { "; a reconstruction" } else { "" });
     s += &format!(
@@ -580,7 +655,14 @@ pub fn describe(cf: &CaseFile) -> String {
     }
     let t = &cf.tile;
     s += &format!("tile: [{}, {}] x [{}, {}]\n", t.x0, t.x1, t.y0, t.y1);
-    let prep = m.setup(&cf.case.triangle);
+    if !cf.samples.is_any() || cf.snap.is_some() || cf.viewport.is_some() {
+        let cfg = cf.settings(&CheckConfig::default_for(Vec::new()));
+        s += &format!("{}\n", crate::check::samples::SetNote::of(&cfg, 0).map(|n| n.line()).unwrap_or_default());
+        if cf.snap.is_some() {
+            s += "the method sees the snapped triangle (rounded to f32); the exact oracle judges it unrounded\n";
+        }
+    }
+    let prep = m.setup(&seen);
     if let Some(why) = prep.disabled() {
         s += &format!("the method is disabled for this triangle: {why}\n");
     }
@@ -633,11 +715,11 @@ pub fn describe(cf: &CaseFile) -> String {
             let p = w.sample;
             s += &format!("witness (x, y, u, v, t) = ({}, {}, {}, {}, {})\n", p[0], p[1], p[2], p[3], p[4]);
             s += &format!("  exact coverage: {:?}\n", classify(&tri, p));
-            match witness_holds(m, &cf.case, &cf.tile, p) {
+            match witness_holds_in(m, &cf.case, &cf.tile, p, cf.samples, cf.snap) {
                 Ok((b, d)) => s += &format!("  culled by {b}, {d:.6e} beyond it: a VIOLATION\n"),
                 Err(e) => s += &format!("  not a violation: {e}\n"),
             }
-            if let Some(l) = crate::agree::lens_tri(&cf.case) {
+            if let Some(l) = crate::agree::lens_tri(&cf.case).filter(|_| cf.snap.is_none()) {
                 if let Ok(o) = oracles::embree::EmbreeOracle::new(&l) {
                     s += &format!("  Embree (f32, second opinion): {}\n", if o.hit(p) { "hit" } else { "miss" });
                 }
@@ -681,7 +763,8 @@ mod tests {
 
     /// A conservative bbox case file built from generated case `index`.
     fn fixture(index: u64) -> CaseFile {
-        let (regime, case, tile) = make_case(&CheckConfig::default_with(crate::bounds::registry()), index);
+        let (regime, case, tile) =
+            crate::check::make_case(&CheckConfig::default_with(crate::bounds::registry()), index);
         CaseFile {
             format: FORMAT.into(),
             method: "bbox".into(),
@@ -698,6 +781,9 @@ mod tests {
                 shrink_steps: vec![],
             },
             note: String::new(),
+            samples: SampleSet::Any,
+            snap: None,
+            viewport: None,
         }
     }
 

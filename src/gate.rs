@@ -17,7 +17,7 @@ use crate::bounds::{Method, MethodRef};
 use crate::check::baseline::BaselineFile;
 use crate::check::{self, CheckConfig, CheckReport, Expectations};
 use crate::gen::Regime;
-use crate::model::{Case, Sample, Tile};
+use crate::model::{Case, Sample, SampleSet, Snap, Tile, Viewport};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Arc;
@@ -72,6 +72,26 @@ impl Gate {
     /// A fixed tile size in pixels (default: drawn from 1, 2, 4, 8, 16 per case).
     pub fn tile(mut self, px: f32) -> Self {
         self.cfg.tile = Some(px);
+        self
+    }
+    /// The pixel positions your bound promises to keep (default [`SampleSet::Any`]:
+    /// every position, the stochastic case). A violation is then a covered sample of
+    /// this set that the bound culls (`docs/model.md`, §7).
+    pub fn samples(mut self, set: SampleSet) -> Self {
+        self.cfg.sample_set = set;
+        self
+    }
+    /// Snap every vertex's pixel position at each motion key to the grid of 2^-`bits`
+    /// pixels before coverage is judged (at most [`crate::model::samples::MAX_BITS`];
+    /// larger values are clamped to it).
+    pub fn snap(mut self, bits: u32) -> Self {
+        self.cfg.snap = Some(Snap { bits: bits.min(crate::model::samples::MAX_BITS) });
+        self
+    }
+    /// Place every case in this viewport (footprint inside its guard band, tiles inside
+    /// the viewport).
+    pub fn viewport(mut self, v: Viewport) -> Self {
+        self.cfg.viewport = Some(v);
         self
     }
     /// Boxes per interval side and per constraint search (larger: fewer unproven cases,
@@ -140,6 +160,11 @@ pub enum Unproven {
     ConstraintBudget,
     /// A per-sample constraint search left boxes at its smallest size.
     ConstraintResolution,
+    /// Under a sample set: a violation found off the set, none found on it nearby, and
+    /// too many set points in the tile to judge one by one.
+    OffSet,
+    /// Under snapping: a vertex that cannot be snapped exactly (nothing was judged).
+    SnapRange,
     /// A reason this version does not name.
     Other(String),
 }
@@ -152,6 +177,8 @@ impl Unproven {
             "depth-unconfirmed" => Unproven::DepthUnconfirmed,
             "constraint-budget" => Unproven::ConstraintBudget,
             "constraint-resolution" => Unproven::ConstraintResolution,
+            "off-set" => Unproven::OffSet,
+            "snap-range" => Unproven::SnapRange,
             o => Unproven::Other(o.to_string()),
         }
     }

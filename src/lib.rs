@@ -73,7 +73,7 @@ pub use bounds::{
 pub use check::Expectations;
 pub use gate::{Bound, Counterexample, Gate, GateReport, MethodReport, MethodVerdict, Unproven};
 pub use gen::Regime;
-pub use model::{Case, Dims, Sample, Tile, Triangle};
+pub use model::{Case, Dims, Sample, SampleSet, Snap, Tile, Triangle, Viewport};
 
 /// Outward-rounded interval arithmetic (the same small type the oracles use: it is
 /// plain arithmetic, not a coverage decision, so sharing it puts no verdict on both

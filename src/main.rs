@@ -121,6 +121,8 @@ enum Cmd {
         /// the file is kept.
         #[arg(long)]
         write_baseline: bool,
+        #[command(flatten)]
+        sample: cullproof::args::SampleFlags,
         /// Write the report as JUnit XML to this file as well (one test case per method
         /// x regime; a failing row names the witness case file written beside it, in
         /// FILE's stem + `.witnesses/`).
@@ -194,6 +196,8 @@ enum Cmd {
         /// Worker threads (default: all cores; at most 4 per core). Results do not depend on it.
         #[arg(long)]
         jobs: Option<usize>,
+        #[command(flatten)]
+        sample: cullproof::args::SampleFlags,
     },
     /// Re-judge case files (default: every file under corpus/cases). The stored witness
     /// is re-decided exactly and the method judged afresh; exit 1 when a file no longer
@@ -205,6 +209,10 @@ enum Cmd {
         /// Write the JSON report to this file ("-" for standard output).
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Flags given here judge the files under another sample set, snap or viewport
+        /// than the one each file records.
+        #[command(flatten)]
+        sample: cullproof::args::SampleFlags,
     },
     /// Explain one case file: what the method answered, the exact extents of the
     /// covered set over the tile, the witness decided exactly (and by Embree); with
@@ -215,6 +223,10 @@ enum Cmd {
         /// Write the picture here (refuses to overwrite an existing file).
         #[arg(long)]
         svg: Option<PathBuf>,
+        /// Flags given here explain the case under another sample set, snap or viewport
+        /// than the one the file records.
+        #[command(flatten)]
+        sample: cullproof::args::SampleFlags,
     },
     /// Sample test efficiency (STE) of every culling method on a scene.
     ///
@@ -382,10 +394,12 @@ fn run() -> Result<()> {
             baseline,
             write_baseline,
             junit,
+            sample,
         } => {
             use cullproof::args;
             let methods = args::methods("--method", &method, true)?;
             let mut cfg = cullproof::check::CheckConfig::default_with(methods);
+            sample.parse()?.apply(&mut cfg);
             cfg.regimes = parse_regimes(&regime)?;
             if let Some(t) = tile {
                 args::tile("--tile", t)?;
@@ -461,10 +475,11 @@ fn run() -> Result<()> {
                 std::process::exit(1);
             }
         }
-        Cmd::Search { method, time, max, min_margin, seed, regime, tile, out, dry_run, json, jobs } => {
+        Cmd::Search { method, time, max, min_margin, seed, regime, tile, out, dry_run, json, jobs, sample } => {
             use cullproof::args;
             let m = args::method("--method", &method, true)?;
             let mut cfg = cullproof::check::CheckConfig::default_with(vec![m]);
+            sample.parse()?.apply(&mut cfg);
             cfg.regimes = parse_regimes(&regime)?;
             if let Some(t) = tile {
                 args::tile("--tile", t)?;
@@ -512,13 +527,14 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
         }
-        Cmd::Replay { paths, json } => {
+        Cmd::Replay { paths, json, sample } => {
+            let over = sample.parse()?;
             let paths = if paths.is_empty() { vec![PathBuf::from("corpus/cases")] } else { paths };
             let files = cullproof::corpus::case_files(&paths)?;
             let cfg = cullproof::check::CheckConfig::default_with(cullproof::bounds::registry());
             let mut out = Vec::new();
             for f in &files {
-                out.push(cullproof::corpus::replay(f, &cfg)?);
+                out.push(cullproof::corpus::replay_with(f, &cfg, &over)?);
             }
             let bad = out.iter().filter(|r| !r.ok).count();
             for r in &out {
@@ -528,13 +544,14 @@ fn run() -> Result<()> {
                     None => "no witness".into(),
                 };
                 println!(
-                    "{} {:<22} expected {:<12} judged {:<13} {}  {}",
+                    "{} {:<22} expected {:<12} judged {:<13} {}  {}{}",
                     if r.ok { "ok  " } else { "FAIL" },
                     r.method,
                     format!("{:?}", r.expected).to_lowercase(),
                     r.judged,
                     w,
-                    r.path
+                    r.path,
+                    r.samples.as_ref().map_or(String::new(), |s| format!("  (samples {s})"))
                 );
             }
             println!("{} file(s), {} as expected, {} not", out.len(), out.len() - bad, bad);
@@ -545,8 +562,12 @@ fn run() -> Result<()> {
                 std::process::exit(1);
             }
         }
-        Cmd::Explain { case, svg } => {
-            let cf = cullproof::corpus::CaseFile::load(&case)?;
+        Cmd::Explain { case, svg, sample } => {
+            let mut cf = cullproof::corpus::CaseFile::load(&case)?;
+            let over = sample.parse()?;
+            cf.samples = over.samples.unwrap_or(cf.samples);
+            cf.snap = over.snap.or(cf.snap);
+            cf.viewport = over.viewport.or(cf.viewport);
             print!("{}", cullproof::corpus::describe(&cf));
             if let Some(out) = &svg {
                 let m = cullproof::corpus::method_of(&cf.method).expect("checked at load");
@@ -558,7 +579,11 @@ fn run() -> Result<()> {
                     Some(w) => format!("{} culls the witness by {:.3e}", w.bound, w.margin),
                     None => "no witness".into(),
                 };
-                let text = cullproof::explain::svg(&cf.case, &cf.tile, m, w, &caption)?;
+                // Under snapping the picture is of the snapped triangle the method saw.
+                let (seen, _) = cullproof::check::samples::judged_triangles(cf.snap, &cf.case)
+                    .map_err(|e| anyhow::anyhow!("{}: {e}", case.display()))?;
+                let shown = if cf.snap.is_some() { cullproof::Case { triangle: seen, lens: None } } else { cf.case };
+                let text = cullproof::explain::svg(&shown, &cf.tile, m, w, &caption)?;
                 let mut f = std::fs::OpenOptions::new().write(true).create_new(true).open(out).with_context(|| {
                     format!("--svg {}: cannot create (an existing file is never overwritten)", out.display())
                 })?;

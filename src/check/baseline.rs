@@ -50,6 +50,10 @@ pub struct Settings {
     pub constraint_budget: usize,
     pub limit_every: u64,
     pub limit_budget: usize,
+    /// The sample set, snap and viewport (`centres`, `msaa4 snap 8 viewport
+    /// 1920x1080+64`, ...); absent for the defaults, so older entries still match.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sample_set: Option<String>,
 }
 
 impl Settings {
@@ -72,6 +76,7 @@ impl Settings {
             constraint_budget: cfg.constraint_budget,
             limit_every: cfg.limit_every,
             limit_budget: cfg.limit_budget,
+            sample_set: super::samples::SetNote::of(cfg, 0).map(|n| n.key()),
         }
     }
 }
@@ -354,6 +359,7 @@ mod tests {
             solver_boxes: 0,
             seconds: 0.0,
             baseline: None,
+            samples: None,
         };
         let mut f = BaselineFile::default();
         f.record(&cfg, &rep(1)).unwrap();

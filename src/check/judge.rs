@@ -34,15 +34,24 @@ pub enum Unproven {
     ConstraintBudget,
     /// A per-sample constraint search that left boxes at its smallest size.
     ConstraintResolution,
+    /// Under a declared sample set: a violation whose witness is not a sample of the
+    /// set, no sample of the set found near it, and too many set points in the tile to
+    /// judge one by one ([`super::samples`]).
+    OffSet,
+    /// Under vertex snapping: a vertex key that cannot be snapped exactly (behind the
+    /// lens, or beyond the grid's exact range); nothing was judged.
+    SnapRange,
 }
 
 impl Unproven {
-    pub const ALL: [Unproven; 5] = [
+    pub const ALL: [Unproven; 7] = [
         Unproven::TileUnknown,
         Unproven::SideGap,
         Unproven::DepthUnconfirmed,
         Unproven::ConstraintBudget,
         Unproven::ConstraintResolution,
+        Unproven::OffSet,
+        Unproven::SnapRange,
     ];
     pub fn name(self) -> &'static str {
         match self {
@@ -51,6 +60,8 @@ impl Unproven {
             Unproven::DepthUnconfirmed => "depth-unconfirmed",
             Unproven::ConstraintBudget => "constraint-budget",
             Unproven::ConstraintResolution => "constraint-resolution",
+            Unproven::OffSet => "off-set",
+            Unproven::SnapRange => "snap-range",
         }
     }
     fn bit(self) -> u8 {

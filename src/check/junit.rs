@@ -63,6 +63,9 @@ fn write_witness(r: &CheckReport, row: &Row, dir: &Path) -> Result<Option<PathBu
             shrink_steps: Vec::new(),
         },
         note: format!("the worst violation of {} / {} in a gate run ({})", row.method, row.regime, row.status.text()),
+        samples: r.samples.as_ref().map_or_else(Default::default, |n| n.set),
+        snap: r.samples.as_ref().and_then(|n| n.snap),
+        viewport: r.samples.as_ref().and_then(|n| n.viewport),
     };
     let path = dir.join(&cf.method).join(format!("{}.json", cf.short_hash()));
     cf.write_new(dir)?;

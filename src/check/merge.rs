@@ -227,7 +227,12 @@ pub fn merge(
         row.expected = row.entry.as_ref().map_or(row.expected, |e| e.expect);
         finish_row(row);
     }
+    let samples = first.samples.clone().map(|mut n| {
+        n.outside_viewport = shards.iter().filter_map(|(_, r)| r.samples.as_ref()).map(|x| x.outside_viewport).sum();
+        n
+    });
     let mut rep = CheckReport {
+        samples,
         seed: first.seed,
         cases,
         shard: "0/1".into(),

@@ -25,6 +25,7 @@ pub mod junit;
 pub mod merge;
 pub mod power;
 pub mod report;
+pub mod samples;
 pub mod tiles;
 
 pub use expect::{Allowance, Cap, Entry, Expectations, Expected};
@@ -34,7 +35,7 @@ pub use report::{render, CheckReport, CrossCheck, Row, Status};
 use crate::agree::lens_tri;
 use crate::bounds::{Method, MethodRef, TileResult};
 use crate::gen::{physical_case, rng_for, samples_for, tile_sample, Regime};
-use crate::model::{Case, Sample, Tile};
+use crate::model::{Case, Sample, SampleSet, Snap, Tile, Viewport};
 use indicatif::{ProgressBar, ProgressStyle};
 use judge::TileJudge;
 use oracles::extents::ExtentsConfig;
@@ -43,6 +44,7 @@ use rand::seq::SliceRandom;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use samples::SetJudge;
 use serde::Serialize;
 
 /// Settings of a run.
@@ -86,6 +88,12 @@ pub struct CheckConfig {
     /// Screen shifts of the case tried when placing a limit tile (the one whose flip
     /// lies farthest inside the footprint's extreme is judged).
     pub limit_shifts: usize,
+    /// The pixel positions the methods promise to keep ([`SampleSet::Any`]: all).
+    pub sample_set: SampleSet,
+    /// Vertex snapping before coverage is judged (None: none).
+    pub snap: Option<Snap>,
+    /// The viewport the cases are placed in (None: anywhere, as the regimes draw them).
+    pub viewport: Option<Viewport>,
 }
 
 impl CheckConfig {
@@ -117,6 +125,9 @@ impl CheckConfig {
             limit_every: 12,
             limit_shifts: 8,
             limit_budget: 4000,
+            sample_set: SampleSet::Any,
+            snap: None,
+            viewport: None,
         }
     }
 }
@@ -142,13 +153,30 @@ pub struct Witness {
 
 /// The case with index `i`: its regime, the triangle and a tile on the footprint's
 /// boundary (a tile containing a sample drawn near an edge).
+///
+/// Under a viewport the case is placed in it ([`samples::place_case`]); a case that
+/// cannot be placed is drawn as without one (use [`try_make_case`] to skip it).
 pub fn make_case(cfg: &CheckConfig, i: u64) -> (Regime, Case, Tile) {
+    try_make_case(cfg, i).unwrap_or_else(|| make_case(&CheckConfig { viewport: None, ..cfg.clone() }, i))
+}
+
+/// [`make_case`], None when a viewport is set and no draw of the case's regime fits in
+/// its guard band.
+pub fn try_make_case(cfg: &CheckConfig, i: u64) -> Option<(Regime, Case, Tile)> {
     let regime = cfg.regimes[(i % cfg.regimes.len() as u64) as usize];
-    let mut rng = rng_for(cfg.seed, i);
-    let case = physical_case(&mut rng, regime);
+    let (case, mut rng) = match cfg.viewport {
+        None => {
+            let mut rng = rng_for(cfg.seed, i);
+            (physical_case(&mut rng, regime), rng)
+        }
+        Some(vp) => samples::place_case(cfg.seed, i, regime, vp)?,
+    };
     let size = tile_size(cfg, &mut rng);
-    let tile = boundary_tile(&case, &mut rng, size);
-    (regime, case, tile)
+    let mut tile = boundary_tile(&case, &mut rng, size);
+    if let Some(vp) = cfg.viewport {
+        tile = samples::tile_in_viewport(tile, vp);
+    }
+    Some((regime, case, tile))
 }
 
 fn tile_size(cfg: &CheckConfig, rng: &mut ChaCha8Rng) -> f32 {
@@ -179,15 +207,15 @@ const LIMIT_STREAM: u64 = 0x7113_e5ba_5e11;
 
 /// What one case gives: its regime, a judgement per method, the solver's boxes and the
 /// Embree cross-check.
-struct CaseResult {
-    regime: Regime,
-    judgements: Vec<Judgement>,
+pub(crate) struct CaseResult {
+    pub(crate) regime: Regime,
+    pub(crate) judgements: Vec<Judgement>,
     /// Per method: the share of the (u, v, t) domain its answer on the boundary tile
     /// lets through (0 for a culled tile), and the share of the tile's uniform samples
     /// it admits (intervals and constraints).
-    pass: Vec<(f64, f64)>,
-    boxes: u64,
-    cross: CrossCheck,
+    pub(crate) pass: Vec<(f64, f64)>,
+    pub(crate) boxes: u64,
+    pub(crate) cross: CrossCheck,
 }
 
 /// The share of the lens/shutter domain that an answer's intervals keep.
@@ -210,16 +238,18 @@ fn pass_fraction(r: &TileResult) -> f64 {
 
 /// Judge every method on one case: the boundary tile for all, the limit tiles for the
 /// methods whose turn it is.
-fn judge_case(cfg: &CheckConfig, i: u64) -> CaseResult {
-    let (regime, case, tile) = make_case(cfg, i);
-    let embree = embree_for(&case);
+fn judge_case(cfg: &CheckConfig, i: u64) -> Option<CaseResult> {
+    let (regime, case, tile) = try_make_case(cfg, i)?;
+    let Ok((seen, tri)) = samples::judged_triangles(cfg.snap, &case) else {
+        return Some(samples::snap_range_result(cfg, regime));
+    };
+    let embree = if cfg.snap.is_none() { embree_for(&case) } else { None };
     let uniform = uniform_samples(cfg, &tile, UNIFORM_STREAM, i, cfg.samples);
-    let tri = case.triangle.to_oracle();
-    let prepared: Vec<_> = cfg.methods.iter().map(|m| m.setup(&case.triangle)).collect();
+    let prepared: Vec<_> = cfg.methods.iter().map(|m| m.setup(&seen)).collect();
     let answers: Vec<TileResult> = prepared.iter().map(|p| p.tile(&tile)).collect();
-    let mut tj = TileJudge::new(cfg, case, tile, i, &tri, embree.as_ref(), &uniform);
+    let mut tj = SetJudge::new(TileJudge::new(cfg, case, tile, i, &tri, embree.as_ref(), &uniform));
     let mut judgements: Vec<Judgement> = answers.iter().map(|a| tj.judge(a)).collect();
-    let mut boxes = tj.solver.boxes;
+    let mut boxes = tj.boxes();
     let admit = |a: &TileResult| match a {
         TileResult::Empty => 0.0,
         TileResult::Bounds(_) if uniform.is_empty() => pass_fraction(a),
@@ -238,7 +268,7 @@ fn judge_case(cfg: &CheckConfig, i: u64) -> CaseResult {
             judgements[mi].merge(jl);
         }
     }
-    CaseResult { regime, judgements, pass, boxes, cross: cross_check(&case, embree.as_ref(), &uniform) }
+    Some(CaseResult { regime, judgements, pass, boxes, cross: cross_check(&case, embree.as_ref(), &uniform) })
 }
 
 /// A number fixed by a method's id (a deliberately broken variant counts as the method
@@ -260,14 +290,23 @@ pub fn judge_limit_tiles(
 ) -> (Option<Judgement>, u64) {
     let mut rng = rng_for(cfg.seed ^ LIMIT_STREAM, i.wrapping_mul(64).wrapping_add(salt));
     let size = tile_size(cfg, &mut rng);
-    let setup = |c: &Case| m.setup(&c.triangle);
+    let setup = |c: &Case| match samples::judged_triangles(cfg.snap, c) {
+        Ok((seen, _)) => m.setup(&seen),
+        Err(_) => m.setup(&c.triangle),
+    };
     let Some(tiles::Limit { case: lc, prepared: p, kept, culled, slack }) =
         tiles::limit_tiles(&setup, case, &mut rng, size, cfg.limit_shifts)
     else {
         return (None, 0);
     };
-    let tri = lc.triangle.to_oracle();
-    let embree = embree_for(&lc);
+    // Under a viewport only tiles inside it, of a case inside its guard band.
+    if !(samples::placed_in(cfg, &lc, &kept) && samples::placed_in(cfg, &lc, &culled)) {
+        return (None, 0);
+    }
+    let Ok((_, tri)) = samples::judged_triangles(cfg.snap, &lc) else {
+        return (None, 0);
+    };
+    let embree = if cfg.snap.is_none() { embree_for(&lc) } else { None };
     let mut out = Judgement::default();
     out.limit_slack = Some(slack);
     let mut boxes = 0;
@@ -277,9 +316,9 @@ pub fn judge_limit_tiles(
     };
     for t in [culled, kept] {
         let uni = uniform_samples(cfg, &t, LIMIT_STREAM, i, cfg.samples / 4);
-        let mut lj = TileJudge::new(&lcfg, lc, t, i, &tri, embree.as_ref(), &uni);
+        let mut lj = SetJudge::new(TileJudge::new(&lcfg, lc, t, i, &tri, embree.as_ref(), &uni));
         let mut jj = lj.judge(&p.tile(&t));
-        boxes += lj.solver.boxes;
+        boxes += lj.boxes();
         jj.limit_tiles = 1;
         jj.limit_violations = jj.violation.is_some() as u32;
         out.merge(jj);
@@ -309,13 +348,20 @@ fn cross_check(case: &Case, embree: Option<&oracles::embree::EmbreeOracle>, unif
 
 /// Judge `methods` on one case and tile (no limit tiles); `i` seeds the uniform samples
 /// (and is recorded in witnesses). Returns the judgements and the solver's box count.
+///
+/// Under snapping the methods see the snapped triangle and the oracle judges it exactly;
+/// a case that cannot be snapped gets judgements unproven for `snap-range`.
 pub fn judge(cfg: &CheckConfig, methods: &[MethodRef], case: &Case, tile: &Tile, i: u64) -> (Vec<Judgement>, u64) {
-    let embree = embree_for(case);
+    let Ok((seen, tri)) = samples::judged_triangles(cfg.snap, case) else {
+        let mut j = Judgement::default();
+        j.add_unproven(Unproven::SnapRange);
+        return (vec![j; methods.len()], 0);
+    };
+    let embree = if cfg.snap.is_none() { embree_for(case) } else { None };
     let uniform = uniform_samples(cfg, tile, UNIFORM_STREAM, i, cfg.samples);
-    let tri = case.triangle.to_oracle();
-    let mut tj = TileJudge::new(cfg, *case, *tile, i, &tri, embree.as_ref(), &uniform);
-    let js = methods.iter().map(|m| tj.judge(&m.setup(&case.triangle).tile(tile))).collect();
-    (js, tj.solver.boxes)
+    let mut tj = SetJudge::new(TileJudge::new(cfg, *case, *tile, i, &tri, embree.as_ref(), &uniform));
+    let js = methods.iter().map(|m| tj.judge(&m.setup(&seen).tile(tile))).collect();
+    (js, tj.boxes())
 }
 
 /// Run the gate: judge the cases, then hold each row against the expectations and
@@ -343,7 +389,7 @@ pub fn run_with_baseline(
             );
             results = ids
                 .par_iter()
-                .map(|&i| {
+                .filter_map(|&i| {
                     let r = judge_case(cfg, i);
                     pb.inc(1);
                     r
@@ -360,7 +406,7 @@ pub fn run_with_baseline(
             let mut next = 0u64;
             while start.elapsed().as_secs_f64() < secs {
                 let ids: Vec<u64> = (next..next + batch).filter(|i| i % n == k).collect();
-                results.par_extend(ids.par_iter().map(|&i| judge_case(cfg, i)));
+                results.par_extend(ids.par_iter().filter_map(|&i| judge_case(cfg, i)));
                 next += batch;
                 pb.set_position((start.elapsed().as_secs_f64() * 1000.0) as u64);
                 pb.set_message(format!("{next} cases"));
@@ -369,11 +415,16 @@ pub fn run_with_baseline(
         }
     }
     let judged = results.len() as u64;
+    let drawn = match cfg.time {
+        None => (0..cfg.cases).filter(|i| i % n == k).count() as u64,
+        Some(_) => judged, // a timed run below does not count the cases it could not place
+    };
     let mut acc = report::Accumulator::new(ex);
     for r in results {
         acc.add(cfg, r.regime, r.judgements, &r.pass, r.boxes, r.cross);
     }
     let mut rep = acc.finish(cfg, judged, start.elapsed().as_secs_f64());
+    rep.samples = samples::SetNote::of(cfg, drawn - judged);
     if let Some(b) = base {
         baseline::apply(&mut rep, cfg, b);
     }

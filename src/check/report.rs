@@ -129,6 +129,11 @@ pub struct CheckReport {
     pub seconds: f64,
     /// Whether a baseline for these settings was found and compared.
     pub baseline: Option<String>,
+    /// The sample set, snapping and viewport when any differs from the default
+    /// (`docs/model.md`, §7), with the cases the viewport could not place.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
+    pub samples: Option<super::samples::SetNote>,
 }
 
 impl CheckReport {
@@ -271,6 +276,7 @@ impl<'a> Accumulator<'a> {
             solver_boxes: self.boxes,
             seconds,
             baseline: None,
+            samples: super::samples::SetNote::of(cfg, 0),
         }
     }
 }
@@ -382,6 +388,9 @@ pub fn render(r: &CheckReport) -> String {
         "cullproof check, seed {}, {} cases (shard {}), {:.1} s\n\n{:<26} {:<15} {:>6} {:>7} {:>8} {:>8} {:>5} {:>7} {:>11}  status\n",
         r.seed, r.cases, r.shard, r.seconds, "method", "regime", "cases", "proven", "violated", "unproven", "f32", "limit", "margin"
     );
+    if let Some(n) = &r.samples {
+        s = s.replacen("\n\n", &format!("\n{}\n\n", n.line()), 1);
+    }
     let mut last = "";
     for row in &r.rows {
         let m = if row.method == last { "" } else { row.method.as_str() };

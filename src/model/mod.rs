@@ -4,12 +4,14 @@
 pub mod camera;
 pub mod case;
 pub mod sample;
+pub mod samples;
 pub mod tile;
 pub mod triangle;
 
 pub use camera::ThinLens;
 pub use case::Case;
 pub use sample::Sample;
+pub use samples::{SampleSet, Snap, Viewport};
 pub use tile::Tile;
 pub use triangle::{Dims, Triangle};
 

@@ -1,0 +1,413 @@
+//! The judge under a declared sample set, vertex snapping and viewport
+//! (`docs/model.md`, §7).
+//!
+//! `SetJudge` wraps the tile judge (`TileJudge`). Under [`SampleSet::Any`] it is the
+//! tile judge itself, unchanged. Under a smaller set:
+//! - a continuous proof stands (the set is a subset of the tile);
+//! - a continuous violation stands when its witness moves to a nearby point of the set
+//!   (the same lens position and time) and the exact oracle confirms that point interior
+//!   and culled;
+//! - otherwise, when the tile holds at most [`MAX_POINTS`] points of the set, every
+//!   point is judged on its own: the certified machinery runs on the degenerate box
+//!   `[x, x] x [y, y]` (the solver does not split a zero-width side; a static pinhole
+//!   triangle's point is classified exactly, as nothing else varies), and the point
+//!   judgements are merged;
+//! - with more points (a fine grid on a large tile) the case is unproven with the
+//!   reason `off-set`: the continuous witness was not a sample of the set, and no
+//!   point-wise proof was tried. Never a pass.
+//!
+//! Snapping replaces the triangle the method sees and the one the oracle judges
+//! ([`judged_triangles`]); a viewport places the cases ([`place_case`]).
+
+use super::judge::{culled_by, in_domain, Judgement, TileJudge, Unproven};
+use super::{CheckConfig, Witness};
+use crate::bounds::TileResult;
+use crate::gen::{physical_case, rng_for, Regime};
+use crate::model::samples::{snap_coord, SampleSet, Snap, Viewport};
+use crate::model::{Case, Tile, Triangle};
+use oracles::{classify, Coverage, Tri};
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use serde::Serialize;
+
+/// The most points of a finite set a tile is judged at one by one (a 16-pixel tile
+/// under 16x MSAA); beyond, a witness off the set leaves the case unproven (`off-set`).
+pub const MAX_POINTS: u128 = 4096;
+
+/// The tile judge under the run's sample set.
+pub(crate) struct SetJudge<'a> {
+    pub tj: TileJudge<'a>,
+    set: SampleSet,
+    /// The point judges, built on first need and shared by the methods.
+    points: Option<Vec<TileJudge<'a>>>,
+    /// Boxes spent by point judges dropped so far (kept in [`Self::boxes`]).
+    extra_boxes: u64,
+}
+
+impl<'a> SetJudge<'a> {
+    pub fn new(tj: TileJudge<'a>) -> Self {
+        let set = tj.cfg.sample_set;
+        SetJudge { tj, set, points: None, extra_boxes: 0 }
+    }
+
+    /// Boxes the solvers examined.
+    pub fn boxes(&self) -> u64 {
+        self.tj.solver.boxes + self.extra_boxes + self.points.iter().flatten().map(|p| p.solver.boxes).sum::<u64>()
+    }
+
+    /// Judge one tile answer on the set's samples.
+    pub fn judge(&mut self, answer: &TileResult) -> Judgement {
+        let j = self.tj.judge(answer);
+        if self.set.is_any() || j.verdict() == super::Verdict::Proven {
+            return j;
+        }
+        if let Some(w) = &j.violation {
+            if let Some(m) = self.mapped(answer, w) {
+                return m;
+            }
+        }
+        let t = self.tj.tile;
+        let count = self.set.count_in(t.x0 as f64, t.x1 as f64, t.y0 as f64, t.y1 as f64).unwrap_or(u128::MAX);
+        if count <= MAX_POINTS {
+            let tri: &Tri = self.tj.tri;
+            if let Some(pj) = self.point_judges() {
+                return judge_points(pj, tri, answer, t);
+            }
+        }
+        // Too many points to judge one by one: the continuous verdict's reasons stand,
+        // a continuous violation off the set proves nothing.
+        let mut out = Judgement::default();
+        for r in j.unproven() {
+            out.add_unproven(r);
+        }
+        if j.violation.is_some() {
+            out.add_unproven(Unproven::OffSet);
+        }
+        out
+    }
+
+    /// A violation on the set next to the continuous witness `w`: the nearest points of
+    /// the set with `w`'s lens position and time (exact, then rounded to f32), confirmed
+    /// interior and culled. None when no such point is found (or `w` is a depth
+    /// witness, which the point-wise judgement handles).
+    fn mapped(&self, answer: &TileResult, w: &Witness) -> Option<Judgement> {
+        if w.bound.starts_with('z') {
+            return None;
+        }
+        let tile = self.tj.tile;
+        for (x, y) in self.set.near(w.sample[0], w.sample[1]).into_iter().take(9) {
+            let exact = [x, y, w.sample[2], w.sample[3], w.sample[4]];
+            let rounded = [x, y, w.sample[2] as f32 as f64, w.sample[3] as f32 as f64, w.sample[4] as f32 as f64];
+            for p in [exact, rounded] {
+                if !in_domain(&tile, p) || classify(self.tj.tri, p) != Coverage::Interior {
+                    continue;
+                }
+                let culled = match answer {
+                    TileResult::Empty => Some(("tile culled".to_string(), f64::INFINITY)),
+                    TileResult::Bounds(_) if w.margin.is_infinite() => Some((w.bound.clone(), f64::INFINITY)),
+                    TileResult::Bounds(b) => culled_by(b, p),
+                };
+                if let Some((bound, margin)) = culled {
+                    let mut j = Judgement::default();
+                    j.f32_witness = p.iter().all(|&c| c as f32 as f64 == c);
+                    j.violated.insert(super::bound_kind(&bound), margin);
+                    j.violation = Some(Witness { sample: p, bound, margin, embree_hit: None, ..w.clone() });
+                    return Some(j);
+                }
+            }
+        }
+        None
+    }
+
+    /// The point judges of the tile (None when a point is not an f32 value: the tile
+    /// lies where f32 cannot hold the set's positions).
+    fn point_judges(&mut self) -> Option<&mut Vec<TileJudge<'a>>> {
+        if self.points.is_none() {
+            let t = self.tj.tile;
+            let pts = self.set.points_in(t.x0 as f64, t.x1 as f64, t.y0 as f64, t.y1 as f64)?;
+            if pts.iter().any(|&(x, y)| x as f32 as f64 != x || y as f32 as f64 != y) {
+                return None;
+            }
+            let tj = &self.tj;
+            let judges = pts
+                .into_iter()
+                .map(|(x, y)| {
+                    let pt = Tile { x0: x as f32, x1: x as f32, y0: y as f32, y1: y as f32 };
+                    TileJudge::new(tj.cfg, tj.case, pt, tj.index, tj.tri, None, &[])
+                })
+                .collect();
+            self.points = Some(judges);
+        }
+        self.points.as_mut()
+    }
+}
+
+/// Merge the judgements of every point; witnesses name the whole tile.
+fn judge_points(points: &mut [TileJudge<'_>], tri: &Tri, answer: &TileResult, tile: Tile) -> Judgement {
+    let fixed = tri.is_static() && tri.is_pinhole();
+    let mut out = Judgement::default();
+    for pj in points.iter_mut() {
+        if fixed {
+            // Nothing but (x, y) moves coverage: the point's exact class decides.
+            let p = [pj.tile.x0 as f64, pj.tile.y0 as f64, 0.0, 0.0, 0.0];
+            match classify(tri, p) {
+                Coverage::Interior => {}
+                Coverage::Boundary => {
+                    out.boundary_only |= matches!(answer, TileResult::Empty);
+                    continue;
+                }
+                Coverage::Outside => continue,
+            }
+        }
+        out.merge(pj.judge(answer));
+    }
+    if let Some(w) = out.violation.as_mut() {
+        w.tile = tile;
+    }
+    out
+}
+
+/// The triangle the methods see and the one the oracle judges: the case's own, or under
+/// snapping the snapped triangle, exact for the oracle (f64) and rounded to the nearest
+/// f32 for the methods. Err names the first vertex key that cannot be snapped exactly.
+pub fn judged_triangles(snap: Option<Snap>, case: &Case) -> Result<(Triangle, Tri), String> {
+    let Some(s) = snap else {
+        return Ok((case.triangle, case.triangle.to_oracle()));
+    };
+    let t = &case.triangle;
+    let mut exact = t.to_oracle();
+    let mut seen = *t;
+    for (key, src, dst, out) in [("q", &t.q, &mut exact.q, &mut seen.q), ("r", &t.r, &mut exact.r, &mut seen.r)] {
+        for i in 0..3 {
+            let w = src[i][3];
+            for (j, name) in [(0, "x"), (1, "y")] {
+                let v = snap_coord(src[i][j], w, s.bits).ok_or_else(|| {
+                    format!(
+                        "{key}[{i}].{name} = {} (w = {w}) cannot be snapped to 2^-{} px exactly: w <= 0 or the \
+                         position lies beyond the grid's exact range",
+                        src[i][j], s.bits
+                    )
+                })?;
+                dst[i][j] = v;
+                out[i][j] = v as f32;
+            }
+        }
+    }
+    Ok((seen, exact))
+}
+
+/// Attempts at drawing a case of the regime that fits the viewport's guard band.
+pub const PLACE_ATTEMPTS: u64 = 64;
+
+const PLACE_STREAM: u64 = 0x91ac_e0f5_c4ee_7a11;
+
+/// The screen box `[x0, x1, y0, y1]` of every vertex at both motion keys and every lens
+/// corner (exact quotients of the f32 values, rounded outward by one f64 step), or None
+/// when some such vertex is not in front of the lens.
+pub fn footprint(t: &Triangle) -> Option<[f64; 4]> {
+    let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
+    for (p, c) in t.q.iter().zip(t.c0).chain(t.r.iter().zip(t.c1)) {
+        if p[3].is_nan() || p[3] <= 0.0 {
+            return None;
+        }
+        for (su, sv) in [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)] {
+            let w = p[3] as f64;
+            let x = (p[0] as f64 + su * c as f64) / w;
+            let y = (p[1] as f64 + sv * t.k as f64 * c as f64) / w;
+            b[0] = b[0].min(x.next_down());
+            b[1] = b[1].max(x.next_up());
+            b[2] = b[2].min(y.next_down());
+            b[3] = b[3].max(y.next_up());
+        }
+    }
+    b.iter().all(|v| v.is_finite()).then_some(b)
+}
+
+/// The case moved on screen by whole pixels `(dx, dy)` (clip x += dx w, in f32), and
+/// whether the move was exact (every sum exact, so the footprint moved by exactly that).
+fn shifted(case: &Case, dx: f32, dy: f32) -> Case {
+    let mut c = *case;
+    for p in c.triangle.q.iter_mut().chain(c.triangle.r.iter_mut()) {
+        p[0] += dx * p[3];
+        p[1] += dy * p[3];
+    }
+    c
+}
+
+/// A case of `regime` placed in the viewport: drawn from the case's own stream as
+/// without a viewport, then (if its footprint fits the guard band) moved by whole
+/// pixels to a random place whose footprint lies in the guard band and meets the
+/// viewport; if it does not fit, drawn again from further streams, up to
+/// [`PLACE_ATTEMPTS`] times. None when no draw fits (a regime whose triangles are
+/// larger than the guard band, or reach behind the lens).
+pub fn place_case(seed: u64, i: u64, regime: Regime, vp: Viewport) -> Option<(Case, ChaCha8Rng)> {
+    let g = vp.guard_rect();
+    for a in 0..PLACE_ATTEMPTS {
+        let mut rng = if a == 0 { rng_for(seed, i) } else { rng_for(seed ^ PLACE_STREAM.wrapping_mul(a), i) };
+        let case = physical_case(&mut rng, regime);
+        let Some(f) = footprint(&case.triangle) else { continue };
+        let (w, h) = (f[1] - f[0], f[3] - f[2]);
+        if w + 2.0 > g[1] - g[0] || h + 2.0 > g[3] - g[2] {
+            continue;
+        }
+        // Whole-pixel moves that keep the footprint in the guard band (one pixel of
+        // room for the f32 rounding of the move) and meeting the viewport.
+        let lo_x = (g[0] - f[0] + 1.0).max(-f[1]).ceil();
+        let hi_x = (g[1] - f[1] - 1.0).min(vp.width as f64 - f[0]).floor();
+        let lo_y = (g[2] - f[2] + 1.0).max(-f[3]).ceil();
+        let hi_y = (g[3] - f[3] - 1.0).min(vp.height as f64 - f[2]).floor();
+        if lo_x > hi_x || lo_y > hi_y {
+            continue;
+        }
+        let mut prng = rng_for(seed ^ PLACE_STREAM, i.wrapping_mul(PLACE_ATTEMPTS).wrapping_add(a));
+        let dx = prng.gen_range(lo_x..=hi_x) as f32;
+        let dy = prng.gen_range(lo_y..=hi_y) as f32;
+        let moved = shifted(&case, dx, dy);
+        let inside =
+            footprint(&moved.triangle).is_some_and(|m| m[0] >= g[0] && m[1] <= g[1] && m[2] >= g[2] && m[3] <= g[3]);
+        if inside && moved.validate().is_ok() {
+            return Some((moved, rng));
+        }
+    }
+    None
+}
+
+/// True when the case and tile keep to the run's viewport (always without one): the
+/// footprint inside the guard band, the tile inside the viewport. The shrinker and the
+/// search keep only such cases.
+pub fn placed_in(cfg: &CheckConfig, case: &Case, tile: &Tile) -> bool {
+    let Some(vp) = cfg.viewport else { return true };
+    let g = vp.guard_rect();
+    vp.holds_tile(tile)
+        && footprint(&case.triangle).is_some_and(|f| f[0] >= g[0] && f[1] <= g[1] && f[2] >= g[2] && f[3] <= g[3])
+}
+
+/// The tile moved (by whole tiles) into the viewport: the nearest tile of the same grid
+/// inside it (the viewport is at least one tile wide, else the tile is clamped to it).
+pub fn tile_in_viewport(t: Tile, vp: Viewport) -> Tile {
+    let size = t.x1 - t.x0;
+    let fit = |a: f32, n: u32| {
+        let max = ((n as f32 - size) / size).floor() * size;
+        if max < 0.0 {
+            0.0
+        } else {
+            a.clamp(0.0, max)
+        }
+    };
+    let (x0, y0) = (fit(t.x0, vp.width), fit(t.y0, vp.height));
+    Tile { x0, y0, x1: (x0 + size).min(vp.width as f32), y1: (y0 + size).min(vp.height as f32) }
+}
+
+/// The sample set, snapping and viewport of a run as the reports name them (absent
+/// from a report of the defaults).
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+pub struct SetNote {
+    /// `any`, `centres`, `msaa4`, `grid8`, ...
+    pub set: SampleSet,
+    /// Snap grid in bits below the pixel.
+    pub snap: Option<Snap>,
+    pub viewport: Option<Viewport>,
+    /// Cases whose regime gave no draw that fits the viewport's guard band (not judged).
+    pub outside_viewport: u64,
+}
+
+impl SetNote {
+    /// None for the defaults (any position, no snap, no viewport).
+    pub fn of(cfg: &CheckConfig, outside_viewport: u64) -> Option<SetNote> {
+        let default = cfg.sample_set.is_any() && cfg.snap.is_none() && cfg.viewport.is_none();
+        (!default).then_some(SetNote { set: cfg.sample_set, snap: cfg.snap, viewport: cfg.viewport, outside_viewport })
+    }
+    /// The short form the baseline's settings carry: `centres`, `msaa4 snap 8
+    /// viewport 1920x1080+64`.
+    pub fn key(&self) -> String {
+        let mut s = self.set.to_string();
+        if let Some(n) = self.snap {
+            s += &format!(" snap {n}");
+        }
+        if let Some(v) = self.viewport {
+            s += &format!(" viewport {v}");
+        }
+        s
+    }
+    /// One line for the table's header.
+    pub fn line(&self) -> String {
+        let mut s = format!("samples: {}", self.set);
+        if let Some(n) = self.snap {
+            s += &format!(", vertices snapped to 2^-{} px", n.bits);
+        }
+        if let Some(v) = self.viewport {
+            s += &format!(", viewport {v}");
+            if self.outside_viewport > 0 {
+                s += &format!(" ({} cases could not be placed in it, not judged)", self.outside_viewport);
+            }
+        }
+        s
+    }
+}
+
+/// A case that cannot be snapped: every method unproven (`snap-range`).
+pub(crate) fn snap_range_result(cfg: &CheckConfig, regime: Regime) -> super::CaseResult {
+    let mut j = Judgement::default();
+    j.add_unproven(Unproven::SnapRange);
+    super::CaseResult {
+        regime,
+        judgements: vec![j; cfg.methods.len()],
+        pass: vec![(1.0, 1.0); cfg.methods.len()],
+        boxes: 0,
+        cross: Default::default(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri(v: [[f32; 2]; 3], w: f32) -> Case {
+        Case {
+            triangle: Triangle::fixed([
+                [v[0][0] * w, v[0][1] * w, 0.5, w],
+                [v[1][0] * w, v[1][1] * w, 0.5, w],
+                [v[2][0] * w, v[2][1] * w, 0.5, w],
+            ]),
+            lens: None,
+        }
+    }
+
+    #[test]
+    fn snapping_moves_each_pixel_position_onto_the_grid_and_keeps_w() {
+        let c = tri([[0.3, 0.3], [5.1, 0.2], [0.4, 4.7]], 3.0);
+        let (seen, exact) = judged_triangles(Some(Snap { bits: 0 }), &c).unwrap();
+        for i in 0..3 {
+            assert_eq!(exact.q[i][3], 3.0);
+            let (x, y) = (exact.q[i][0] / 3.0, exact.q[i][1] / 3.0);
+            assert_eq!((x, y), (x.round(), y.round()), "{x} {y}");
+            assert_eq!(seen.q[i][0], exact.q[i][0] as f32);
+        }
+        assert_eq!((exact.q[1][0], exact.q[2][1]), (15.0, 15.0));
+        let (s2, e2) = judged_triangles(None, &c).unwrap();
+        assert_eq!((s2, e2), (c.triangle, c.triangle.to_oracle()));
+        let mut bad = c;
+        bad.triangle.r[1][3] = -1.0;
+        assert!(judged_triangles(Some(Snap { bits: 8 }), &bad).unwrap_err().contains("r[1].x"));
+    }
+
+    #[test]
+    fn placed_cases_lie_in_the_guard_band_and_tiles_in_the_viewport() {
+        let vp: Viewport = "640x480+32".parse().unwrap();
+        let g = vp.guard_rect();
+        let mut placed = 0;
+        for i in 0..64 {
+            let regime = Regime::ALL[(i % 16) as usize];
+            if let Some((c, _)) = place_case(5, i, regime, vp) {
+                placed += 1;
+                let f = footprint(&c.triangle).unwrap();
+                assert!(f[0] >= g[0] && f[1] <= g[1] && f[2] >= g[2] && f[3] <= g[3], "{regime:?} {f:?}");
+            } else {
+                assert!(matches!(regime, Regime::BehindLens | Regime::Huge | Regime::HugeCoc), "{regime:?}");
+            }
+        }
+        assert!(placed >= 40, "{placed}");
+        let t = tile_in_viewport(Tile::square(1e6, -40.0, 16.0), vp);
+        assert!(vp.holds_tile(&t) && t.x1 - t.x0 == 16.0 && t.x0 == 624.0 && t.y0 == 0.0, "{t:?}");
+    }
+}
