@@ -260,6 +260,11 @@ enum Cmd {
         #[arg(long)]
         jobs: Option<usize>,
     },
+    /// Re-run the proofs for all inputs in stated ranges (z3 and gappa scripts in
+    /// src/bounds/proofs/, checked against the code's constants and formulas) and print,
+    /// per method, its ranges, scripts, their verdicts and times, and its strongest
+    /// verdict; exit 1 when a script is not proven or does not match the code.
+    Proofs(cullproof::bounds::proofs::cli::ProofsArgs),
     /// List the culling methods under test: id, source, reconstruction flag, dimensions, outputs.
     Methods {
         /// Print JSON instead of a table.
@@ -533,6 +538,7 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
         }
+        Cmd::Proofs(args) => cullproof::bounds::proofs::cli::run_cli(&args)?.then_some(()).unwrap_or_else(|| std::process::exit(1)),
         Cmd::Methods { json } => {
             let ms: Vec<_> = cullproof::bounds::registry().iter().map(|m| *m.info()).collect();
             if json {
