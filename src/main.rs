@@ -538,7 +538,9 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
         }
-        Cmd::Proofs(args) => cullproof::bounds::proofs::cli::run_cli(&args)?.then_some(()).unwrap_or_else(|| std::process::exit(1)),
+        Cmd::Proofs(args) => {
+            cullproof::bounds::proofs::cli::run_cli(&args)?.then_some(()).unwrap_or_else(|| std::process::exit(1))
+        }
         Cmd::Methods { json } => {
             let ms: Vec<_> = cullproof::bounds::registry().iter().map(|m| *m.info()).collect();
             if json {

@@ -67,7 +67,9 @@ pub fn constants() -> Result<(), String> {
             Err(e) => errs.push(e),
         }
     }
-    for (name, v, fact) in [("U", 2f64.powi(-23), f32::EPSILON as f64), ("E", 2f64.powi(-149), f32::from_bits(1) as f64)] {
+    for (name, v, fact) in
+        [("U", 2f64.powi(-23), f32::EPSILON as f64), ("E", 2f64.powi(-149), f32::from_bits(1) as f64)]
+    {
         match script_constant(&BBOX_PAD, name) {
             Ok(s) if s == v && v == fact => {}
             Ok(s) => errs.push(format!("{}: {name} = {s:e}, the f32 fact is {fact:e}", BBOX_PAD.file)),
@@ -144,7 +146,12 @@ fn random_triangles(n: usize) -> impl Iterator<Item = Triangle> {
 /// on `n` random triangles.
 pub fn bbox_formula(n: usize) -> Result<(), String> {
     let get = |name| script_constant(&BBOX_PAD, name);
-    let (pad, floor, steps) = (get("PAD")? as f32, get("FLOOR")? as f32, get("STEPS")?);
+    bbox_formula_with(get("PAD")?, get("FLOOR")?, get("STEPS")?, n)
+}
+
+/// [`bbox_formula`] with these constants in place of the script's.
+pub fn bbox_formula_with(pad: f64, floor: f64, steps: f64, n: usize) -> Result<(), String> {
+    let (pad, floor) = (pad as f32, floor as f32);
     if steps.fract() != 0.0 || !(1.0..=64.0).contains(&steps) {
         return Err(format!("{}: STEPS = {steps} is not a count", BBOX_PAD.file));
     }
@@ -153,7 +160,9 @@ pub fn bbox_formula(n: usize) -> Result<(), String> {
         let script = bbox_box(&tri, pad, floor, steps as usize);
         let same = match (code, script) {
             (None, None) => true,
-            (Some(a), Some(b)) => a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan())),
+            (Some(a), Some(b)) => {
+                a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()))
+            }
             _ => false,
         };
         if !same {

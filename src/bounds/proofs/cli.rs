@@ -68,7 +68,8 @@ pub struct Report {
 impl Report {
     /// Every script proven and every check passed.
     pub fn ok(&self) -> bool {
-        self.scripts.iter().all(|s| s.outcome.verdict == Verdict::Proven) && self.checks.iter().all(|c| c.error.is_none())
+        self.scripts.iter().all(|s| s.outcome.verdict == Verdict::Proven)
+            && self.checks.iter().all(|c| c.error.is_none())
     }
 }
 
@@ -98,8 +99,7 @@ pub fn run_checks(triangles: usize, bbox: bool, limit: Duration) -> Vec<CheckRun
 pub fn run(ids: &[&'static str], limit: Duration, triangles: usize, jobs: usize, progress: bool) -> Report {
     let start = Instant::now();
     let chosen: Vec<&Variant> = VARIANTS.iter().filter(|v| ids.contains(&v.id)).collect();
-    let scripts: Vec<&Script> =
-        SCRIPTS.iter().filter(|s| chosen.iter().any(|v| v.scripts.contains(&s.name))).collect();
+    let scripts: Vec<&Script> = SCRIPTS.iter().filter(|s| chosen.iter().any(|v| v.scripts.contains(&s.name))).collect();
     let pb = if progress { ProgressBar::new(scripts.len() as u64 + 1) } else { ProgressBar::hidden() };
     pb.set_style(
         ProgressStyle::with_template("{msg:>16} {bar:40} {pos}/{len} scripts {elapsed_precise}")
@@ -196,11 +196,7 @@ pub fn render(r: &Report) -> String {
             _ => s += &format!("{:<24} {}\n", m.id, m.strength),
         }
     }
-    s += &format!(
-        "\n{} in {:.1} s\n",
-        if r.ok() { "all proofs re-run" } else { "SOME PROOFS FAILED" },
-        r.seconds
-    );
+    s += &format!("\n{} in {:.1} s\n", if r.ok() { "all proofs re-run" } else { "SOME PROOFS FAILED" }, r.seconds);
     s
 }
 

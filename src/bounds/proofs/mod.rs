@@ -176,10 +176,7 @@ pub const VARIANTS: &[Variant] = &[
                 range: "every finite f32 value",
             },
             Range { inputs: "vertex w at both shutter ends", range: "every finite f32 value > 0 (w <= 0: disabled)" },
-            Range {
-                inputs: "any non-finite input or intermediate",
-                range: "that axis never culls (code inspection)",
-            },
+            Range { inputs: "any non-finite input or intermediate", range: "that axis never culls (code inspection)" },
         ],
         scripts: &["STEP", "GAP", "ULP", "MONO", "bbox-safe pad"],
         mechanical: "the error model |RN(z) - z| <= 2^-23 |RN(z)| + 2^-149 (STEP, ULP), the four steps \

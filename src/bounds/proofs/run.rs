@@ -107,7 +107,8 @@ fn finish(tool: Tool, mut child: Child, input: &str, limit: Duration) -> Verdict
     };
     let (out, err) = (out.join().unwrap_or_default(), err.join().unwrap_or_default());
     let Some(status) = status else { return Verdict::Timeout };
-    let text = format!("{}{}", out.trim(), if err.trim().is_empty() { String::new() } else { format!(" {}", err.trim()) });
+    let text =
+        format!("{}{}", out.trim(), if err.trim().is_empty() { String::new() } else { format!(" {}", err.trim()) });
     match tool {
         Tool::Z3 => match out.trim() {
             "unsat" => Verdict::Proven,
