@@ -539,7 +539,9 @@ fn run() -> Result<()> {
             }
         }
         Cmd::Proofs(args) => {
-            cullproof::bounds::proofs::cli::run_cli(&args)?.then_some(()).unwrap_or_else(|| std::process::exit(1))
+            if !cullproof::bounds::proofs::cli::run_cli(&args)? {
+                std::process::exit(1);
+            }
         }
         Cmd::Methods { json } => {
             let ms: Vec<_> = cullproof::bounds::registry().iter().map(|m| *m.info()).collect();
