@@ -116,6 +116,8 @@
 //! when its distance from the real box exceeds zero: conservative for every finite
 //! input with every w > 0, and disabled (full bounds) otherwise.
 //!
+//! Machine-checked: `src/bounds/proofs/bbox_safe.g` with z3's rounding lemmas (`docs/proofs.md`).
+//!
 //! *Cost*: per corner value two adds, a divide, a multiply and eight steps more than
 //! `bbox`; the box grows by about 2^-21 (|s| + |n|) / w, a few f32 ulps of the
 //! coordinates, which no sample test efficiency figure can see.
