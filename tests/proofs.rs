@@ -4,7 +4,7 @@
 //! so that a passing run means something. Needs `z3` and `gappa` on the PATH (`.ci/run`
 //! installs both); a missing tool fails with how to install it.
 
-use cullproof::bounds::proofs::{check, cli, run, Tool, BBOX_PAD, SCRIPTS, STEP, VARIANTS};
+use cullproof::bounds::proofs::{check, cli, run, Tool, BBOX_PAD, SCRIPTS, STEP, VARIANTS, WU_PAD};
 use std::time::Duration;
 
 const LIMIT: Duration = Duration::from_secs(300);
@@ -43,6 +43,19 @@ fn a_smaller_pad_or_fewer_steps_break_the_bbox_proof() {
         let o = run::run_text(Tool::Gappa, &text, LIMIT);
         assert!(matches!(o.verdict, run::Verdict::Refuted(_)), "{name} = {value}: {o:?}");
     }
+}
+
+#[test]
+fn a_smaller_line_pad_breaks_the_wu2013_proof() {
+    for (name, value) in [("PAD", "1b-23"), ("FLOOR", "1b-128")] {
+        let text = check::with_constant(&WU_PAD, name, value);
+        assert_ne!(text, WU_PAD.text, "{name} not found in {}", WU_PAD.file);
+        let o = run::run_text(Tool::Gappa, &text, LIMIT);
+        assert!(matches!(o.verdict, run::Verdict::Refuted(_)), "{name} = {value}: {o:?}");
+    }
+    let get = |n| check::script_constant(&WU_PAD, n).unwrap();
+    check::wu_formula_with(get("PAD"), get("FLOOR"), 2_000).unwrap();
+    assert!(check::wu_formula_with(get("PAD") * 2.0, get("FLOOR"), 2_000).is_err());
 }
 
 #[test]

@@ -6,14 +6,16 @@
 //! - [`bbox_formula`]: `bbox-safe`'s setup recomputed from the script's constants
 //!   (`PAD`, `FLOOR`, `STEPS`) with the script's formula, bit for bit against the code's
 //!   `aabb_safe` on random triangles of every scale.
+//! - [`wu_formula`]: `wu2013-safe`'s padded lines and their evaluation recomputed from
+//!   the script's constants and formula, bit for bit against the code's.
 //! - [`primitives_script`]: a ground z3 script asserting that the prelude's `nd`, `nu`
 //!   and `rn` are Rust's `f32::next_down`, `f32::next_up` and rounding to nearest on
 //!   values from every range (zeros, subnormals, MAX, infinities, ties); it is proven
 //!   (unsat) exactly when every one agrees.
 
-use super::{Script, BBOX_PAD};
-use crate::bounds::bbox;
-use crate::model::Triangle;
+use super::{Script, BBOX_PAD, WU_PAD};
+use crate::bounds::{bbox, wu2013, SampleConstraint};
+use crate::model::{Sample, Triangle};
 
 /// A constant as a script declares it (`NAME = value;` at the start of a line), parsed
 /// as a Gappa number (`4`, `1b-21` = 2^-21, `0.5`).
@@ -54,7 +56,12 @@ pub fn with_constant(script: &Script, name: &str, value: &str) -> String {
 
 /// Every constant shared by a script and the code: (script, name, script value, code value).
 pub fn shared_constants() -> Vec<(&'static Script, &'static str, f64)> {
-    vec![(&BBOX_PAD, "PAD", bbox::PAD as f64), (&BBOX_PAD, "FLOOR", bbox::FLOOR as f64)]
+    vec![
+        (&BBOX_PAD, "PAD", bbox::PAD as f64),
+        (&BBOX_PAD, "FLOOR", bbox::FLOOR as f64),
+        (&WU_PAD, "PAD", wu2013::PAD as f64),
+        (&WU_PAD, "FLOOR", wu2013::FLOOR as f64),
+    ]
 }
 
 /// The shared constants agree (the f32 facts the lemmas use as well).
@@ -171,6 +178,60 @@ pub fn bbox_formula_with(pad: f64, floor: f64, steps: f64, n: usize) -> Result<(
                  script {script:?} for {tri:?}",
                 BBOX_PAD.file
             ));
+        }
+    }
+    Ok(())
+}
+
+/// `wu2013-safe`'s padded line through `(-1, e_left)`, `(1, e_right)` as `wu2013_safe.g`
+/// describes it: `(a, b')`.
+fn wu_line(upper: bool, e_left: f32, e_right: f32, pad: f32, floor: f32) -> (f32, f32) {
+    let a = 0.5 * e_right - 0.5 * e_left;
+    let b = if upper {
+        (e_left + a).next_up().max((e_right - a).next_up())
+    } else {
+        (e_left + a).next_down().min((e_right - a).next_down())
+    };
+    let p = (a.abs() + a.abs() + b.abs() + floor) * pad;
+    (a, if upper { (b + p).next_up() } else { (b - p).next_down() })
+}
+
+/// `wu2013-safe`'s lines (`safe_line`) and their evaluation (`TimeLine::eval`) are the
+/// script's formula with the script's constants: bit for bit on `n` random lines.
+pub fn wu_formula(n: usize) -> Result<(), String> {
+    let get = |name| script_constant(&WU_PAD, name);
+    wu_formula_with(get("PAD")?, get("FLOOR")?, n)
+}
+
+/// [`wu_formula`] with these constants in place of the script's.
+pub fn wu_formula_with(pad: f64, floor: f64, n: usize) -> Result<(), String> {
+    let (pad, floor) = (pad as f32, floor as f32);
+    let mut seed = 0x5851_f42d_4c95_7f2du64;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for i in 0..n {
+        let scale = [1e-38f64, 1e-20, 1e-3, 1.0, 1e3, 1e15, 1e29][i % 7];
+        let (el, er) = (((rnd() - 0.5) * scale) as f32, ((rnd() - 0.5) * scale) as f32);
+        let (l, t) = ((rnd() * 2.0 - 1.0) as f32, rnd() as f32);
+        for upper in [true, false] {
+            let Some(line) = wu2013::safe_line(wu2013::Lens::U, upper, el, er) else {
+                return Err(format!("wu2013-safe: no line through ({el:e}, {er:e})"));
+            };
+            let (a, b) = wu_line(upper, el, er, pad, floor);
+            let s = Sample { x: 0.0, y: 0.0, u: l, v: 0.0, t };
+            let want = if upper { (a * l + b) - t } else { t - (a * l + b) };
+            let got = line.eval(&s);
+            if (line.a, line.b) != (a, b) || got.to_bits() != want.to_bits() {
+                return Err(format!(
+                    "wu2013-safe's line differs from {} (PAD {pad:e}, FLOOR {floor:e}): code a {} b {} eval {got:e}, \
+                     script a {a} b {b} eval {want:e} (e_left {el:e}, e_right {er:e}, upper {upper})",
+                    WU_PAD.file, line.a, line.b
+                ));
+            }
         }
     }
     Ok(())

@@ -19,7 +19,8 @@ pub struct ProofsArgs {
     /// Time limit per script, in seconds (a script that takes longer is a failure).
     #[arg(long, default_value_t = 300.0)]
     pub timeout: f64,
-    /// Triangles on which `bbox-safe`'s setup is compared with its script's formula.
+    /// Triangles (and lines) on which `bbox-safe`'s setup (and `wu2013-safe`'s lines) are
+    /// compared with their scripts' formulas.
     #[arg(long, default_value_t = 20_000)]
     pub triangles: u64,
     /// Scripts run at a time (default 2; each tool uses one core).
@@ -74,7 +75,7 @@ impl Report {
 }
 
 /// The checks of scripts against code (see [`check`]); `z3` runs the primitives script.
-pub fn run_checks(triangles: usize, bbox: bool, limit: Duration) -> Vec<CheckRun> {
+pub fn run_checks(triangles: usize, bbox: bool, wu: bool, limit: Duration) -> Vec<CheckRun> {
     let timed = |name, f: &dyn Fn() -> Result<(), String>| {
         let t = Instant::now();
         let r = f();
@@ -83,6 +84,9 @@ pub fn run_checks(triangles: usize, bbox: bool, limit: Duration) -> Vec<CheckRun
     let mut out = vec![timed("constants of the scripts = the code's", &check::constants)];
     if bbox {
         out.push(timed("bbox-safe setup = bbox_safe.g's formula", &|| check::bbox_formula(triangles)));
+    }
+    if wu {
+        out.push(timed("wu2013-safe lines = wu2013_safe.g's formula", &|| check::wu_formula(triangles)));
     }
     out.push(timed("prelude's nd, nu, rn = Rust's next_down, next_up, rounding (z3)", &|| {
         let o = run::run_text(Tool::Z3, &check::primitives_script(), limit);
@@ -127,7 +131,8 @@ pub fn run(ids: &[&'static str], limit: Duration, triangles: usize, jobs: usize,
     let checks = if chosen.is_empty() {
         Vec::new()
     } else {
-        run_checks(triangles, chosen.iter().any(|v| v.id == "bbox-safe"), limit)
+        let has = |id| chosen.iter().any(|v| v.id == id);
+        run_checks(triangles, has("bbox-safe"), has("wu2013-safe"), limit)
     };
     pb.finish_and_clear();
     let checks_ok = checks.iter().all(|c| c.error.is_none());

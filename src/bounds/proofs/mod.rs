@@ -8,7 +8,9 @@
 //! - `step.smt2`, `monotone.smt2`, `gap.smt2`, `ulp.smt2`: the rounding lemmas STEP,
 //!   MONO, GAP and ULP, for every value of `W` (pure floating-point and bit-vector
 //!   theory; extended to every real by the argument of `docs/proofs.md`);
-//! - `bbox_safe.g`: Gappa, `bbox-safe`'s pad against the error of its corner value.
+//! - `bbox_safe.g`: Gappa, `bbox-safe`'s pad against the error of its corner value;
+//! - `wu2013_safe.g`: Gappa, `wu2013-safe`'s line pad against the error of the line's
+//!   per-sample evaluation.
 //!
 //! [`VARIANTS`] declares, per variant, the input ranges, the scripts, and the code
 //! facts the scripts assume; [`check`] compares the scripts' constants and formulas with
@@ -124,8 +126,18 @@ pub const BBOX_PAD: Script = Script {
     text: include_str!("bbox_safe.g"),
 };
 
+/// wu2013-safe's line pad (Gappa).
+pub const WU_PAD: Script = Script {
+    name: "wu2013-safe pad",
+    file: "wu2013_safe.g",
+    tool: Tool::Gappa,
+    claim: "the line pad 2^-21 (2 |a| + |b| + 2^-100) and one step keep the f32 evaluation \
+            RN(RN(a l) + b') at or above the exact line a l + b for every |l| <= 1",
+    text: include_str!("wu2013_safe.g"),
+};
+
 /// Every script, each run once.
-pub const SCRIPTS: &[Script] = &[STEP, MONO, GAP, ULP, BBOX_PAD];
+pub const SCRIPTS: &[Script] = &[STEP, MONO, GAP, ULP, BBOX_PAD, WU_PAD];
 
 /// An input range of a claim.
 #[derive(Clone, Copy, Debug, Serialize)]
@@ -200,6 +212,22 @@ pub const VARIANTS: &[Variant] = &[
         scripts: &["STEP", "MONO"],
         mechanical: "STEP for every interval operation; MONO for the lines (b = RN(l0 - pad) <= l0) and \
                      for the per-sample value (an f32 difference of ordered values is >= 0)",
+        by_argument: STEPS_ARGUMENT,
+    },
+    Variant {
+        id: "wu2013-safe",
+        ranges: &[
+            Range {
+                inputs: "vertex x, y, z, w at both shutter ends, CoC c0, c1, aspect k, tile edges",
+                range: "every finite f32 value",
+            },
+            Range { inputs: "sample lens coordinate u, v (the lines' l)", range: "[-1, 1] (the model's lens)" },
+            Range { inputs: "any non-finite input", range: "answered with the full domain (code inspection)" },
+        ],
+        scripts: &["STEP", "MONO", "GAP", "ULP", "wu2013-safe pad"],
+        mechanical: "STEP for every interval operation; the error model (STEP, ULP) and the inequality \
+                     that the lines' pad covers their f32 evaluation for every |l| <= 1 (wu2013_safe.g, \
+                     with the code's PAD and FLOOR); MONO for the sign of the last difference",
         by_argument: STEPS_ARGUMENT,
     },
     Variant {
