@@ -299,6 +299,11 @@ enum Cmd {
         #[arg(long)]
         jobs: Option<usize>,
     },
+    /// Re-run the proofs for all inputs in stated ranges (z3 and gappa scripts in
+    /// src/bounds/proofs/, checked against the code's constants and formulas) and print,
+    /// per method, its ranges, scripts, their verdicts and times, and its strongest
+    /// verdict; exit 1 when a script is not proven or does not match the code.
+    Proofs(cullproof::bounds::proofs::cli::ProofsArgs),
     /// List the culling methods under test: id, source, reconstruction flag, dimensions, outputs.
     Methods {
         /// Print JSON instead of a table.
@@ -609,6 +614,11 @@ fn run() -> Result<()> {
             print!("{}", cullproof::check::power::render(&r, &slips));
             if let Some(p) = &json {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
+            }
+        }
+        Cmd::Proofs(args) => {
+            if !cullproof::bounds::proofs::cli::run_cli(&args)? {
+                std::process::exit(1);
             }
         }
         Cmd::Methods { json } => {

@@ -116,6 +116,8 @@
 //! when its distance from the real box exceeds zero: conservative for every finite
 //! input with every w > 0, and disabled (full bounds) otherwise.
 //!
+//! Machine-checked: `src/bounds/proofs/bbox_safe.g` with z3's rounding lemmas (`docs/proofs.md`).
+//!
 //! *Cost*: per corner value two adds, a divide, a multiply and eight steps more than
 //! `bbox`; the box grows by about 2^-21 (|s| + |n|) / w, a few f32 ulps of the
 //! coordinates, which no sample test efficiency figure can see.
@@ -183,11 +185,14 @@ fn aabb(tri: &Triangle) -> Option<[f32; 4]> {
     })
 }
 
+/// `bbox-safe`'s relative pad, 2^-21 = 8u (proof: `src/bounds/proofs/bbox_safe.g`).
+pub(crate) const PAD: f32 = 1.0 / (1u32 << 21) as f32;
+/// `bbox-safe`'s floor, 2^-120: covers the underflow of k c and n / w.
+pub(crate) const FLOOR: f32 = 1.0 / (1u128 << 120) as f32;
+
 /// Setup of the outward-rounded AABB of `bbox-safe` (f32; see the module's error
 /// analysis): each corner value padded by `p` and four f32 steps.
-fn aabb_safe(tri: &Triangle) -> Option<[f32; 4]> {
-    const PAD: f32 = 1.0 / (1u32 << 21) as f32; // 2^-21 = 8u
-    const FLOOR: f32 = 1.0 / (1u128 << 120) as f32; // 2^-120: covers the underflow of k c and n / w
+pub(crate) fn aabb_safe(tri: &Triangle) -> Option<[f32; 4]> {
     aabb_with(tri, |n, s, w| {
         let q = n / w;
         let pad = ((s.abs() + n.abs() + FLOOR) / w) * PAD;

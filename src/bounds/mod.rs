@@ -25,6 +25,7 @@ pub mod mam2012;
 pub mod mam2012_hyperplane;
 pub mod mam2012_new;
 pub mod nilsson2012_depth;
+pub mod proofs;
 mod shared;
 pub use shared::{shared, shared_all, MethodRef};
 #[cfg(test)]

@@ -331,7 +331,7 @@ impl Axis {
 
 /// Which lens coordinate a line is in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Lens {
+pub(crate) enum Lens {
     U,
     V,
 }
@@ -341,8 +341,8 @@ enum Lens {
 pub struct TimeLine {
     lens: Lens,
     upper: bool,
-    a: f32,
-    b: f32,
+    pub(crate) a: f32,
+    pub(crate) b: f32,
 }
 
 impl TimeLine {
@@ -763,12 +763,15 @@ impl SafeAxis {
     }
 }
 
+/// `wu2013-safe`'s line pad, 2^-21 = 8u (proof: `src/bounds/proofs/wu2013_safe.g`).
+pub(crate) const PAD: f32 = 1.0 / (1u32 << 21) as f32;
+/// `wu2013-safe`'s line pad floor, 2^-100.
+pub(crate) const FLOOR: f32 = 1.0 / (1u128 << 100) as f32;
+
 /// A padded f32 line `t = a l + b'` through (or beyond) `(-1, e_left)`, `(1, e_right)`:
 /// above both for an upper line, below both for a lower one, with `b'` moved outward by
 /// the f32 error of [`TimeLine::eval`] (module doc). None beyond `LINE_LIMIT`.
-fn safe_line(lens: Lens, upper: bool, e_left: f32, e_right: f32) -> Option<TimeLine> {
-    const PAD: f32 = 1.0 / (1u32 << 21) as f32; // 2^-21 = 8u
-    const FLOOR: f32 = 1.0 / (1u128 << 100) as f32; // 2^-100
+pub(crate) fn safe_line(lens: Lens, upper: bool, e_left: f32, e_right: f32) -> Option<TimeLine> {
     if !(e_left.abs() <= LINE_LIMIT && e_right.abs() <= LINE_LIMIT) {
         return None;
     }

@@ -1,0 +1,268 @@
+//! Proofs for all inputs: which `-safe` variants are proven conservative for every f32
+//! input in stated ranges, by which scripts, and what the scripts depend on in the code
+//! (`docs/proofs.md` says what is proven mechanically and what by argument).
+//!
+//! The scripts sit beside this file and are compiled into the binary:
+//! - `prelude.smt2`: the shared definitions of the z3 lemmas (IEEE binary32 `F`, the
+//!   wider binary64 `W`, Rust's `next_down` / `next_up` on the bits of an f32);
+//! - `step.smt2`, `monotone.smt2`, `gap.smt2`, `ulp.smt2`: the rounding lemmas STEP,
+//!   MONO, GAP and ULP, for every value of `W` (pure floating-point and bit-vector
+//!   theory; extended to every real by the argument of `docs/proofs.md`);
+//! - `bbox_safe.g`: Gappa, `bbox-safe`'s pad against the error of its corner value;
+//! - `wu2013_safe.g`: Gappa, `wu2013-safe`'s line pad against the error of the line's
+//!   per-sample evaluation.
+//!
+//! [`VARIANTS`] declares, per variant, the input ranges, the scripts, and the code
+//! facts the scripts assume; [`check`] compares the scripts' constants and formulas with
+//! the code, [`run`] runs a script with its tool. `cullproof proofs` ([`cli`]) and
+//! `tests/proofs.rs` run them all.
+
+pub mod check;
+pub mod cli;
+pub mod run;
+
+use serde::Serialize;
+
+/// The tool a script is written for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Tool {
+    /// `z3` (SMT-LIB2, QF_BVFP): a lemma is proven when z3 answers `unsat`.
+    Z3,
+    /// `gappa`: a script is proven when gappa exits 0.
+    Gappa,
+}
+
+impl Tool {
+    /// The executable looked up on the PATH.
+    pub fn binary(self) -> &'static str {
+        match self {
+            Tool::Z3 => "z3",
+            Tool::Gappa => "gappa",
+        }
+    }
+    /// How to get the tool (the message of a missing tool).
+    pub fn install(self) -> &'static str {
+        match self {
+            Tool::Z3 => "install z3 (Debian/Ubuntu: `apt-get install z3`, 4.8.12 or later; `.ci/run` does)",
+            Tool::Gappa => "install gappa (Debian/Ubuntu: `apt-get install gappa`, 1.4.1 or later; `.ci/run` does)",
+        }
+    }
+}
+
+/// One proof script.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Script {
+    /// Short name (`STEP`, `bbox-safe pad`).
+    pub name: &'static str,
+    /// File name in `src/bounds/proofs/`.
+    pub file: &'static str,
+    pub tool: Tool,
+    /// What it proves, in one sentence.
+    pub claim: &'static str,
+    #[serde(skip)]
+    pub text: &'static str,
+}
+
+impl Script {
+    /// The input given to the tool: z3 scripts get the prelude first.
+    pub fn input(&self) -> String {
+        match self.tool {
+            Tool::Z3 => format!("{PRELUDE}{}", self.text),
+            Tool::Gappa => self.text.to_string(),
+        }
+    }
+}
+
+/// The shared definitions of the z3 lemmas.
+pub const PRELUDE: &str = include_str!("prelude.smt2");
+
+/// Lemma STEP (z3).
+pub const STEP: Script = Script {
+    name: "STEP",
+    file: "step.smt2",
+    tool: Tool::Z3,
+    claim: "a value rounded to nearest (or any nearest f32, ties either way), stepped one f32 \
+            outward, encloses what was rounded: next_down(r) <= z <= next_up(r), subnormals, \
+            zeros and overflow included",
+    text: include_str!("step.smt2"),
+};
+
+/// Lemma MONO (z3).
+pub const MONO: Script = Script {
+    name: "MONO",
+    file: "monotone.smt2",
+    tool: Tool::Z3,
+    claim: "rounding to nearest is monotone (so the f32 difference of f32 values x >= y is >= 0)",
+    text: include_str!("monotone.smt2"),
+};
+
+/// Lemma GAP (z3).
+pub const GAP: Script = Script {
+    name: "GAP",
+    file: "gap.smt2",
+    tool: Tool::Z3,
+    claim: "a step moves a finite f32 by at least 2^-149",
+    text: include_str!("gap.smt2"),
+};
+
+/// Lemma ULP (z3).
+pub const ULP: Script = Script {
+    name: "ULP",
+    file: "ulp.smt2",
+    tool: Tool::Z3,
+    claim: "the neighbours of a finite f32 r are within 2^-23 |r| + 2^-149 of it (with STEP: \
+            every finite rounding errs by at most that)",
+    text: include_str!("ulp.smt2"),
+};
+
+/// bbox-safe's pad (Gappa).
+pub const BBOX_PAD: Script = Script {
+    name: "bbox-safe pad",
+    file: "bbox_safe.g",
+    tool: Tool::Gappa,
+    claim: "the pad 2^-21 (|s| + |n| + 2^-120) / w and four steps exceed the error of the \
+            corner value (a +- k c) / w computed in f32, for every finite input with w > 0",
+    text: include_str!("bbox_safe.g"),
+};
+
+/// wu2013-safe's line pad (Gappa).
+pub const WU_PAD: Script = Script {
+    name: "wu2013-safe pad",
+    file: "wu2013_safe.g",
+    tool: Tool::Gappa,
+    claim: "the line pad 2^-21 (2 |a| + |b| + 2^-100) and one step keep the f32 evaluation \
+            RN(RN(a l) + b') at or above the exact line a l + b for every |l| <= 1",
+    text: include_str!("wu2013_safe.g"),
+};
+
+/// Every script, each run once.
+pub const SCRIPTS: &[Script] = &[STEP, MONO, GAP, ULP, BBOX_PAD, WU_PAD];
+
+/// An input range of a claim.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Range {
+    /// The inputs it is about.
+    pub inputs: &'static str,
+    /// The range.
+    pub range: &'static str,
+}
+
+/// A `-safe` variant proven for all inputs in its ranges.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Variant {
+    /// The method id.
+    pub id: &'static str,
+    /// The claim's input ranges (outside them: what the method answers, by code inspection).
+    pub ranges: &'static [Range],
+    /// The scripts the proof uses (names in [`SCRIPTS`]).
+    pub scripts: &'static [&'static str],
+    /// What the scripts prove for this variant.
+    pub mechanical: &'static str,
+    /// What the proof takes from an argument (`docs/proofs.md` and the method's file).
+    pub by_argument: &'static str,
+}
+
+/// Every finite f32 input; non-finite input: the full domain.
+const ALL_FINITE: &[Range] = &[
+    Range {
+        inputs: "vertex x, y, z, w at both shutter ends, CoC c0, c1, aspect k, tile edges",
+        range: "every finite f32 value (subnormals, zeros of either sign, up to +-MAX)",
+    },
+    Range { inputs: "any non-finite input", range: "answered with the full domain (code inspection)" },
+];
+
+/// The directed-step composition, shared by the interval variants.
+const STEPS_ARGUMENT: &str = "each value is an f32 interval whose ends are rounded results stepped outward \
+     (STEP for + - * / and fma, all correctly rounded in Rust), combined only by monotone operations \
+     (sums of same-sided ends, the four end products or quotients, min/max, exact comparisons); the \
+     real-arithmetic derivation of the method in its file then applies to the enclosed exact values";
+
+/// The variants with a proof, in the registry's order.
+pub const VARIANTS: &[Variant] = &[
+    Variant {
+        id: "bbox-safe",
+        ranges: &[
+            Range {
+                inputs: "vertex x, y at both shutter ends, CoC c0, c1, aspect k, tile edges",
+                range: "every finite f32 value",
+            },
+            Range { inputs: "vertex w at both shutter ends", range: "every finite f32 value > 0 (w <= 0: disabled)" },
+            Range { inputs: "any non-finite input or intermediate", range: "that axis never culls (code inspection)" },
+        ],
+        scripts: &["STEP", "GAP", "ULP", "MONO", "bbox-safe pad"],
+        mechanical: "the error model |RN(z) - z| <= 2^-23 |RN(z)| + 2^-149 (STEP, ULP), the four steps \
+                     (STEP, GAP), and the inequality that the pad and the steps cover the corner value's \
+                     error for every B = (|s| + |n|) / w >= 0 and w > 0 (bbox_safe.g, with the code's PAD, \
+                     FLOOR and step count)",
+        by_argument: "collecting the error terms into g1 B + g2 / w + g3 (docs/proofs.md); the exact box is \
+                      the hull of the exact corner values (bbox.rs derivation); tile comparisons are exact",
+    },
+    Variant {
+        id: "la2011-safe",
+        ranges: ALL_FINITE,
+        scripts: &["STEP", "MONO"],
+        mechanical: "every rounded result stepped outward encloses the exact result (STEP), rounding is \
+                     monotone (MONO)",
+        by_argument: STEPS_ARGUMENT,
+    },
+    Variant {
+        id: "mam2012-safe",
+        ranges: ALL_FINITE,
+        scripts: &["STEP", "MONO"],
+        mechanical: "STEP for every interval operation; MONO for the lines (b = RN(l0 - pad) <= l0) and \
+                     for the per-sample value (an f32 difference of ordered values is >= 0)",
+        by_argument: STEPS_ARGUMENT,
+    },
+    Variant {
+        id: "wu2013-safe",
+        ranges: &[
+            Range {
+                inputs: "vertex x, y, z, w at both shutter ends, CoC c0, c1, aspect k, tile edges",
+                range: "every finite f32 value",
+            },
+            Range { inputs: "sample lens coordinate u, v (the lines' l)", range: "[-1, 1] (the model's lens)" },
+            Range { inputs: "any non-finite input", range: "answered with the full domain (code inspection)" },
+        ],
+        scripts: &["STEP", "MONO", "GAP", "ULP", "wu2013-safe pad"],
+        mechanical: "STEP for every interval operation; the error model (STEP, ULP) and the inequality \
+                     that the lines' pad covers their f32 evaluation for every |l| <= 1 (wu2013_safe.g, \
+                     with the code's PAD and FLOOR); MONO for the sign of the last difference",
+        by_argument: STEPS_ARGUMENT,
+    },
+    Variant {
+        id: "nilsson2012-depth-safe",
+        ranges: ALL_FINITE,
+        scripts: &["STEP"],
+        mechanical: "every rounded result stepped outward encloses the exact result (STEP)",
+        by_argument: STEPS_ARGUMENT,
+    },
+    Variant {
+        id: "gdam2010-safe",
+        ranges: ALL_FINITE,
+        scripts: &["STEP", "MONO"],
+        mechanical: "STEP for the fused multiply-adds and the interval cross products; MONO for g(s) >= 0 \
+                     (an f32 difference of ordered f32 values)",
+        by_argument: STEPS_ARGUMENT,
+    },
+];
+
+/// The script named `name`.
+pub fn script(name: &str) -> Option<&'static Script> {
+    SCRIPTS.iter().find(|s| s.name == name)
+}
+
+/// The variant with this method id.
+pub fn variant(id: &str) -> Option<&'static Variant> {
+    VARIANTS.iter().find(|v| v.id == id)
+}
+
+/// The strongest verdict a method can reach: proven for all inputs in ranges (these
+/// scripts), or only what the gate certifies on its cases.
+pub fn strength(id: &str) -> &'static str {
+    if variant(id).is_some() {
+        "proven for all inputs in its ranges (symbolic)"
+    } else {
+        "no proof for all inputs (its verdict is the gate's, on its cases: `cullproof check`)"
+    }
+}
