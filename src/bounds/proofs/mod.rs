@@ -261,7 +261,7 @@ pub fn variant(id: &str) -> Option<&'static Variant> {
 /// scripts), or only what the gate certifies on its cases.
 pub fn strength(id: &str) -> &'static str {
     if variant(id).is_some() {
-        "proven for all inputs in its ranges (symbolic)"
+        "proven for all inputs in its ranges (symbolic: rounding lemmas by z3/gappa, their composition argued in docs/proofs.md)"
     } else {
         "no proof for all inputs (its verdict is the gate's, on its cases: `cullproof check`)"
     }
