@@ -360,8 +360,8 @@ fn combination_rules_out(ev: &[LPoly<3, 16>; 3], s: f64, h: f64) -> bool {
     let mid: [[f64; 16]; 3] = std::array::from_fn(|k| ev[k].0[0].v.map(|v| s * v));
     let worst = |k: usize, l: usize, a: f64| -> (f64, usize) {
         let mut best = (f64::NEG_INFINITY, 0);
-        for (n, (&ek, &el)) in mid[k].iter().zip(&mid[l]).enumerate() {
-            let g = (1.0 - a) * ek + a * el;
+        for n in 0..16 {
+            let g = (1.0 - a) * mid[k][n] + a * mid[l][n];
             if g > best.0 || g.is_nan() {
                 best = (g, n);
             }
@@ -381,8 +381,7 @@ fn combination_rules_out(ev: &[LPoly<3, 16>; 3], s: f64, h: f64) -> bool {
             }
             a = 0.5 * (lo + hi);
         }
-        // (NaN: no candidate)
-        if worst(k, l, a).0.partial_cmp(&0.0) != Some(std::cmp::Ordering::Less) {
+        if !(worst(k, l, a).0 < 0.0) {
             continue;
         }
         let wk = LPoly::<1, 16>::splat(&TPoly::c(s * (1.0 - a)));
