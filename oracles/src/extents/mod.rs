@@ -3,13 +3,11 @@
 //! covered.
 //!
 //! # Method
-//! Best-first branch-and-bound ([`bnb`]) over boxes of (x, y, u, v, t), one search per
-//! extent ([`Extent`]).
+//! Best-first branch-and-bound over boxes of (x, y, u, v, t), one search per extent ([`Extent`]).
 //! A box is judged from enclosures of the four coverage polynomials (E_0, E_1, E_2, D)
 //! over it:
 //! - **empty** when one value is certainly <= 0 and another certainly >= 0 (or one is
-//!   certainly 0): no sample in it can have four values of one strict sign; or when a
-//!   separation test below rules out every (x, y) of the box for all its (u, v, t);
+//!   certainly 0): no sample in it can have four values of one strict sign;
 //! - **full** when all four are certainly > 0 or all certainly < 0;
 //! - **undecided** otherwise.
 //!
@@ -38,22 +36,6 @@
 //! resolution. Boxes that reach the minimum size undecided, or remain when the box
 //! budget runs out, are counted and reported, never dropped: the enclosure then runs
 //! from the smallest lower bound among them.
-//!
-//! # Eliminating (x, y)
-//! For a fixed (u, v, t) each `E_k` is affine in (x, y) (the `x y` terms of the 2x2
-//! determinant cancel) and `D` does not depend on them, so the covered pixels are the
-//! interior of a convex polygon: the tile cut by three half-planes. The box tests decide
-//! (x, y) over the whole tile without splitting it: one edge value rules the tile out
-//! when its line separates the polygon from the tile, and a nonnegative combination of
-//! two edge values (chosen in plain f64, certified with the lanes' error bounds; see
-//! `combination_rules_out` in [`enclosure`]) when a side of the tile through a vertex
-//! does; in front of the lens the vertices' side test does the same. So while D keeps
-//! one sign over a box the search for u, v or t splits only (u, v, t), and x, y only
-//! once those are at their minimum width. Witnesses come from the same polygon: its
-//! clipped centroid at the box's (u, v, t), and behind the lens (where the covered set
-//! is often thin in (u, v, t) too) the point of greatest coverage depth found by a
-//! compass search over the box; every witness is still confirmed by the exact
-//! classifier. The polygon only proposes points; soundness rests on the enclosures.
 //!
 //! Dimensions a triangle does not have are not searched: a static triangle is judged at
 //! t = 0 and, when covered, its t extents are the whole requested range (coverage does
