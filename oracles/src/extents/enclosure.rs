@@ -50,10 +50,6 @@ pub struct BoxValues {
     /// In front, and for every (u, v, t) of the box all three projected vertices lie
     /// on the far side of one side of the box's (x, y) rectangle: nothing is covered.
     pub separated: bool,
-    /// A fixed nonnegative combination of two edge values, signed like D (whose sign is
-    /// certain over the box), is `<= 0` over the whole box: no sample of the box has all
-    /// three edge values of D's sign, so nothing is covered (see [`combination_rules_out`]).
-    pub combined: bool,
 }
 
 impl BoxValues {
@@ -308,12 +304,7 @@ pub fn box_values_with(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValues {
     }
     let nz = nz.unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY));
     let vertex_depth = if with_depth && in_front { vertex_depths(tri, b[4]) } else { None };
-    let single = e.iter().any(|v| v.lo >= 0.0 || v.hi <= 0.0);
-    let combined = !separated && !single && (d.lo > 0.0 || d.hi < 0.0) && {
-        let s = if d.lo > 0.0 { 1.0 } else { -1.0 };
-        combination_rules_out(&ev, s, h)
-    };
-    BoxValues { e, d, nz, depth, vertex_depth, smear, depth_smear, in_front, separated, combined }
+    BoxValues { e, d, nz, depth, vertex_depth, smear, depth_smear, in_front, separated }
 }
 
 /// The hull of the vertex depths `z_k(t) / w_k(t)` over the times `t` (see
@@ -338,66 +329,10 @@ pub(super) fn vertex_depths(tri: &Tri, t: Interval) -> Option<Interval> {
     acc.filter(|a| a.lo.is_finite() && a.hi.is_finite())
 }
 
-/// Is some combination `(1 - a) s E_k + a s E_l` (`0 <= a <= 1`, `s` the sign of D)
-/// certainly `<= 0` over the box? Then no sample of the box has `s E_k > 0` and
-/// `s E_l > 0`, so none is interior.
-///
-/// For one (u, v, t) the covered (x, y) form a convex set cut out by three half-planes;
-/// it misses the tile exactly when a line separates the two, and that line can be taken
-/// through an edge of the triangle (one edge value alone rules the box out) or along a
-/// side of the tile through a vertex, where the two edges meeting at that vertex combine
-/// into it (Farkas: an affine function positive on the cone of two half-planes is a
-/// nonnegative combination of their two functions). So the pair test finds what the
-/// single edges miss next to a corner of the triangle, without splitting x or y.
-///
-/// The weight `a` is only chosen in plain f64 (minimising the largest combined value at
-/// the middle time over the 16 corners, by bisection on its convex maximum); the
-/// certificate is the combination evaluated with the lanes' rigorous error bounds: the
-/// combination is affine in each of x, y, u, v separately like each edge value, so its
-/// largest value over the box is at a corner, bounded over the box's times.
-fn combination_rules_out(ev: &[LPoly<3, 16>; 3], s: f64, h: f64) -> bool {
-    let mid: [[f64; 16]; 3] = std::array::from_fn(|k| ev[k].0[0].v.map(|v| s * v));
-    let worst = |k: usize, l: usize, a: f64| -> (f64, usize) {
-        let mut best = (f64::NEG_INFINITY, 0);
-        for n in 0..16 {
-            let g = (1.0 - a) * mid[k][n] + a * mid[l][n];
-            if g > best.0 || g.is_nan() {
-                best = (g, n);
-            }
-        }
-        best
-    };
-    for (k, l) in [(0usize, 1usize), (1, 2), (2, 0)] {
-        // Bisection on the slope of the convex maximum.
-        let (mut lo, mut hi) = (0.0f64, 1.0f64);
-        let mut a = 0.5;
-        for _ in 0..24 {
-            let (_, n) = worst(k, l, a);
-            if mid[l][n] - mid[k][n] > 0.0 {
-                hi = a;
-            } else {
-                lo = a;
-            }
-            a = 0.5 * (lo + hi);
-        }
-        if !(worst(k, l, a).0 < 0.0) {
-            continue;
-        }
-        let wk = LPoly::<1, 16>::splat(&TPoly::c(s * (1.0 - a)));
-        let wl = LPoly::<1, 16>::splat(&TPoly::c(s * a));
-        let g: LPoly<3, 16> = wk.mul::<3, 3>(&ev[k]).add(&wl.mul::<3, 3>(&ev[l]));
-        let (_, g_hi) = g.range(h);
-        if g_hi.iter().all(|&v| v <= 0.0) {
-            return true;
-        }
-    }
-    false
-}
-
 /// Empty / full / undecided from the enclosures.
 pub fn classify_values(bv: &BoxValues) -> BoxClass {
     let vals = [bv.e[0], bv.e[1], bv.e[2], bv.d];
-    if bv.separated || bv.combined {
+    if bv.separated {
         return BoxClass::Empty;
     }
     if vals.iter().any(|v| v.lo.is_nan() || v.hi.is_nan()) {

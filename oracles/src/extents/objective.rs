@@ -180,127 +180,12 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5) -> Vec<[f64;
         });
         pts.push(p);
     }
-    // With a vertex behind the lens the covered set is often thin in (u, v, t) as well
-    // (an edge between two close vertices): search the box for it.
-    if edge_lines(tri, centre[2], centre[3], centre[4]).is_some_and(|e| e.behind) {
-        if let Some(p) = deepest_point(tri, b) {
-            pts.insert(0, p);
-        }
-    }
     pts
-}
-
-/// The three edge values at one (u, v, t) as affine functions of (x, y), signed like D
-/// and scaled to unit gradient (a constant one stays as it is): `g_k(x, y) > 0` for all
-/// k is coverage there. Plain f64, for proposing points only.
-struct EdgeLines {
-    g: [(f64, f64, f64); 3],
-    /// Some vertex has w <= 0.
-    behind: bool,
-}
-
-fn edge_lines(tri: &Tri, u: f64, v: f64, t: f64) -> Option<EdgeLines> {
-    let mut xs = [0.0; 3];
-    let mut ys = [0.0; 3];
-    let mut ws = [0.0; 3];
-    for i in 0..3 {
-        let at = |j: usize| (1.0 - t) * tri.q[i][j] + t * tri.r[i][j];
-        let c = (1.0 - t) * tri.c0[i] + t * tri.c1[i];
-        (xs[i], ys[i], ws[i]) = (at(0) + u * c, at(1) + tri.k * v * c, at(3));
-    }
-    let edges = [(1usize, 2usize), (2, 0), (0, 1)];
-    let coef = edges
-        .map(|(i, j)| (xs[i] * ys[j] - ys[i] * xs[j], ys[i] * ws[j] - ws[i] * ys[j], ws[i] * xs[j] - xs[i] * ws[j]));
-    let d: f64 = (0..3).map(|k| ws[k] * coef[k].0).sum();
-    if !(d.is_finite() && d != 0.0) {
-        return None;
-    }
-    let sg = d.signum();
-    let g = coef.map(|(a, b, c)| {
-        let n = b.hypot(c);
-        let n = if n > 0.0 && n.is_finite() { n } else { 1.0 };
-        (sg * a / n, sg * b / n, sg * c / n)
-    });
-    Some(EdgeLines { g, behind: ws.iter().any(|&w| w <= 0.0) })
-}
-
-/// The largest `min_k g_k(x, y)` over the rectangle (a depth of coverage in pixels: > 0
-/// inside the covered set) and where it is. The minimum of affine functions is concave,
-/// so its largest value over the rectangle is at a corner, where the line `g_k = g_l`
-/// meets a side, or where all three are equal.
-fn deepest_xy(e: &EdgeLines, b: &Box5) -> Option<(f64, f64, f64)> {
-    let (x0, x1, y0, y1) = (b[0].lo, b[0].hi, b[1].lo, b[1].hi);
-    let m = |x: f64, y: f64| e.g.iter().map(|&(a, bx, cy)| a + bx * x + cy * y).fold(f64::INFINITY, f64::min);
-    let mut best: Option<(f64, f64, f64)> = None;
-    let mut try_at = |x: f64, y: f64| {
-        if !(x >= x0 && x <= x1 && y >= y0 && y <= y1) {
-            return;
-        }
-        let v = m(x, y);
-        if v.is_finite() && best.is_none_or(|(bv, _, _)| v > bv) {
-            best = Some((v, x, y));
-        }
-    };
-    for (x, y) in [(x0, y0), (x1, y0), (x0, y1), (x1, y1)] {
-        try_at(x, y);
-    }
-    for (k, l) in [(0usize, 1usize), (1, 2), (2, 0)] {
-        let (a, bx, cy) = (e.g[k].0 - e.g[l].0, e.g[k].1 - e.g[l].1, e.g[k].2 - e.g[l].2);
-        if cy != 0.0 {
-            try_at(x0, -(a + bx * x0) / cy);
-            try_at(x1, -(a + bx * x1) / cy);
-        }
-        if bx != 0.0 {
-            try_at(-(a + cy * y0) / bx, y0);
-            try_at(-(a + cy * y1) / bx, y1);
-        }
-    }
-    // g_0 = g_1 = g_2: two linear equations in (x, y).
-    let (p, q) = ((0usize, 1usize), (1usize, 2usize));
-    let r = |(k, l): (usize, usize)| (e.g[k].0 - e.g[l].0, e.g[k].1 - e.g[l].1, e.g[k].2 - e.g[l].2);
-    let ((a1, b1, c1), (a2, b2, c2)) = (r(p), r(q));
-    let det = b1 * c2 - b2 * c1;
-    if det != 0.0 {
-        try_at((-a1 * c2 + a2 * c1) / det, (-b1 * a2 + b2 * a1) / det);
-    }
-    best
-}
-
-/// A point of the box where the coverage depth ([`deepest_xy`]) is largest, found by a
-/// compass search over (u, v, t) from the box's centre (plain f64, seeded by nothing:
-/// reproducible); None unless the depth found is positive.
-fn deepest_point(tri: &Tri, b: &Box5) -> Option<[f64; 5]> {
-    let f = |p: [f64; 3]| -> Option<(f64, f64, f64)> { deepest_xy(&edge_lines(tri, p[0], p[1], p[2])?, b) };
-    let mut at = [b[2].mid(), b[3].mid(), b[4].mid()];
-    let mut val = f(at)?;
-    let mut step = [0.5 * b[2].width(), 0.5 * b[3].width(), 0.5 * b[4].width()];
-    for _ in 0..12 {
-        if val.0 > 0.0 {
-            break;
-        }
-        let mut moved = false;
-        for k in 0..3 {
-            for dir in [-1.0, 1.0] {
-                let mut p = at;
-                p[k] = (p[k] + dir * step[k]).clamp(b[k + 2].lo, b[k + 2].hi);
-                if let Some(v) = f(p) {
-                    if v.0 > val.0 {
-                        (at, val, moved) = (p, v, true);
-                    }
-                }
-            }
-        }
-        if !moved {
-            step = step.map(|s| 0.5 * s);
-        }
-    }
-    (val.0 > 0.0).then_some([val.1, val.2, at[0], at[1], at[2]])
 }
 
 /// The centroid of the triangle projected at (u, v, t) = `s[2..5]`, clipped to the
 /// box's (x, y) rectangle (plain f64: it only proposes points, which are then judged
-/// exactly). None when the clipped polygon is empty. With a vertex not in front the
-/// projection means nothing; [`halfplane_centroid`] clips by the edge values instead.
+/// exactly). None when a vertex is not in front or the clipped polygon is empty.
 pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
     let (u, v, t) = (s[2], s[3], s[4]);
     let mut poly: Vec<(f64, f64)> = Vec::with_capacity(8);
@@ -309,7 +194,7 @@ pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64,
         let c = (1.0 - t) * tri.c0[i] + t * tri.c1[i];
         let w = at(3);
         if w.is_nan() || w <= 0.0 {
-            return halfplane_centroid(tri, s, b);
+            return None;
         }
         poly.push(((at(0) + u * c) / w, (at(1) + tri.k * v * c) / w));
     }
@@ -375,56 +260,4 @@ pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box
         }
     }
     inside
-}
-
-/// The mean of the vertices of the convex polygon `{(x, y) in the box's rectangle :
-/// s E_k(x, y) >= 0 for k = 0, 1, 2}` at (u, v, t) = `s[2..5]`, `s` the sign of D: for a
-/// fixed (u, v, t) each edge value is affine in (x, y) (the `x y` terms cancel) and D
-/// does not depend on them, so the covered pixels are that polygon's interior whether
-/// or not the vertices are in front of the lens. Plain f64, like [`clipped_centroid`]:
-/// it only proposes a point. None when the polygon is empty or D is 0.
-fn halfplane_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
-    let (u, v, t) = (s[2], s[3], s[4]);
-    let mut xs = [0.0; 3];
-    let mut ys = [0.0; 3];
-    let mut ws = [0.0; 3];
-    for i in 0..3 {
-        let at = |j: usize| (1.0 - t) * tri.q[i][j] + t * tri.r[i][j];
-        let c = (1.0 - t) * tri.c0[i] + t * tri.c1[i];
-        (xs[i], ys[i], ws[i]) = (at(0) + u * c, at(1) + tri.k * v * c, at(3));
-    }
-    // E_k = a_k + b_k x + c_k y for the edge (i, j) opposite vertex k.
-    let edges = [(1usize, 2usize), (2, 0), (0, 1)];
-    let coef = edges
-        .map(|(i, j)| (xs[i] * ys[j] - ys[i] * xs[j], ys[i] * ws[j] - ws[i] * ys[j], ws[i] * xs[j] - xs[i] * ws[j]));
-    let d: f64 = (0..3).map(|k| ws[k] * coef[k].0).sum();
-    if !(d.is_finite() && d != 0.0) {
-        return None;
-    }
-    let sg = d.signum();
-    let mut poly: Vec<(f64, f64)> =
-        vec![(b[0].lo, b[1].lo), (b[0].hi, b[1].lo), (b[0].hi, b[1].hi), (b[0].lo, b[1].hi)];
-    for (a, bx, cy) in coef {
-        let g = |p: &(f64, f64)| sg * (a + bx * p.0 + cy * p.1);
-        let mut out = Vec::with_capacity(poly.len() + 2);
-        for k in 0..poly.len() {
-            let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
-            let (gp, gq) = (g(&p), g(&q));
-            if gp >= 0.0 {
-                out.push(p);
-            }
-            if (gp >= 0.0) != (gq >= 0.0) {
-                let f = gp / (gp - gq);
-                out.push((p.0 + f * (q.0 - p.0), p.1 + f * (q.1 - p.1)));
-            }
-        }
-        poly = out;
-        if poly.is_empty() {
-            return None;
-        }
-    }
-    let n = poly.len() as f64;
-    let (sx, sy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
-    let (cx, cy) = (sx / n, sy / n);
-    (cx.is_finite() && cy.is_finite()).then_some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
 }

@@ -233,11 +233,7 @@ impl Problem for ExtentSearch<'_> {
                     score = b[i].width() / init[i].width();
                 }
             }
-            if i < 2
-                && (bv.in_front || bv.d.lo > 0.0 || bv.d.hi < 0.0)
-                && matches!(obj, Objective::Coord { .. })
-                && uvt_open(&b, init, min_w, active)
-            {
+            if i < 2 && bv.in_front && matches!(obj, Objective::Coord { .. }) && uvt_open(&b, init, min_w, active) {
                 // In front of the lens the side test decides (x, y) for a point of
                 // (u, v, t): refine (u, v, t) first.
                 continue;
