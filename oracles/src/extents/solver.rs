@@ -360,7 +360,7 @@ mod tests {
             let tri = Tri { q, r, c0, c1, k: 1.0 };
             let (ta, tb) = (v(0.0, 1.0), v(0.0, 1.0));
             let t = Interval::new(ta.min(tb), ta.max(tb));
-            let hull = vertex_depths(&tri, t).expect("every w > 0");
+            let hull = super::super::enclosure::vertex_depths(&tri, t).expect("every w > 0");
             for _ in 0..200 {
                 let s = [v(-8.0, 8.0), v(-8.0, 8.0), v(-1.0, 1.0), v(-1.0, 1.0), v(t.lo, t.hi)];
                 if classify(&tri, s) != Coverage::Interior {
