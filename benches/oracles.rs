@@ -104,6 +104,18 @@ fn extents(c: &mut Criterion) {
         }
     }
     let cfg = ExtentsConfig::default();
+    // Count-based cost (not noisy): boxes examined and boxes left undecided per tile.
+    let (mut nodes, mut undecided) = (0u64, 0u64);
+    for (t, tile) in &jobs {
+        let ex = tile_extents(t, *tile, [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg);
+        (nodes, undecided) = (nodes + ex.boxes, undecided + ex.undecided);
+    }
+    eprintln!(
+        "extents: {} tiles, {:.1} boxes per tile, {} undecided in all",
+        jobs.len(),
+        nodes as f64 / jobs.len().max(1) as f64,
+        undecided
+    );
     let mut g = c.benchmark_group("extents");
     g.sample_size(10);
     g.throughput(Throughput::Elements(jobs.len() as u64));

@@ -627,7 +627,7 @@ pub fn search(
 /// The case in words: the method's answer, the exact extents of the covered set over
 /// the tile, and the witness decided exactly (and by Embree when physical).
 pub fn describe(cf: &CaseFile) -> String {
-    use oracles::extents::{ExtentsConfig, Occupancy, TileSolver};
+    use oracles::extents::{Extent, ExtentsConfig, Occupancy, TileSolver};
     let m = method_of(&cf.method).expect("checked at load");
     let info = m.info();
     let (seen, tri) = match crate::check::samples::judged_triangles(cf.snap, &cf.case) {
@@ -691,10 +691,17 @@ pub fn describe(cf: &CaseFile) -> String {
         Occupancy::Unknown => s += "exact: the solver could not decide whether anything in the tile is covered\n",
         Occupancy::Covered(_) => {
             s += "exact extents of the covered samples over the tile (certified enclosures of each extreme):\n";
-            for (n, name) in
-                ["u min", "u max", "v min", "v max", "t min", "t max", "depth min", "depth max"].iter().enumerate()
-            {
-                let r = solver.objective(n);
+            for (ext, name) in Extent::ALL.into_iter().zip([
+                "u min",
+                "u max",
+                "v min",
+                "v max",
+                "t min",
+                "t max",
+                "depth min",
+                "depth max",
+            ]) {
+                let r = solver.objective(ext);
                 match r.extreme {
                     Some(e) => {
                         s += &format!(

@@ -14,10 +14,10 @@
 use crate::bounds::{SampleBox, TileBounds};
 use crate::model::{Sample, Tile};
 use crate::Interval;
+use oracles::extents::bnb::{self, Flow, Frontier, Open, Problem, Ties};
 use oracles::extents::{box_values_with, classify_values, Box5, BoxClass};
 use oracles::{classify, Coverage, Tri};
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 
 /// How a constraint search ended.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,27 +39,6 @@ pub struct ConstraintSearch {
     pub boxes: u64,
 }
 
-struct Node {
-    key: f64,
-    b: Box5,
-}
-impl PartialEq for Node {
-    fn eq(&self, o: &Self) -> bool {
-        self.key == o.key
-    }
-}
-impl Eq for Node {}
-impl PartialOrd for Node {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Node {
-    fn cmp(&self, o: &Self) -> Ordering {
-        o.key.partial_cmp(&self.key).unwrap_or(Ordering::Equal)
-    }
-}
-
 fn sample_box(b: &Box5) -> SampleBox {
     SampleBox { x: b[0], y: b[1], u: b[2], v: b[3], t: b[4] }
 }
@@ -79,77 +58,84 @@ fn f32_in(p: [f64; 5], b: &Box5) -> Sample {
     Sample::new(r(0), r(1), r(2), r(3), r(4))
 }
 
-/// Search the tile (within the intervals of `bounds`) for an interior sample that a
-/// constraint culls. `min_width`: boxes narrower than this in every coordinate (pixels
-/// for x, y; units for u, v, t) are not split.
-pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_width: f64) -> ConstraintSearch {
-    let iv = |a: f32, b: f32| Interval::new(a as f64, b as f64);
-    let init: Box5 = [
-        iv(tile.x0, tile.x1),
-        iv(tile.y0, tile.y1),
-        iv(bounds.u[0], bounds.u[1]),
-        iv(bounds.v[0], bounds.v[1]),
-        iv(bounds.t[0], bounds.t[1]),
-    ];
-    let key_of = |b: &Box5| {
+/// The state of one constraint search, run by the engine of `oracles::extents::bnb`:
+/// boxes keyed by the lowest lower bound of a constraint over them (most culled first).
+struct ConstraintProblem<'a> {
+    tri: &'a Tri,
+    bounds: &'a TileBounds,
+    init: Box5,
+    budget: usize,
+    min_width: f64,
+    /// Coordinates coverage depends on.
+    cover_dims: [bool; 5],
+    boxes: u64,
+    small: bool,
+    seed: u64,
+    /// How the search ended early (a violation or the budget), if it did.
+    ended: Option<ConstraintVerdict>,
+}
+
+impl ConstraintProblem<'_> {
+    /// The smallest lower bound of a constraint over the box (NaN counts as -inf).
+    fn key_of(&self, b: &Box5) -> f64 {
         let sb = sample_box(b);
-        bounds.constraints.iter().map(|c| c.eval_box(&sb).lo).fold(f64::INFINITY, |a, v| {
+        self.bounds.constraints.iter().map(|c| c.eval_box(&sb).lo).fold(f64::INFINITY, |a, v| {
             if v.is_nan() {
                 f64::NEG_INFINITY
             } else {
                 a.min(v)
             }
         })
-    };
-    let culls = |s: &Sample| bounds.constraints.iter().any(|c| c.eval(s) < 0.0);
-    let (lens, time) = (!tri.is_pinhole(), !tri.is_static());
-    let cover_dims = [true, true, lens, lens, time];
-    let mut heap = BinaryHeap::new();
-    let k0 = key_of(&init);
-    if k0 >= 0.0 || bounds.constraints.is_empty() {
-        return ConstraintSearch { verdict: ConstraintVerdict::Proved, boxes: 0 };
     }
-    heap.push(Node { key: k0, b: init });
-    let mut boxes = 0u64;
-    let mut small = false;
-    let mut seed = 0x2545_F491_4F6C_DD1Du64;
-    while let Some(Node { key: k_here, b }) = heap.pop() {
-        boxes += 1;
-        if boxes as usize > budget {
-            return ConstraintSearch { verdict: ConstraintVerdict::Undecided, boxes };
+    fn culls(&self, s: &Sample) -> bool {
+        self.bounds.constraints.iter().any(|c| c.eval(s) < 0.0)
+    }
+}
+
+impl Problem for ConstraintProblem<'_> {
+    type Node = Box5;
+
+    fn visit(&mut self, open: Open<Box5>, frontier: &mut Frontier<Box5>) -> Flow {
+        let (k_here, b) = (open.key, open.node);
+        let tri = self.tri;
+        self.boxes += 1;
+        if self.boxes as usize > self.budget {
+            self.ended = Some(ConstraintVerdict::Undecided);
+            return Flow::Stop;
         }
         let bv = box_values_with(tri, &b, false);
         if classify_values(&bv) == BoxClass::Empty {
-            continue;
+            return Flow::Continue;
         }
         // Samples of the box: its centre and two scattered points.
         let mut pts = vec![b.map(|i| i.mid())];
         for _ in 0..2 {
             pts.push(std::array::from_fn(|k| {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
-                b[k].lo + (seed >> 11) as f64 / (1u64 << 53) as f64 * b[k].width()
+                self.seed ^= self.seed << 13;
+                self.seed ^= self.seed >> 7;
+                self.seed ^= self.seed << 17;
+                b[k].lo + (self.seed >> 11) as f64 / (1u64 << 53) as f64 * b[k].width()
             }));
         }
         for p in pts {
             let s = f32_in(p, &b);
-            if culls(&s) && classify(tri, s.to_oracle()) == Coverage::Interior {
-                return ConstraintSearch { verdict: ConstraintVerdict::Violation(s), boxes };
+            if self.culls(&s) && classify(tri, s.to_oracle()) == Coverage::Interior {
+                self.ended = Some(ConstraintVerdict::Violation(s));
+                return Flow::Stop;
             }
         }
         // Split the widest coordinate relative to the tile / the intervals, among those
         // that matter: coverage depends on it, or a constraint's enclosure does.
         let rel: [f64; 5] = std::array::from_fn(|k| {
-            let w0 = init[k].width();
+            let w0 = self.init[k].width();
             let matters = || {
-                cover_dims[k] || {
+                self.cover_dims[k] || {
                     let mut c = b;
                     c[k] = Interval::point(b[k].mid());
-                    key_of(&c) > k_here
+                    self.key_of(&c) > k_here
                 }
             };
-            if w0 > 0.0 && b[k].width() > min_width && matters() {
+            if w0 > 0.0 && b[k].width() > self.min_width && matters() {
                 b[k].width() / w0
             } else {
                 0.0
@@ -167,22 +153,62 @@ pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_wi
         let score: [f64; 5] = std::array::from_fn(|k| if smax > 0.0 { rel[k] * (0.01 + sm[k] / smax) } else { rel[k] });
         let dim = (0..5).max_by(|&a, &c| score[a].partial_cmp(&score[c]).unwrap_or(Ordering::Equal)).unwrap();
         if rel[dim] == 0.0 {
-            small = true;
-            continue;
+            self.small = true;
+            return Flow::Continue;
         }
         let m = b[dim].mid();
         for half in [Interval::new(b[dim].lo, m), Interval::new(m, b[dim].hi)] {
             let mut c = b;
             c[dim] = half;
-            let k = key_of(&c);
+            let k = self.key_of(&c);
             if k >= 0.0 {
                 continue;
             }
-            heap.push(Node { key: k, b: c });
+            frontier.push(k, 0, c);
         }
+        Flow::Continue
     }
-    let verdict = if small { ConstraintVerdict::WithinResolution } else { ConstraintVerdict::Proved };
-    ConstraintSearch { verdict, boxes }
+}
+
+/// Search the tile (within the intervals of `bounds`) for an interior sample that a
+/// constraint culls. `min_width`: boxes narrower than this in every coordinate (pixels
+/// for x, y; units for u, v, t) are not split.
+pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_width: f64) -> ConstraintSearch {
+    let iv = |a: f32, b: f32| Interval::new(a as f64, b as f64);
+    let init: Box5 = [
+        iv(tile.x0, tile.x1),
+        iv(tile.y0, tile.y1),
+        iv(bounds.u[0], bounds.u[1]),
+        iv(bounds.v[0], bounds.v[1]),
+        iv(bounds.t[0], bounds.t[1]),
+    ];
+    let (lens, time) = (!tri.is_pinhole(), !tri.is_static());
+    let mut p = ConstraintProblem {
+        tri,
+        bounds,
+        init,
+        budget,
+        min_width,
+        cover_dims: [true, true, lens, lens, time],
+        boxes: 0,
+        small: false,
+        seed: 0x2545_F491_4F6C_DD1D,
+        ended: None,
+    };
+    let k0 = p.key_of(&init);
+    if k0 >= 0.0 || bounds.constraints.is_empty() {
+        return ConstraintSearch { verdict: ConstraintVerdict::Proved, boxes: 0 };
+    }
+    // Ties in key keep the heap's own order (the order this search has always had).
+    let mut frontier = Frontier::new(Ties::Heap);
+    frontier.push(k0, 0, init);
+    bnb::run(&mut p, &mut frontier);
+    let verdict = match p.ended {
+        Some(v) => v,
+        None if p.small => ConstraintVerdict::WithinResolution,
+        None => ConstraintVerdict::Proved,
+    };
+    ConstraintSearch { verdict, boxes: p.boxes }
 }
 
 #[cfg(test)]

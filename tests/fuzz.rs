@@ -40,7 +40,7 @@
 use cullproof::bounds::{registry, SampleBox, TileResult};
 use cullproof::model::{Case, Sample, Tile, Triangle};
 use cullproof::Interval;
-use oracles::extents::{ExtentsConfig, Objective, Search, TileSolver};
+use oracles::extents::{Extent, ExtentsConfig, Search, TileSolver};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::cell::{Cell, RefCell};
@@ -600,10 +600,10 @@ fn oracles_take_any_numbers() {
             extents += 1;
             fz.note(&format!(", uvt {uvt:?}"));
             fz.call("tile_extents", || oracles::extents::tile_extents(&tri, tile4, uvt, &small));
-            let n_obj = rng.gen_range(0..8);
+            let n_obj = Extent::ALL[rng.gen_range(0..8)];
             let bound = if rng.gen() { extreme_f64(&mut rng) } else { rng.gen_range(-1.0..1.0) };
             let stall = [None, Some(0), Some(8)][rng.gen_range(0..3)];
-            fz.note(&format!(", side {n_obj} bound {bound} stall {stall:?}"));
+            fz.note(&format!(", side {n_obj:?} bound {bound} stall {stall:?}"));
             fz.call("TileSolver::side", || {
                 let mut sv = TileSolver::new(&tri, tile4, uvt, &small);
                 (sv.occupancy(), sv.side(n_obj, bound, 1e-9, 48, stall))
@@ -616,9 +616,9 @@ fn oracles_take_any_numbers() {
                 Interval::new(uvt[2][0], uvt[2][1]),
             ];
             let obj = if rng.gen() {
-                Objective::Coord { index: rng.gen_range(2..5), max: rng.gen() }
+                Extent::coord(rng.gen_range(2..5), rng.gen()).expect("u, v or t")
             } else {
-                Objective::Depth { max: rng.gen() }
+                Extent::depth(rng.gen())
             };
             let opts = Search {
                 bound: rng.gen::<bool>().then(|| extreme_f64(&mut rng)),
@@ -1063,7 +1063,7 @@ fn timeline_roots_closer_than_an_ulp_terminate() {
 /// empty u range (lo > hi), as here, panics in `candidate_points` (`f64::clamp` with
 /// min > max); NaN or infinite ends do likewise. `TileSolver::new` / `tile_extents`
 /// would refuse such a box (or answer "empty") with a check of their arguments in
-/// `oracles/src/extents.rs`: `extents::search` now answers such a box with one
+/// `oracles/src/extents/search.rs`: `extents::search` now answers such a box with one
 /// undecided box (never a certificate). Every caller in this workspace passes a tile
 /// validated by `Tile::validate` and the domain `[-1, 1]^2 x [0, 1]`.
 #[test]

@@ -14,7 +14,7 @@ use crate::bounds::{TileBounds, TileResult};
 use crate::csearch::{self, ConstraintVerdict};
 use crate::model::{Case, Sample, Tile};
 use oracles::embree::EmbreeOracle;
-use oracles::extents::{Occupancy, Side, TileSolver};
+use oracles::extents::{Extent, Occupancy, Side, TileSolver};
 use oracles::{classify, Coverage, DepthCheck, Tri};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -322,29 +322,34 @@ impl<'a> TileJudge<'a> {
             return;
         }
         // Interval sides, certified.
-        let sides = [(b.u, 0usize, -1.0f32, 1.0f32, "u"), (b.v, 2, -1.0, 1.0, "v"), (b.t, 4, 0.0, 1.0, "t")];
-        let mut checks: Vec<(usize, f64, bool, String)> = Vec::new();
-        for (r, n, lo, hi, name) in sides {
+        let sides = [
+            (b.u, [Extent::UMin, Extent::UMax], -1.0f32, 1.0f32, "u"),
+            (b.v, [Extent::VMin, Extent::VMax], -1.0, 1.0, "v"),
+            (b.t, [Extent::TMin, Extent::TMax], 0.0, 1.0, "t"),
+        ];
+        let mut checks: Vec<(Extent, f64, bool, String)> = Vec::new();
+        for (r, ext, lo, hi, name) in sides {
             if r[0] > lo {
-                checks.push((n, r[0] as f64, false, format!("{name} min")));
+                checks.push((ext[0], r[0] as f64, false, format!("{name} min")));
             }
             if r[1] < hi {
-                checks.push((n + 1, r[1] as f64, true, format!("{name} max")));
+                checks.push((ext[1], r[1] as f64, true, format!("{name} max")));
             }
         }
         if let Some(z) = b.z {
-            checks.push((6, z[0] as f64, false, "z min".into()));
-            checks.push((7, z[1] as f64, true, "z max".into()));
+            checks.push((Extent::ZMin, z[0] as f64, false, "z min".into()));
+            checks.push((Extent::ZMax, z[1] as f64, true, "z max".into()));
         }
         let mut found: Vec<Sample> = Vec::new();
         let stall = (cfg.side_stall > 0).then_some(cfg.side_stall);
-        for (n, bound, is_max, name) in checks {
-            match self.solver.side(n, bound, cfg.band, cfg.side_budget, stall) {
+        for (ext, bound, is_max, name) in checks {
+            let coord = ext.sample_coord();
+            match self.solver.side(ext, bound, cfg.band, cfg.side_budget, stall) {
                 Side::Beyond { witness: w, value, .. } => {
                     // A depth witness is re-judged exactly against the bound.
                     let want = if is_max { DepthCheck::Above } else { DepthCheck::Below };
                     let (z0, z1) = b.z.map(|z| (z[0] as f64, z[1] as f64)).unwrap_or((f64::MIN, f64::MAX));
-                    let confirmed = n < 6 || oracles::classify_depth(self.tri, w, z0, z1) == want;
+                    let confirmed = coord.is_some() || oracles::classify_depth(self.tri, w, z0, z1) == want;
                     // The solver searches only the tile and the domain; a witness
                     // elsewhere would prove nothing about this answer.
                     if !in_domain(&tile, w) {
@@ -356,9 +361,9 @@ impl<'a> TileJudge<'a> {
                         continue;
                     }
                     j.consider(self.witness(w, name, (value - bound).abs()));
-                    let axis = if n < 6 { [2, 3, 4][n / 2] } else { 5 };
+                    let axis = coord.unwrap_or(5);
                     let cands = f32_candidates(w, axis, bound as f32, is_max, &tile);
-                    if n < 6 {
+                    if coord.is_some() {
                         found.extend(cands);
                     } else {
                         j.f32_witness |=

@@ -75,7 +75,7 @@ pub use cli::{run_cli, TightnessArgs};
 use crate::bounds::{Method, Prepared, TileBounds, TileResult};
 use crate::model::{Dims, Sample, Tile, Triangle};
 use indicatif::ProgressBar;
-use oracles::extents::{ExtentsConfig, Occupancy, TileSolver};
+use oracles::extents::{Extent, ExtentsConfig, Occupancy, TileSolver};
 use oracles::Coverage;
 use pattern::Pattern;
 use rand::SeedableRng;
@@ -489,10 +489,10 @@ fn certify(
             let mut undecided = occ == Occupancy::Unknown;
             let full = [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]];
             let mut b = full;
-            for n in 0..6 {
-                let r = solver.objective(n);
+            for ext in &Extent::ALL[..6] {
+                let r = solver.objective(*ext);
                 undecided |= r.undecided > 0;
-                let (k, max) = (n / 2, n % 2 == 1);
+                let (k, max) = (ext.sample_coord().expect("u, v or t") - 2, ext.is_max());
                 if let Some(e) = r.extreme {
                     b[k][max as usize] = if max { e.hi } else { e.lo };
                 }

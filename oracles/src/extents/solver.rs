@@ -1,0 +1,439 @@
+//! The tile solver: the extents of one tile, each searched on demand and kept, and
+//! the judgement of one side of a claimed interval.
+
+use super::enclosure::Box5;
+use super::objective::{Extent, Objective};
+use super::search::{active_dims, search, solve_objective, ExtentsConfig, Extreme, ObjectiveResult, Search};
+use crate::coverage::{classify, Coverage};
+use crate::interval::Interval;
+use crate::tri::Tri;
+
+/// Extents of the interior-covered set over a tile and a (u, v, t) sub-box.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TileExtents {
+    /// True when the covered set is certified empty (no undecided box).
+    pub empty: bool,
+    /// [u_min, u_max, v_min, v_max, t_min, t_max, z_min, z_max]; None when empty or
+    /// unknown.
+    pub extremes: [Option<Extreme>; 8],
+    /// Boxes left undecided, over all objectives.
+    pub undecided: u64,
+    /// Boxes examined, over all objectives.
+    pub boxes: u64,
+}
+
+impl TileExtents {
+    pub fn u(&self) -> (Option<Extreme>, Option<Extreme>) {
+        (self.extremes[0], self.extremes[1])
+    }
+    pub fn v(&self) -> (Option<Extreme>, Option<Extreme>) {
+        (self.extremes[2], self.extremes[3])
+    }
+    pub fn t(&self) -> (Option<Extreme>, Option<Extreme>) {
+        (self.extremes[4], self.extremes[5])
+    }
+    pub fn z(&self) -> (Option<Extreme>, Option<Extreme>) {
+        (self.extremes[6], self.extremes[7])
+    }
+}
+
+/// Whether a tile holds an interior-covered sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Occupancy {
+    /// Certified: every box was proven empty.
+    Empty,
+    /// This interior sample (confirmed exactly) is in the tile.
+    Covered([f64; 5]),
+    /// The search ended with undecided boxes and no witness.
+    Unknown,
+}
+
+/// The judgement of one side of a claimed interval.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Side {
+    /// An interior sample (confirmed exactly) lies beyond the bound: its objective value
+    /// (the enclosure end nearest the bound) and the enclosure of the extreme found.
+    Beyond { witness: [f64; 5], value: f64, extreme: Extreme },
+    /// No interior sample lies beyond the bound by more than `gap` (certified; 0 when the
+    /// whole region beyond was ruled out; infinite when the search learnt nothing).
+    Within { gap: f64, boxes: u64 },
+}
+
+/// What a side judgement is cached by: objective, bound and band (as bits), budget, stall.
+type SideKey = (Extent, u64, u64, usize, Option<usize>);
+
+/// Extents of one tile, computed objective by objective on demand and kept: a caller
+/// that needs only some of them (a culling test that narrows only t, say) pays only
+/// for those.
+pub struct TileSolver<'a> {
+    tri: &'a Tri,
+    full: Box5,
+    init: Box5,
+    active: [bool; 5],
+    cfg: ExtentsConfig,
+    results: [Option<ObjectiveResult>; 8],
+    occupancy: Option<Occupancy>,
+    /// Side judgements already made, by (objective, bound, band, budget, stall): methods that
+    /// share a bound (lc and la2011, mam2012-new and its parts) are judged once.
+    sides: Vec<(SideKey, Side)>,
+    /// Boxes examined so far.
+    pub boxes: u64,
+}
+
+impl<'a> TileSolver<'a> {
+    /// The tile `[x0, x1] x [y0, y1]` and the sub-box `uvt = [[u0, u1], [v0, v1], [t0, t1]]`.
+    pub fn new(tri: &'a Tri, tile: [f64; 4], uvt: [[f64; 2]; 3], cfg: &ExtentsConfig) -> Self {
+        let active = active_dims(tri);
+        let full: Box5 = [
+            Interval::new(tile[0], tile[1]),
+            Interval::new(tile[2], tile[3]),
+            Interval::new(uvt[0][0], uvt[0][1]),
+            Interval::new(uvt[1][0], uvt[1][1]),
+            Interval::new(uvt[2][0], uvt[2][1]),
+        ];
+        // Dimensions the triangle does not have are searched at one point.
+        let mut init = full;
+        for i in 2..5 {
+            if !active[i] {
+                let p = if i == 4 { full[4].lo } else { full[i].lo.max(0.0).min(full[i].hi) };
+                init[i] = Interval::point(p);
+            }
+        }
+        TileSolver {
+            tri,
+            full,
+            init,
+            active,
+            cfg: *cfg,
+            results: [None; 8],
+            occupancy: None,
+            sides: Vec::new(),
+            boxes: 0,
+        }
+    }
+
+    /// Is anything in the tile covered? The first search run answers it.
+    pub fn occupancy(&mut self) -> Occupancy {
+        if let Some(o) = self.occupancy {
+            return o;
+        }
+        if let Some(w) = self.results.iter().flatten().find_map(|r| r.extreme.map(|e| e.witness)) {
+            self.occupancy = Some(Occupancy::Covered(w));
+            return Occupancy::Covered(w);
+        }
+        // A search that stops at the first interior sample settles it.
+        let opts = Search { bound: None, first_witness: true, refine_boxes: None, stall: None };
+        let r = search(self.tri, self.init, Extent::UMin, &self.cfg, opts);
+        self.boxes += r.boxes;
+        let o = match r.extreme {
+            Some(e) => Occupancy::Covered(e.witness),
+            None if r.undecided == 0 => Occupancy::Empty,
+            None => Occupancy::Unknown,
+        };
+        self.occupancy = Some(o);
+        o
+    }
+
+    /// Judge the claim "extent `ext` stays within `bound`" (at or above it for a
+    /// minimum, at or below for a maximum) with at most `budget` boxes, refining down to
+    /// `band` next to the bound. Once a witness lies beyond the bound, at most
+    /// `budget / 8` more boxes push it farther (the margin reported is that of the
+    /// farthest witness found: a lower bound of the true one, known to 1 % when the
+    /// search converges sooner). See [`Side`].
+    pub fn side(&mut self, ext: Extent, bound: f64, band: f64, budget: usize, stall: Option<usize>) -> Side {
+        let key = (ext, bound.to_bits(), band.to_bits(), budget, stall);
+        if let Some((_, s)) = self.sides.iter().find(|(k, _)| *k == key) {
+            return *s;
+        }
+        let s = self.side_uncached(ext, bound, band, budget, stall);
+        self.sides.push((key, s));
+        s
+    }
+
+    fn side_uncached(&mut self, ext: Extent, bound: f64, band: f64, budget: usize, stall: Option<usize>) -> Side {
+        let max = ext.is_max();
+        let beyond = |v: f64| if max { v > bound } else { v < bound };
+        let cfg = ExtentsConfig { resolution: band, max_boxes: budget, ..self.cfg };
+        let r = self.beyond(ext, bound, &cfg, stall);
+        match r.extreme {
+            Some(e) if beyond(if max { e.lo } else { e.hi }) => {
+                Side::Beyond { witness: e.witness, value: if max { e.lo } else { e.hi }, extreme: e }
+            }
+            _ => {
+                let open = if r.open.is_nan() {
+                    if max {
+                        f64::INFINITY
+                    } else {
+                        f64::NEG_INFINITY
+                    }
+                } else {
+                    r.open
+                };
+                let gap = if max { open - bound } else { bound - open };
+                Side::Within { gap: gap.max(0.0), boxes: r.boxes }
+            }
+        }
+    }
+
+    /// Does extent `ext` reach beyond `bound` (below it for a minimum, above it for a
+    /// maximum)? A search that only looks there: `extreme` is Some (an enclosure of the
+    /// extreme, with its witness) when an interior sample lies beyond the bound or
+    /// within the resolution of it; None with nothing undecided certifies that none
+    /// lies beyond `bound -/+ cfg.resolution`. Not cached; a known full result
+    /// answers at once.
+    fn beyond(&mut self, ext: Extent, bound: f64, cfg: &ExtentsConfig, stall: Option<usize>) -> ObjectiveResult {
+        let max = ext.is_max();
+        let none = ObjectiveResult::nothing(max);
+        let reaches = |e: &Extreme| if max { e.hi > bound } else { e.lo < bound };
+        if let Some(r) = self.results[ext.position()] {
+            return match r.extreme {
+                Some(e) if reaches(&e) => r,
+                Some(_) => none,
+                None => r,
+            };
+        }
+        if self.occupancy == Some(Occupancy::Empty) {
+            return none;
+        }
+        match ext.objective() {
+            Objective::Coord { index, .. } if !self.active[index] => self.objective(ext),
+            Objective::Coord { index, max } => {
+                let mut init = self.init;
+                let d = init[index];
+                let cut = if max { Interval::new(d.lo.max(bound), d.hi) } else { Interval::new(d.lo, d.hi.min(bound)) };
+                if cut.lo > cut.hi {
+                    return none;
+                }
+                init[index] = cut;
+                let r = search(
+                    self.tri,
+                    init,
+                    ext,
+                    cfg,
+                    Search { bound: Some(bound), first_witness: false, refine_boxes: Some(cfg.max_boxes / 8), stall },
+                );
+                self.boxes += r.boxes;
+                r
+            }
+            Objective::Depth { .. } => {
+                let r = search(
+                    self.tri,
+                    self.init,
+                    ext,
+                    cfg,
+                    Search { bound: Some(bound), first_witness: false, refine_boxes: Some(cfg.max_boxes / 8), stall },
+                );
+                self.boxes += r.boxes;
+                r
+            }
+        }
+    }
+
+    /// The result of one extent.
+    pub fn objective(&mut self, ext: Extent) -> ObjectiveResult {
+        if let Some(r) = self.results[ext.position()] {
+            return r;
+        }
+        let r = match ext.objective() {
+            Objective::Coord { index, max } if !self.active[index] => {
+                // Coverage does not depend on this coordinate: any witness moved to the
+                // end of the range is still interior (re-confirmed exactly).
+                match self.occupancy() {
+                    Occupancy::Covered(w) => {
+                        let mut p = w;
+                        p[index] = if max { self.full[index].hi } else { self.full[index].lo };
+                        let extreme = (classify(self.tri, p) == Coverage::Interior).then_some(Extreme {
+                            lo: p[index],
+                            hi: p[index],
+                            witness: p,
+                        });
+                        ObjectiveResult { extreme, undecided: 0, boxes: 0, open: f64::NAN }
+                    }
+                    Occupancy::Empty => ObjectiveResult::nothing(max),
+                    Occupancy::Unknown => ObjectiveResult { extreme: None, undecided: 1, boxes: 0, open: f64::NAN },
+                }
+            }
+            obj => {
+                if self.occupancy() == Occupancy::Empty {
+                    ObjectiveResult::nothing(matches!(
+                        obj,
+                        Objective::Coord { max: true, .. } | Objective::Depth { max: true }
+                    ))
+                } else {
+                    let r = solve_objective(self.tri, self.init, ext, &self.cfg);
+                    self.boxes += r.boxes;
+                    r
+                }
+            }
+        };
+        self.results[ext.position()] = Some(r);
+        r
+    }
+}
+
+/// Certified extents of the interior-covered set over the tile `[x0, x1] x [y0, y1]`
+/// and the sub-box `uvt = [[u0, u1], [v0, v1], [t0, t1]]` (use
+/// `[[-1, 1], [-1, 1], [0, 1]]` for the whole lens and shutter).
+pub fn tile_extents(tri: &Tri, tile: [f64; 4], uvt: [[f64; 2]; 3], cfg: &ExtentsConfig) -> TileExtents {
+    let mut solver = TileSolver::new(tri, tile, uvt, cfg);
+    if solver.occupancy() == Occupancy::Empty {
+        return TileExtents { empty: true, extremes: [None; 8], undecided: 0, boxes: solver.boxes };
+    }
+    let results: [ObjectiveResult; 8] = Extent::ALL.map(|e| solver.objective(e));
+    TileExtents {
+        empty: false,
+        extremes: results.map(|r| r.extreme),
+        undecided: results.iter().map(|r| r.undecided).sum(),
+        boxes: solver.boxes,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat(v: [[f64; 2]; 3]) -> Tri {
+        let mk = |p: [f64; 2]| [p[0], p[1], 0.5, 1.0];
+        let q = [mk(v[0]), mk(v[1]), mk(v[2])];
+        Tri { q, r: q, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 }
+    }
+
+    const WHOLE: [[f64; 2]; 3] = [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]];
+
+    /// Uniform numbers in [0, 1) from a xorshift stream (reproducible test inputs).
+    fn unit_stream(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// A triangle right of the vertical edge x = -10 + 20 t: on the tile [0, 4]^2 the
+    /// covered times are t < (x + 10) / 20, so t max over the tile is 0.7 (at x = 4).
+    fn sweeping_edge() -> Tri {
+        let at =
+            |dx: f64| [[-10.0 + dx, -1000.0, 0.5, 1.0], [-10.0 + dx, 1000.0, 0.5, 1.0], [1000.0 + dx, 0.0, 0.5, 1.0]];
+        Tri { q: at(0.0), r: at(20.0), c0: [0.0; 3], c1: [0.0; 3], k: 1.0 }
+    }
+
+    #[test]
+    fn side_finds_a_witness_beyond_a_bound_and_certifies_one_that_holds() {
+        let tri = sweeping_edge();
+        let cfg = ExtentsConfig::default();
+        let mut s = TileSolver::new(&tri, [0.0, 4.0, 0.0, 4.0], WHOLE, &cfg);
+        // t max (objective 5) claimed 0.6: a covered sample lies beyond, at most at 0.7.
+        match s.side(Extent::TMax, 0.6, 1e-9, 2000, None) {
+            Side::Beyond { witness, value, extreme } => {
+                // the true t max is the real 0.7: the witness's value cannot pass it
+                assert!(value > 0.6 && value <= 0.7f64.next_up(), "value {value}");
+                assert!(witness[4] > 0.6 && crate::classify(&tri, witness) == crate::Coverage::Interior);
+                // the enclosure of the extreme still holds the true one
+                assert!(extreme.lo <= 0.7f64.next_up() && extreme.hi >= 0.7f64.next_down(), "{extreme:?}");
+            }
+            other => panic!("expected a witness beyond 0.6, got {other:?}"),
+        }
+        // claimed 0.75: nothing lies beyond
+        let mut s = TileSolver::new(&tri, [0.0, 4.0, 0.0, 4.0], WHOLE, &cfg);
+        assert!(matches!(s.side(Extent::TMax, 0.75, 1e-9, 2000, None), Side::Within { .. }));
+    }
+
+    /// The vertex hull holds the exact depth of every covered sample it is drawn for,
+    /// on moving, defocused triangles in front of the lens over random time ranges.
+    #[test]
+    fn vertex_depths_hold_every_covered_sample() {
+        let mut next = unit_stream(0x9E37_79B9_7F4A_7C15);
+        let mut checked = 0;
+        for _ in 0..300 {
+            let mut v = |lo: f64, hi: f64| lo + (hi - lo) * next();
+            let mut q = [[0.0; 4]; 3];
+            let mut r = [[0.0; 4]; 3];
+            let (mut c0, mut c1) = ([0.0; 3], [0.0; 3]);
+            for i in 0..3 {
+                let (w0, w1) = (v(0.5, 3.0), v(0.5, 3.0));
+                q[i] = [v(-8.0, 8.0) * w0, v(-8.0, 8.0) * w0, v(-1.0, 1.0) * w0, w0];
+                r[i] = [v(-8.0, 8.0) * w1, v(-8.0, 8.0) * w1, v(-1.0, 1.0) * w1, w1];
+                c0[i] = v(-2.0, 2.0);
+                c1[i] = v(-2.0, 2.0);
+            }
+            let tri = Tri { q, r, c0, c1, k: 1.0 };
+            let (ta, tb) = (v(0.0, 1.0), v(0.0, 1.0));
+            let t = Interval::new(ta.min(tb), ta.max(tb));
+            let hull = super::super::enclosure::vertex_depths(&tri, t).expect("every w > 0");
+            for _ in 0..200 {
+                let s = [v(-8.0, 8.0), v(-8.0, 8.0), v(-1.0, 1.0), v(-1.0, 1.0), v(t.lo, t.hi)];
+                if classify(&tri, s) != Coverage::Interior {
+                    continue;
+                }
+                let z = crate::coverage::depth_enclosure(&tri, s).expect("interior: D != 0");
+                assert!(hull.lo <= z.lo && z.hi <= hull.hi, "depth {z:?} outside {hull:?} at {s:?}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 1000, "only {checked} covered samples checked");
+    }
+
+    /// A depth bound that is exactly the depth of a vertex inside the tile (the tightest
+    /// claim that holds) is certified at once through the vertex hull; the box
+    /// corners alone see the plane's depth beyond the triangle and must refine.
+    #[test]
+    fn a_depth_bound_at_a_vertex_is_certified_quickly() {
+        let mk = |x: f64, y: f64, z: f64| [x, y, z, 1.0];
+        let q = [mk(1.5, 1.5, 0.25), mk(40.0, 2.0, 0.75), mk(2.0, 40.0, 0.75)];
+        let tri = Tri { q, r: q, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 };
+        let cfg = ExtentsConfig::default();
+        let mut s = TileSolver::new(&tri, [0.0, 4.0, 0.0, 4.0], WHOLE, &cfg);
+        match s.side(Extent::ZMin, 0.25, 1e-9, 2000, None) {
+            Side::Within { gap, boxes } => {
+                // certified down to the outward rounding of z(t) / w(t): a few ulps
+                assert!(gap <= 1e-15, "gap {gap}");
+                assert!(boxes <= 4, "{boxes} boxes");
+            }
+            other => panic!("expected the bound to hold, got {other:?}"),
+        }
+        // Claimed a hair higher: covered samples lie below it, next to the vertex.
+        let mut s = TileSolver::new(&tri, [0.0, 4.0, 0.0, 4.0], WHOLE, &cfg);
+        assert!(matches!(s.side(Extent::ZMin, 0.25 + 1e-6, 1e-9, 2000, None), Side::Beyond { .. }));
+    }
+
+    #[test]
+    fn static_tile_inside_has_full_extents() {
+        let t = flat([[0.0, 0.0], [10.0, 0.0], [0.0, 10.0]]);
+        let ex = tile_extents(&t, [1.0, 3.0, 1.0, 3.0], WHOLE, &ExtentsConfig::default());
+        assert!(!ex.empty);
+        assert_eq!(ex.u().0.unwrap().lo, -1.0);
+        assert_eq!(ex.t().1.unwrap().hi, 1.0);
+        let z = ex.z();
+        assert!(z.0.unwrap().lo <= 0.5 && z.1.unwrap().hi >= 0.5);
+        assert!(z.1.unwrap().hi - z.0.unwrap().lo < 1e-3);
+    }
+
+    #[test]
+    fn far_tile_is_certified_empty() {
+        let t = flat([[0.0, 0.0], [10.0, 0.0], [0.0, 10.0]]);
+        let ex = tile_extents(&t, [20.0, 22.0, 20.0, 22.0], WHOLE, &ExtentsConfig::default());
+        assert!(ex.empty);
+        assert_eq!(ex.undecided, 0);
+    }
+
+    #[test]
+    fn moving_triangle_time_extents() {
+        // Moves right by 8 px; tile [5, 6] x [1, 2] is covered while 0 < x - 8t < 4 - y:
+        // earliest t: x = 5 at the left edge needs 5 - 8t < 4 - y, i.e. t > (1 + y)/8
+        // minimised at y = 1 -> t > 1/4... with x = 5 -> and x = 6 gives (2 + y)/8; the
+        // minimum over the tile is at x = 5, y = 1: t_min = 1/4. Latest t: x - 8t > 0
+        // with x = 6: t < 3/4.
+        let mk = |x: f64, y: f64| [x, y, 0.5, 1.0];
+        let q = [mk(0.0, 0.0), mk(4.0, 0.0), mk(0.0, 4.0)];
+        let r = [mk(8.0, 0.0), mk(12.0, 0.0), mk(8.0, 4.0)];
+        let tri = Tri { q, r, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 };
+        let cfg = ExtentsConfig::default();
+        let ex = tile_extents(&tri, [5.0, 6.0, 1.0, 2.0], WHOLE, &cfg);
+        let (tmin, tmax) = ex.t();
+        let (tmin, tmax) = (tmin.unwrap(), tmax.unwrap());
+        assert!(tmin.lo <= 0.25 && 0.25 <= tmin.hi && tmin.hi - tmin.lo <= 1e-4, "{tmin:?}");
+        assert!(tmax.lo <= 0.75 && 0.75 <= tmax.hi && tmax.hi - tmax.lo <= 1e-4, "{tmax:?}");
+        assert_eq!(ex.undecided, 0);
+    }
+}
