@@ -196,6 +196,10 @@ enum Cmd {
         /// Do not write case files (report only).
         #[arg(long)]
         dry_run: bool,
+        /// Also write each query's SMT-LIB2 script into this directory (rerun one with
+        /// `z3 FILE`).
+        #[arg(long, value_name = "DIR")]
+        emit_smt: Option<PathBuf>,
         /// Write the JSON report to this file ("-" for standard output).
         #[arg(long)]
         json: Option<PathBuf>,
@@ -491,7 +495,7 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
         }
-        Cmd::Prove { method, symbolic, timeout, ranges, out, dry_run, json } => {
+        Cmd::Prove { method, symbolic, timeout, ranges, out, dry_run, emit_smt, json } => {
             anyhow::ensure!(symbolic, "prove: only the symbolic search exists so far; add --symbolic");
             anyhow::ensure!(
                 timeout.is_finite() && (1.0..=3600.0).contains(&timeout),
@@ -504,7 +508,7 @@ fn run() -> Result<()> {
                 Some(r) => bbox_query::parse_ranges("--ranges", r)?,
                 None => bbox_query::default_queries(),
             };
-            let r = prove::prove(m, &queries, timeout, (!dry_run).then_some(out.as_path()), true)?;
+            let r = prove::prove(m, &queries, timeout, (!dry_run).then_some(out.as_path()), emit_smt.as_deref(), true)?;
             print!("{}", r.render());
             if let Some(p) = &json {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;

@@ -13,7 +13,7 @@ use crate::bounds::{shared, Method, TileResult};
 use crate::check::{judge, CheckConfig};
 use crate::corpus::{shrink, CaseFile, Provenance, Verdict, WitnessRecord, FORMAT};
 use crate::model::Case;
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use serde::Serialize;
 use std::path::Path;
 
@@ -58,7 +58,10 @@ pub struct QueryReport {
     pub side: &'static str,
     pub ranges: String,
     pub answer: Answer,
+    /// Wall-clock seconds of the query.
     pub seconds: f64,
+    /// z3's CPU seconds (see [`z3::Run::cpu_seconds`]).
+    pub cpu_seconds: Option<f64>,
     /// The model's inputs `a, c, w, t` (on `sat`).
     pub inputs: Option<[f32; 4]>,
     /// The exact judge's word on the model's case: "violation (tile culled)", or why not.
@@ -78,12 +81,15 @@ pub struct ProveReport {
 }
 
 /// Run the queries of `m` (each with `timeout` seconds) and judge every model; a
-/// confirmed violation is shrunk and written under `out` (never overwriting).
+/// confirmed violation is shrunk and written under `out` (never overwriting). With
+/// `emit`, each query's script is also written there (`<method>-<n>-<side>.smt2`, to
+/// rerun with `z3 FILE`).
 pub fn prove(
     m: &'static dyn Method,
     queries: &[Query],
     timeout: f64,
     out: Option<&Path>,
+    emit: Option<&Path>,
     progress: bool,
 ) -> Result<ProveReport> {
     let rule = rule(m.info().id)?;
@@ -97,12 +103,19 @@ pub fn prove(
     let mut reports = Vec::new();
     for (qi, q) in queries.iter().enumerate() {
         pb.set_message(format!("{} {}", q.side.name(), q.ranges_text()));
-        let run = z3::run(&bbox_query::script(&rule, q), timeout)?;
+        let script = bbox_query::script(&rule, q);
+        if let Some(dir) = emit {
+            std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+            let p = dir.join(format!("{}-{qi}-{}.smt2", m.info().id.replace('/', "_"), q.side.name()));
+            std::fs::write(&p, &script).with_context(|| format!("writing {}", p.display()))?;
+        }
+        let run = z3::run(&script, timeout)?;
         let mut rep = QueryReport {
             side: q.side.name(),
             ranges: q.ranges_text(),
             answer: run.answer,
             seconds: run.seconds,
+            cpu_seconds: run.cpu_seconds,
             inputs: None,
             judged: None,
             confirmed: false,
@@ -189,7 +202,15 @@ impl ProveReport {
     pub fn render(&self) -> String {
         let mut s = format!("prove --symbolic {} (time limit {} s per query)\n", self.method, self.timeout);
         for q in &self.queries {
-            s += &format!("  {:<6} {:<48} {:<8} {:>7.2} s", q.side, q.ranges, q.answer.name(), q.seconds);
+            let cpu = q.cpu_seconds.map_or("-".to_string(), |c| format!("{c:.2}"));
+            s += &format!(
+                "  {:<6} {:<48} {:<8} {:>7.2} s (cpu {:>6} s)",
+                q.side,
+                q.ranges,
+                q.answer.name(),
+                q.seconds,
+                cpu
+            );
             match q.answer {
                 Answer::Sat => {
                     s += &format!("  {}", q.judged.as_deref().unwrap_or("-"));

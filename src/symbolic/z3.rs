@@ -32,8 +32,24 @@ impl Answer {
 #[derive(Clone, Debug)]
 pub struct Run {
     pub answer: Answer,
+    /// Wall-clock seconds.
     pub seconds: f64,
+    /// CPU seconds z3 used (user + system, from the process's waited-for children in
+    /// `/proc/self/stat`; None where that is not readable). On a busy machine this is
+    /// the figure to compare.
+    pub cpu_seconds: Option<f64>,
     pub output: String,
+}
+
+/// User + system CPU seconds of this process's waited-for children (Linux; the kernel
+/// reports them in units of 1/100 s).
+fn children_cpu() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let rest = &stat[stat.rfind(')')? + 1..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let cu: f64 = f.get(13)?.parse().ok()?;
+    let cs: f64 = f.get(14)?.parse().ok()?;
+    Some((cu + cs) / 100.0)
 }
 
 /// The z3 binary to run (`CULLPROOF_Z3` overrides `z3` on the PATH).
@@ -46,6 +62,7 @@ pub fn run(script: &str, seconds: f64) -> Result<Run> {
     let bin = binary();
     let secs = seconds.ceil().max(1.0) as u64;
     let start = Instant::now();
+    let cpu0 = children_cpu();
     let mut child = Command::new(&bin)
         .arg("-in")
         .arg(format!("-T:{secs}"))
@@ -81,6 +98,7 @@ pub fn run(script: &str, seconds: f64) -> Result<Run> {
     }
     let output = reader.join().map_err(|_| anyhow!("reading z3's output failed"))?;
     let seconds = start.elapsed().as_secs_f64();
+    let cpu_seconds = cpu0.zip(children_cpu()).map(|(a, b)| (b - a).max(0.0));
     let first = output.lines().next().unwrap_or("").trim();
     let answer = match first {
         _ if killed => Answer::Timeout,
@@ -96,7 +114,7 @@ pub fn run(script: &str, seconds: f64) -> Result<Run> {
             bail!("z3 did not answer sat/unsat/unknown/timeout: {}{}", output.trim(), err.trim())
         }
     };
-    Ok(Run { answer, seconds, output })
+    Ok(Run { answer, seconds, cpu_seconds, output })
 }
 
 /// The f32 value z3 printed for `name` in a `(get-value ...)` answer.
