@@ -18,8 +18,8 @@
 //! - `broken/loose/<id>`: every narrowed end moved out by 1e-3 (not a violation: a
 //!   loss of tightness, which the baseline comparison must see).
 //!
-//! Two more, `broken/planted-eq/bbox` and `broken/planted-band/bbox`, are rare slips
-//! planted in `bbox` itself (`crate::symbolic::planted`), not in `cullproof power`.
+//! Two more, `broken/planted-eq/bbox-safe` and `broken/planted-band/bbox-safe`, are rare
+//! slips planted in `bbox-safe` itself (`crate::symbolic::planted`), not in `cullproof power`.
 
 use super::{by_id, Method, MethodInfo, Prepared, TileResult};
 use crate::model::{Tile, Triangle};

@@ -10,7 +10,7 @@
 //! - `bbox` and `bbox-safe`: the whole setup (every corner value, the box's minimum and
 //!   maximum, the finiteness and `w > 0` guards) and the tile reject
 //!   (`crate::bounds::bbox::aabb_of`, `crate::bounds::bbox::rejects`).
-//! - Two planted slips of `bbox` ([`planted`]), to measure the search on rare bugs.
+//! - Two slips planted in `bbox-safe` ([`planted`]), to measure the search on rare bugs.
 //!
 //! The queries ([`bbox_query`]) attack the x sides of the box on a template triangle
 //! (four free inputs); the other methods have no encoding yet.

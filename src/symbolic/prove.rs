@@ -39,15 +39,15 @@ impl Corner for Rule {
 
 /// The methods with a symbolic encoding (setup and tile reject, over
 /// [`super::arith::F32Arith`]).
-pub const ENCODED: [&str; 4] = ["bbox", "bbox-safe", "broken/planted-eq/bbox", "broken/planted-band/bbox"];
+pub const ENCODED: [&str; 4] = ["bbox", "bbox-safe", "broken/planted-eq/bbox-safe", "broken/planted-band/bbox-safe"];
 
 /// The encoding of a method, or an error naming the ones there are.
 pub fn rule(id: &str) -> Result<Rule> {
     Ok(match id {
         "bbox" => Rule::Plain,
         "bbox-safe" => Rule::Safe,
-        "broken/planted-eq/bbox" => Rule::Eq,
-        "broken/planted-band/bbox" => Rule::Band,
+        "broken/planted-eq/bbox-safe" => Rule::Eq,
+        "broken/planted-band/bbox-safe" => Rule::Band,
         _ => bail!("--method {id}: no symbolic encoding (methods with one: {})", ENCODED.join(", ")),
     })
 }

@@ -1,8 +1,10 @@
-//! The SMT-LIB2 instance of [`F32Arith`]: every operation becomes one named definition
-//! (`(define-fun tN () Float32 ...)`) in the IEEE floating-point theory, binary32,
-//! round-to-nearest-even, in the order the code performs it. Naming each step keeps
-//! the script as long as the computation (a term shared by later steps is written
-//! once).
+//! The SMT-LIB2 instance of [`F32Arith`]: every operation becomes one named constant
+//! and its defining equation (`(declare-const tN ...)`, `(assert (= tN ...))`) in the
+//! IEEE floating-point theory, binary32, round-to-nearest-even, in the order the code
+//! performs it. Naming each step keeps the script as long as the computation (a term
+//! shared by later steps is written once); z3 4.8 expands `define-fun` macros as
+//! trees, which a running minimum (each step names the previous one twice) turns
+//! exponential.
 
 use super::arith::F32Arith;
 use std::cell::RefCell;
@@ -36,7 +38,9 @@ impl Smt {
         let mut n = self.next.borrow_mut();
         let name = format!("t{}", *n);
         *n += 1;
-        self.lines.borrow_mut().push(format!("(define-fun {name} () {sort} {body})"));
+        let mut l = self.lines.borrow_mut();
+        l.push(format!("(declare-const {name} {sort})"));
+        l.push(format!("(assert (= {name} {body}))"));
         name
     }
     fn f(&self, body: String) -> String {
@@ -71,7 +75,7 @@ impl Smt {
 
     /// The whole script: the definitions so far, then `check-sat` and the values of `show`.
     pub fn script(&self, show: &[String]) -> String {
-        let mut s = String::from("(set-logic QF_FP)\n");
+        let mut s = String::from("(set-logic QF_FPBV)\n");
         for l in self.lines.borrow().iter() {
             s += l;
             s.push('\n');

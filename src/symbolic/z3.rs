@@ -71,16 +71,20 @@ pub fn run(script: &str, seconds: f64) -> Result<Run> {
         .stderr(Stdio::piped())
         .spawn()
         .with_context(|| format!("cannot start `{bin}` (install z3, e.g. `apt-get install z3`, or set CULLPROOF_Z3)"))?;
-    {
-        let mut stdin = child.stdin.take().expect("piped");
-        stdin.write_all(script.as_bytes()).with_context(|| format!("writing the query to `{bin}`"))?;
-    }
-    let mut stdout = child.stdout.take().expect("piped");
-    let reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = stdout.read_to_string(&mut s);
-        s
-    });
+    // Feed the script and drain both outputs on their own threads: a long script and
+    // a long answer must not wait for each other through full pipes.
+    let mut stdin = child.stdin.take().expect("piped");
+    let text = script.to_string();
+    let writer = std::thread::spawn(move || stdin.write_all(text.as_bytes()));
+    let drain = |mut r: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut s = String::new();
+            let _ = r.read_to_string(&mut s);
+            s
+        })
+    };
+    let reader = drain(Box::new(child.stdout.take().expect("piped")));
+    let err_reader = drain(Box::new(child.stderr.take().expect("piped")));
     // z3 stops itself at -T; the guard only catches a z3 that does not.
     let guard = Duration::from_secs_f64(secs as f64 + 10.0);
     let mut killed = false;
@@ -97,6 +101,10 @@ pub fn run(script: &str, seconds: f64) -> Result<Run> {
         std::thread::sleep(Duration::from_millis(10));
     }
     let output = reader.join().map_err(|_| anyhow!("reading z3's output failed"))?;
+    let err = err_reader.join().unwrap_or_default();
+    // A z3 that stopped early (its time limit) closes its input: a failed write then
+    // only matters when no answer came.
+    let written = writer.join().map_err(|_| anyhow!("writing the query to `{bin}` failed"))?;
     let seconds = start.elapsed().as_secs_f64();
     let cpu_seconds = cpu0.zip(children_cpu()).map(|(a, b)| (b - a).max(0.0));
     let first = output.lines().next().unwrap_or("").trim();
@@ -107,11 +115,8 @@ pub fn run(script: &str, seconds: f64) -> Result<Run> {
         "unknown" => Answer::Unknown,
         "timeout" => Answer::Timeout,
         _ => {
-            let mut err = String::new();
-            if let Some(mut e) = child.stderr.take() {
-                let _ = e.read_to_string(&mut err);
-            }
-            bail!("z3 did not answer sat/unsat/unknown/timeout: {}{}", output.trim(), err.trim())
+            written.with_context(|| format!("writing the query to `{bin}`"))?;
+            bail!("z3 did not answer sat/unsat/unknown/timeout: {} {}", output.trim(), err.trim())
         }
     };
     Ok(Run { answer, seconds, cpu_seconds, output })
@@ -152,6 +157,20 @@ pub fn value(output: &str, name: &str) -> Result<f32> {
         bail!("z3's value for `{name}` has {} bits, not 32", bits.len());
     }
     Ok(f32::from_bits(u32::from_str_radix(&bits, 2)?))
+}
+
+/// The truth value z3 printed for `name` in a `(get-value ...)` answer.
+pub fn truth(output: &str, name: &str) -> Result<bool> {
+    let key = format!("({name} ");
+    let at = output.find(&key).ok_or_else(|| anyhow!("z3's model has no value for `{name}`"))?;
+    let rest = output[at + key.len()..].trim_start();
+    if rest.starts_with("true") {
+        Ok(true)
+    } else if rest.starts_with("false") {
+        Ok(false)
+    } else {
+        bail!("z3's value for `{name}` is not a truth value")
+    }
 }
 
 #[cfg(test)]
