@@ -42,7 +42,8 @@ fn eval(smt: &Smt, floats: &[String], bools: &[String]) -> (Vec<f32>, Vec<bool>)
 
 #[test]
 fn every_operation_means_the_same_bits_in_both_instances() {
-    let specials = [0.0f32, -0.0, 1.0, -1.5, 1e-45, -1e-45, f32::MIN_POSITIVE, f32::MAX, f32::INFINITY, f32::NEG_INFINITY];
+    let specials =
+        [0.0f32, -0.0, 1.0, -1.5, 1e-45, -1e-45, f32::MIN_POSITIVE, f32::MAX, f32::INFINITY, f32::NEG_INFINITY];
     let mut r = rng(7);
     let mut vals: Vec<f32> = specials.to_vec();
     vals.push(f32::NAN);
@@ -86,7 +87,14 @@ fn every_operation_means_the_same_bits_in_both_instances() {
     }
     let (f, b) = eval(&smt, &got_f, &got_b);
     for (k, (w, g)) in want_f.iter().zip(&f).enumerate() {
-        assert!(same_bits(*w, *g), "operation {} of input {}: f32 {w:e} ({:#x}), z3 {g:e} ({:#x})", k % 12, k / 12, w.to_bits(), g.to_bits());
+        assert!(
+            same_bits(*w, *g),
+            "operation {} of input {}: f32 {w:e} ({:#x}), z3 {g:e} ({:#x})",
+            k % 12,
+            k / 12,
+            w.to_bits(),
+            g.to_bits()
+        );
     }
     assert_eq!(want_b, b);
 }
@@ -121,7 +129,12 @@ fn random_case(r: &mut impl FnMut() -> f64, n: usize) -> (Triangle, Tile) {
 #[test]
 fn the_emitted_method_evaluates_to_the_f32_bits() {
     let mut r = rng(0x5eed);
-    let rules = [(Rule::Plain, "bbox"), (Rule::Safe, "bbox-safe"), (Rule::Eq, "broken/planted-eq/bbox-safe"), (Rule::Band, "broken/planted-band/bbox-safe")];
+    let rules = [
+        (Rule::Plain, "bbox"),
+        (Rule::Safe, "bbox-safe"),
+        (Rule::Eq, "broken/planted-eq/bbox-safe"),
+        (Rule::Band, "broken/planted-band/bbox-safe"),
+    ];
     let smt = Smt::new();
     let (mut floats, mut bools, mut want_f, mut want_b) = (vec![], vec![], vec![], vec![]);
     let mut culled = 0;
@@ -159,7 +172,7 @@ fn the_emitted_method_evaluates_to_the_f32_bits() {
 fn the_symbolic_search_finds_bbox_f32_tile_cull() {
     let m = by_id("bbox").unwrap();
     let q = Query { side: Side::XMin, ranges: [[128.0, 256.0], [1.0, 2.0], [1.875, 2.0], [96.0, 128.0]] };
-    let r = prove(m, &[q.clone()], 600.0, None, None, false).unwrap();
+    let r = prove(m, std::slice::from_ref(&q), 600.0, None, None, false).unwrap();
     let rep = &r.queries[0];
     assert_eq!(rep.answer, Answer::Sat, "{}", r.render());
     assert!(rep.confirmed, "the judge did not confirm z3's model: {}", r.render());

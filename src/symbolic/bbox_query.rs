@@ -111,7 +111,9 @@ pub fn parse_ranges(flag: &str, s: &str) -> Result<Vec<Query>> {
             bail!("{flag} {s}: the range {lo}:{hi} of `{name}` is empty (LO must be below HI)");
         }
         if (k == 1 || k == 2) && lo <= 0.0 {
-            bail!("{flag} {s}: the range of `{name}` must be positive (the template has c > 0 and w > 0), not from {lo}");
+            bail!(
+                "{flag} {s}: the range of `{name}` must be positive (the template has c > 0 and w > 0), not from {lo}"
+            );
         }
         if ranges[k].replace([lo, hi]).is_some() {
             bail!("{flag} {s}: `{name}` is given twice");

@@ -93,11 +93,8 @@ pub fn prove(
     progress: bool,
 ) -> Result<ProveReport> {
     let rule = rule(m.info().id)?;
-    let pb = if progress {
-        indicatif::ProgressBar::new(queries.len() as u64)
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
+    let pb =
+        if progress { indicatif::ProgressBar::new(queries.len() as u64) } else { indicatif::ProgressBar::hidden() };
     let cfg = CheckConfig::default_with(vec![m]);
     let mref = shared(m);
     let mut reports = Vec::new();

@@ -70,7 +70,9 @@ pub fn run(script: &str, seconds: f64) -> Result<Run> {
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
-        .with_context(|| format!("cannot start `{bin}` (install z3, e.g. `apt-get install z3`, or set CULLPROOF_Z3)"))?;
+        .with_context(|| {
+            format!("cannot start `{bin}` (install z3, e.g. `apt-get install z3`, or set CULLPROOF_Z3)")
+        })?;
     // Feed the script and drain both outputs on their own threads: a long script and
     // a long answer must not wait for each other through full pipes.
     let mut stdin = child.stdin.take().expect("piped");
@@ -180,7 +182,7 @@ mod tests {
     #[test]
     fn values_are_read_bit_for_bit() {
         let out = "sat\n((a (fp #b0 #x86 #b10100000100111000000001))\n (z (_ -zero 8 24))\n (o (fp #b1 #b01111111 #b00000000000000000000000)))";
-        assert_eq!(value(out, "a").unwrap().to_bits(), 0b0_10000110_10100000100111000000001);
+        assert_eq!(value(out, "a").unwrap().to_bits(), 0x4350_4e01);
         assert!(value(out, "z").unwrap().is_sign_negative());
         assert_eq!(value(out, "o").unwrap(), -1.0);
         assert!(value(out, "nope").is_err());
