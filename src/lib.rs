@@ -65,6 +65,8 @@ pub mod plugin;
 #[doc(hidden)]
 pub mod stability;
 #[doc(hidden)]
+pub mod symbolic;
+#[doc(hidden)]
 pub mod tightness;
 
 pub use bounds::{

@@ -199,6 +199,42 @@ enum Cmd {
         #[command(flatten)]
         sample: cullproof::args::SampleFlags,
     },
+    /// Symbolic counterexample search (needs z3): asks z3, one query at a time with a
+    /// time limit, for f32 inputs in stated ranges where the method culls a tile that
+    /// the exact footprint reaches (the method's own f32 code, encoded bit for bit; see
+    /// src/symbolic/). Every model becomes a case judged exactly: a confirmed violation
+    /// is shrunk and written to corpus/cases/<method>/<hash>.json (never overwriting);
+    /// a model the judge does not confirm is reported as such. Methods with an
+    /// encoding: bbox, bbox-safe, broken/planted-eq/bbox-safe, broken/planted-band/bbox-safe.
+    #[command(allow_negative_numbers = true)]
+    Prove {
+        /// The method id.
+        #[arg(long)]
+        method: String,
+        /// Search symbolically (the only mode so far; required).
+        #[arg(long)]
+        symbolic: bool,
+        /// Seconds per query (z3's limit; 1 to 3600).
+        #[arg(long, default_value_t = 60.0)]
+        timeout: f64,
+        /// One range per input, a=LO:HI,c=LO:HI,w=LO:HI,t=LO:HI (half-open; c and w
+        /// positive), queried on both x sides; default: a narrow and a wide set.
+        #[arg(long)]
+        ranges: Option<String>,
+        /// Where to write the confirmed cases.
+        #[arg(long, default_value = "corpus/cases")]
+        out: PathBuf,
+        /// Do not write case files (report only).
+        #[arg(long)]
+        dry_run: bool,
+        /// Also write each query's SMT-LIB2 script into this directory (rerun one with
+        /// `z3 FILE`).
+        #[arg(long, value_name = "DIR")]
+        emit_smt: Option<PathBuf>,
+        /// Write the JSON report to this file ("-" for standard output).
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
     /// Re-judge case files (default: every file under corpus/cases). The stored witness
     /// is re-decided exactly and the method judged afresh; exit 1 when a file no longer
     /// shows what it expects. A file that does not parse is an error naming the file
@@ -528,6 +564,25 @@ fn run() -> Result<()> {
                         ))
                 );
             }
+            if let Some(p) = &json {
+                write_json(p, &serde_json::to_string_pretty(&r)?)?;
+            }
+        }
+        Cmd::Prove { method, symbolic, timeout, ranges, out, dry_run, emit_smt, json } => {
+            anyhow::ensure!(symbolic, "prove: only the symbolic search exists so far; add --symbolic");
+            anyhow::ensure!(
+                timeout.is_finite() && (1.0..=3600.0).contains(&timeout),
+                "--timeout {timeout}: give seconds from 1 to 3600"
+            );
+            let m = cullproof::args::method("--method", &method, true)?;
+            use cullproof::symbolic::{bbox_query, prove};
+            prove::rule(m.info().id)?;
+            let queries = match &ranges {
+                Some(r) => bbox_query::parse_ranges("--ranges", r)?,
+                None => bbox_query::default_queries(),
+            };
+            let r = prove::prove(m, &queries, timeout, (!dry_run).then_some(out.as_path()), emit_smt.as_deref(), true)?;
+            print!("{}", r.render());
             if let Some(p) = &json {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }

@@ -123,11 +123,53 @@
 //! coordinates, which no sample test efficiency figure can see.
 
 use super::*;
+use crate::symbolic::arith::{F32Arith, Plain, TriOf};
 
-/// bbox, or bbox-safe: the same box with another corner-value setup.
-struct BBox {
-    info: &'static MethodInfo,
-    setup: fn(&Triangle) -> Option<[f32; 4]>,
+/// How one corner value is enclosed, written once over [`F32Arith`] (so the f32
+/// method and its SMT-LIB2 encoding in `crate::symbolic` are the same code): from the
+/// vertex's coordinate `a` (x or y), its shear `s` (`c`, or `fl(k c)` for y), the
+/// sheared value `n = fl(a ± s)` and the depth `w`, the enclosure `[lo, hi]` of the
+/// corner value.
+pub trait Corner: Send + Sync {
+    fn corner<A: F32Arith>(&self, ar: &A, a: &A::F, s: &A::F, n: &A::F, w: &A::F) -> [A::F; 2];
+}
+
+/// `bbox`'s corner value: `fl(n / w)`.
+#[derive(Clone, Copy, Debug)]
+pub struct PlainCorner;
+
+impl Corner for PlainCorner {
+    fn corner<A: F32Arith>(&self, ar: &A, _a: &A::F, _s: &A::F, n: &A::F, w: &A::F) -> [A::F; 2] {
+        let q = ar.div(n, w);
+        [q.clone(), q]
+    }
+}
+
+/// `bbox-safe`'s corner value: `fl(n / w)` padded by `p` and four f32 steps (see the
+/// module's error analysis).
+#[derive(Clone, Copy, Debug)]
+pub struct SafeCorner;
+
+impl Corner for SafeCorner {
+    fn corner<A: F32Arith>(&self, ar: &A, _a: &A::F, s: &A::F, n: &A::F, w: &A::F) -> [A::F; 2] {
+        // PAD = 2^-21 = 8u and FLOOR = 2^-120 (module constants, tied to the proof)
+        let q = ar.div(n, w);
+        let sum = ar.add(&ar.add(&ar.abs(s), &ar.abs(n)), &ar.lit(FLOOR));
+        let pad = ar.mul(&ar.div(&sum, w), &ar.lit(PAD));
+        let (mut lo, mut hi) = (ar.sub(&q, &pad), ar.add(&q, &pad));
+        for _ in 0..4 {
+            lo = ar.next_down(&lo);
+            hi = ar.next_up(&hi);
+        }
+        [lo, hi]
+    }
+}
+
+/// bbox, or bbox-safe (or a planted slip of `crate::symbolic`): the same box with
+/// another corner value.
+pub(crate) struct BBox<C: Corner> {
+    pub(crate) info: &'static MethodInfo,
+    pub(crate) corner: C,
 }
 
 /// The AABB of the triangle over lens and shutter, or `None` when it is unbounded.
@@ -137,52 +179,61 @@ struct Prep {
     bx: Option<[f32; 4]>,
 }
 
-/// `[min, max]` of values, `None` if any is NaN or infinite.
-fn extent(vals: impl Iterator<Item = f32>) -> Option<[f32; 2]> {
-    let mut lo = f32::INFINITY;
-    let mut hi = f32::NEG_INFINITY;
-    for v in vals {
-        if !v.is_finite() {
-            return None;
+/// The setup, over any [`F32Arith`]: whether the box is bounded (every vertex has
+/// `w > 0` at both shutter ends; w is linear in t, and NaN counts as `w <= 0`) and the
+/// box `[X_min, X_max, Y_min, Y_max]` over every corner value's enclosure; an axis
+/// with a non-finite value is NaN (it never culls). The order of the operations is
+/// the method's: per axis (x, then y), per shutter end, per vertex, `n = a - s` then
+/// `a + s`, each corner; then the minimum and maximum in that order.
+pub fn aabb_of<A: F32Arith, C: Corner>(ar: &A, corner: &C, tri: &TriOf<A::F>) -> (A::B, [A::F; 4]) {
+    let ends = [(&tri.q, &tri.c0), (&tri.r, &tri.c1)];
+    let zero = ar.lit(0.0);
+    let positive: Vec<A::B> = ends.iter().flat_map(|(p, _)| p.iter().map(|v| ar.lt(&zero, &v[3]))).collect();
+    let enabled = ar.all(&positive);
+    let nan = ar.lit(f32::NAN);
+    let mut bx = Vec::with_capacity(4);
+    for axis in 0..2 {
+        let mut vals = Vec::with_capacity(24);
+        for (p, c) in ends {
+            for i in 0..3 {
+                let (a, w) = (&p[i][axis], &p[i][3]);
+                // x: u = ±1 shears by ±c; y: v = ±1 shears by ±k c.
+                let s = if axis == 0 { c[i].clone() } else { ar.mul(&tri.k, &c[i]) };
+                for n in [ar.sub(a, &s), ar.add(a, &s)] {
+                    vals.extend(corner.corner(ar, a, &s, &n, w));
+                }
+            }
         }
-        lo = lo.min(v);
-        hi = hi.max(v);
+        let finite: Vec<A::B> = vals.iter().map(|v| ar.is_finite(v)).collect();
+        let finite = ar.all(&finite);
+        let lo = vals[1..].iter().fold(vals[0].clone(), |m, v| ar.min(&m, v));
+        let hi = vals[1..].iter().fold(vals[0].clone(), |m, v| ar.max(&m, v));
+        bx.push(ar.select(&finite, &lo, &nan));
+        bx.push(ar.select(&finite, &hi, &nan));
     }
-    Some([lo, hi])
+    let [x0, x1, y0, y1]: [A::F; 4] = bx.try_into().expect("two axes");
+    (enabled, [x0, x1, y0, y1])
 }
 
-/// The box over every corner value: `corner(n, s, w)` encloses the corner value
-/// computed from `n = fl(a ± s)` (`a` the vertex's x or y, `s` its shear `c` or
-/// `fl(k c)`, `w` its depth) as `[lo, hi]`. None when some vertex has w <= 0 at a shutter
-/// end; an axis with a non-finite value is NaN (it never culls).
-fn aabb_with(tri: &Triangle, corner: impl Fn(f32, f32, f32) -> [f32; 2] + Copy) -> Option<[f32; 4]> {
-    let ends = [(&tri.q, &tri.c0), (&tri.r, &tri.c1)];
-    // Every w_i(t) > 0 on [0, 1] iff at both ends (w is linear in t); NaN counts as <= 0.
-    if ends.iter().any(|(p, _)| p.iter().any(|v| v[3] <= 0.0 || v[3].is_nan())) {
-        return None;
-    }
-    let corners = |axis: usize, scale: f32| {
-        ends.iter().flat_map(move |(p, c)| {
-            (0..3).flat_map(move |i| {
-                let (a, w, s) = (p[i][axis], p[i][3], scale * c[i]);
-                [a - s, a + s].into_iter().flat_map(move |n| corner(n, s, w))
-            })
-        })
-    };
-    // x: u = ±1 shears by ±c; y: v = ±1 shears by ±k c.
-    let (kx, ky) = (1.0f32, tri.k);
-    let nan = f32::NAN;
-    let [x0, x1] = extent(corners(0, kx)).unwrap_or([nan, nan]);
-    let [y0, y1] = extent(corners(1, ky)).unwrap_or([nan, nan]);
-    Some([x0, x1, y0, y1])
+/// The tile reject, over any [`F32Arith`]: a bounded box disjoint from the tile
+/// `[x0, y0, x1, y1]` (`x1 < X_min`, `x0 > X_max`, `y1 < Y_min` or `y0 > Y_max`;
+/// comparisons with NaN are false, so an axis with a non-finite box never culls).
+pub fn rejects<A: F32Arith>(ar: &A, enabled: &A::B, bx: &[A::F; 4], tile: &[A::F; 4]) -> A::B {
+    let [tx0, ty0, tx1, ty1] = tile;
+    let disjoint = ar.any(&[ar.lt(tx1, &bx[0]), ar.gt(tx0, &bx[1]), ar.lt(ty1, &bx[2]), ar.gt(ty0, &bx[3])]);
+    ar.and(enabled, &disjoint)
+}
+
+/// The f32 setup of a corner rule: the box, or `None` when it is unbounded.
+fn setup_f32<C: Corner>(corner: &C, tri: &Triangle) -> Option<[f32; 4]> {
+    let (enabled, bx) = aabb_of(&Plain, corner, &TriOf::of(tri));
+    enabled.then_some(bx)
 }
 
 /// Setup of the AABB (f32): each corner value `fl(n / w)`.
+#[cfg(test)]
 fn aabb(tri: &Triangle) -> Option<[f32; 4]> {
-    aabb_with(tri, |n, _, w| {
-        let q = n / w;
-        [q, q]
-    })
+    setup_f32(&PlainCorner, tri)
 }
 
 /// `bbox-safe`'s relative pad, 2^-21 = 8u (proof: `src/bounds/proofs/bbox_safe.g`).
@@ -193,22 +244,15 @@ pub(crate) const FLOOR: f32 = 1.0 / (1u128 << 120) as f32;
 /// Setup of the outward-rounded AABB of `bbox-safe` (f32; see the module's error
 /// analysis): each corner value padded by `p` and four f32 steps.
 pub(crate) fn aabb_safe(tri: &Triangle) -> Option<[f32; 4]> {
-    aabb_with(tri, |n, s, w| {
-        let q = n / w;
-        let pad = ((s.abs() + n.abs() + FLOOR) / w) * PAD;
-        let (lo, hi) = (q - pad, q + pad);
-        [lo.next_down().next_down().next_down().next_down(), hi.next_up().next_up().next_up().next_up()]
-    })
+    setup_f32(&SafeCorner, tri)
 }
 
 impl Prepared for Prep {
     fn tile(&self, tile: &Tile) -> TileResult {
-        let Some([bx0, bx1, by0, by1]) = self.bx else {
+        let Some(bx) = self.bx else {
             return TileResult::Bounds(TileBounds::full());
         };
-        // Comparisons with NaN are false: an axis with a non-finite box never culls.
-        let disjoint = tile.x1 < bx0 || tile.x0 > bx1 || tile.y1 < by0 || tile.y0 > by1;
-        if disjoint {
+        if rejects(&Plain, &true, &bx, &crate::symbolic::arith::tile_of(tile)) {
             TileResult::Empty
         } else {
             TileResult::Bounds(TileBounds::full())
@@ -232,16 +276,16 @@ static INFO: MethodInfo = MethodInfo {
     outputs: Outputs { tile_reject: true, lens: false, time: false, depth: false, per_sample: false },
 };
 
-impl Method for BBox {
+impl<C: Corner + 'static> Method for BBox<C> {
     fn info(&self) -> &'static MethodInfo {
         self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(Prep { bx: (self.setup)(tri) })
+        Box::new(Prep { bx: setup_f32(&self.corner, tri) })
     }
 }
 
-pub static METHOD: &dyn Method = &BBox { info: &INFO, setup: aabb };
+pub static METHOD: &dyn Method = &BBox { info: &INFO, corner: PlainCorner };
 
 static INFO_SAFE: MethodInfo = MethodInfo {
     id: "bbox-safe",
@@ -251,7 +295,7 @@ static INFO_SAFE: MethodInfo = MethodInfo {
 };
 
 /// `bbox-safe`: the box rounded outward (see the module's error analysis).
-pub static METHOD_SAFE: &dyn Method = &BBox { info: &INFO_SAFE, setup: aabb_safe };
+pub static METHOD_SAFE: &dyn Method = &BBox { info: &INFO_SAFE, corner: SafeCorner };
 
 #[cfg(test)]
 mod tests {
@@ -441,6 +485,114 @@ mod tests {
                 assert!(safe[0] <= pl[0] && safe[1] >= pl[1]);
             }
         }
+    }
+
+    /// The code before it was written over [`F32Arith`], kept to show that the f32
+    /// instance computes the same boxes and answers.
+    mod before {
+        use super::super::*;
+        fn extent(vals: impl Iterator<Item = f32>) -> Option<[f32; 2]> {
+            let mut lo = f32::INFINITY;
+            let mut hi = f32::NEG_INFINITY;
+            for v in vals {
+                if !v.is_finite() {
+                    return None;
+                }
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+            Some([lo, hi])
+        }
+        fn aabb_with(tri: &Triangle, corner: impl Fn(f32, f32, f32) -> [f32; 2] + Copy) -> Option<[f32; 4]> {
+            let ends = [(&tri.q, &tri.c0), (&tri.r, &tri.c1)];
+            if ends.iter().any(|(p, _)| p.iter().any(|v| v[3] <= 0.0 || v[3].is_nan())) {
+                return None;
+            }
+            let corners = |axis: usize, scale: f32| {
+                ends.iter().flat_map(move |(p, c)| {
+                    (0..3).flat_map(move |i| {
+                        let (a, w, s) = (p[i][axis], p[i][3], scale * c[i]);
+                        [a - s, a + s].into_iter().flat_map(move |n| corner(n, s, w))
+                    })
+                })
+            };
+            let (kx, ky) = (1.0f32, tri.k);
+            let nan = f32::NAN;
+            let [x0, x1] = extent(corners(0, kx)).unwrap_or([nan, nan]);
+            let [y0, y1] = extent(corners(1, ky)).unwrap_or([nan, nan]);
+            Some([x0, x1, y0, y1])
+        }
+        pub fn aabb(tri: &Triangle) -> Option<[f32; 4]> {
+            aabb_with(tri, |n, _, w| {
+                let q = n / w;
+                [q, q]
+            })
+        }
+        pub fn aabb_safe(tri: &Triangle) -> Option<[f32; 4]> {
+            const PAD: f32 = 1.0 / (1u32 << 21) as f32;
+            const FLOOR: f32 = 1.0 / (1u128 << 120) as f32;
+            aabb_with(tri, |n, s, w| {
+                let q = n / w;
+                let pad = ((s.abs() + n.abs() + FLOOR) / w) * PAD;
+                let (lo, hi) = (q - pad, q + pad);
+                [lo.next_down().next_down().next_down().next_down(), hi.next_up().next_up().next_up().next_up()]
+            })
+        }
+        pub fn disjoint(bx: Option<[f32; 4]>, tile: &Tile) -> bool {
+            bx.is_some_and(|[bx0, bx1, by0, by1]| tile.x1 < bx0 || tile.x0 > bx1 || tile.y1 < by0 || tile.y0 > by1)
+        }
+    }
+
+    /// A random triangle of any scale (some with w <= 0, some overflowing) and a tile
+    /// near its box.
+    pub(crate) fn random_triangle(rnd: &mut impl FnMut() -> f64, n: usize) -> (Triangle, Tile) {
+        let scale = [1e-40f64, 1e-20, 1e-3, 1.0, 1e3, 1e6, 1e15, 1e30][n % 8];
+        let mut tri = Triangle::fixed([[0.0, 0.0, 0.5, 1.0]; 3]);
+        for p in tri.q.iter_mut().chain(tri.r.iter_mut()) {
+            p[0] = ((rnd() - 0.5) * 2.0 * scale) as f32;
+            p[1] = ((rnd() - 0.5) * 2.0 * scale) as f32;
+            p[3] = (rnd() * 4.0f64.powi((rnd() * 20.0) as i32 - 10)) as f32 + f32::MIN_POSITIVE;
+            if rnd() < 0.02 {
+                p[3] = -p[3];
+            }
+        }
+        for c in tri.c0.iter_mut().chain(tri.c1.iter_mut()) {
+            *c = ((rnd() - 0.5) * 2.0 * scale) as f32;
+        }
+        tri.k = (0.25 + rnd() * 4.0) as f32;
+        let (x, y) = (((rnd() - 0.5) * 4.0 * scale) as f32, ((rnd() - 0.5) * 4.0 * scale) as f32);
+        let size = (scale * rnd()) as f32;
+        (tri, Tile { x0: x, y0: y, x1: x + size, y1: y + size })
+    }
+
+    #[test]
+    fn the_generic_form_equals_the_old_code() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let same = |a: Option<[f32; 4]>, b: Option<[f32; 4]>| match (a, b) {
+            (None, None) => true,
+            (Some(a), Some(b)) => a.iter().zip(&b).all(|(x, y)| x == y || (x.is_nan() && y.is_nan())),
+            _ => false,
+        };
+        let mut culled = 0;
+        for n in 0..50_000 {
+            let (tri, tile) = random_triangle(&mut rnd, n);
+            let (new, old) = (aabb(&tri), before::aabb(&tri));
+            assert!(same(new, old), "{tri:?}: {new:?} vs {old:?}");
+            let (new_s, old_s) = (aabb_safe(&tri), before::aabb_safe(&tri));
+            assert!(same(new_s, old_s), "{tri:?}: {new_s:?} vs {old_s:?}");
+            for (m, bx) in [(METHOD, old), (METHOD_SAFE, old_s)] {
+                let empty = matches!(m.setup(&tri).tile(&tile), TileResult::Empty);
+                assert_eq!(empty, before::disjoint(bx, &tile), "{tri:?} {tile:?}");
+                culled += empty as usize;
+            }
+        }
+        assert!(culled > 1000, "too few culled tiles to compare: {culled}");
     }
 
     #[test]

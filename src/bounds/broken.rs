@@ -17,6 +17,9 @@
 //!   around its centre (a dropped tile half-size).
 //! - `broken/loose/<id>`: every narrowed end moved out by 1e-3 (not a violation: a
 //!   loss of tightness, which the baseline comparison must see).
+//!
+//! Two more, `broken/planted-eq/bbox-safe` and `broken/planted-band/bbox-safe`, are rare
+//! slips planted in `bbox-safe` itself (`crate::symbolic::planted`), not in `cullproof power`.
 
 use super::{by_id, Method, MethodInfo, Prepared, TileResult};
 use crate::model::{Tile, Triangle};
@@ -161,6 +164,10 @@ pub fn inner_id(id: &str) -> &str {
 
 /// The broken variant named `id` ("broken/shrink/la2011"), if it is one.
 pub fn parse(id: &str) -> Option<&'static dyn Method> {
+    // The rare slips planted for the symbolic search (`crate::symbolic::planted`).
+    if let Some(m) = crate::symbolic::planted::parse(id) {
+        return Some(m);
+    }
     let rest = id.strip_prefix("broken/")?;
     let (kind, inner) = rest.split_once('/')?;
     let inner = by_id(inner)?;

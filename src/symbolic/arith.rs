@@ -1,0 +1,211 @@
+//! One description, two meanings: the f32 operations a bound is written in, as a trait
+//! with two instances. [`Plain`] computes in f32 (what the gate runs); the SMT-LIB2
+//! builder ([`super::smt::Smt`]) emits the same operations, in the same order, as
+//! IEEE binary32 terms with round-to-nearest-even. Code written once over
+//! [`F32Arith`] is the method and its encoding at the same time, so the two cannot
+//! drift apart.
+//!
+//! Every operation is specified bit for bit, NaN and signed zeros included, so that
+//! both instances agree on every input:
+//! - `add`, `sub`, `mul`, `div`, `fma` round to nearest, ties to even (IEEE 754);
+//! - `min(a, b)` is `b` when `a` is NaN or `b < a`, else `a`; `max(a, b)` is `b` when
+//!   `a` is NaN or `b > a`, else `a` (no dependence on the sign of a zero result
+//!   beyond this rule, unlike `f32::min`, whose choice between -0 and +0 is left open);
+//! - `lt`, `le`, `eq` are IEEE comparisons (false when either side is NaN);
+//! - `next_up` / `next_down` are `f32::next_up` / `f32::next_down`.
+
+use crate::model::{Tile, Triangle};
+
+/// The f32 operations a bound's setup and tile test are written in.
+pub trait F32Arith {
+    /// An f32 value (a number, or a term).
+    type F: Clone + std::fmt::Debug;
+    /// A truth value (a bool, or a term).
+    type B: Clone + std::fmt::Debug;
+
+    fn lit(&self, v: f32) -> Self::F;
+    fn add(&self, a: &Self::F, b: &Self::F) -> Self::F;
+    fn sub(&self, a: &Self::F, b: &Self::F) -> Self::F;
+    fn mul(&self, a: &Self::F, b: &Self::F) -> Self::F;
+    fn div(&self, a: &Self::F, b: &Self::F) -> Self::F;
+    /// `a * b + c` with one rounding.
+    fn fma(&self, a: &Self::F, b: &Self::F, c: &Self::F) -> Self::F;
+    fn neg(&self, a: &Self::F) -> Self::F;
+    fn abs(&self, a: &Self::F) -> Self::F;
+    fn min(&self, a: &Self::F, b: &Self::F) -> Self::F;
+    fn max(&self, a: &Self::F, b: &Self::F) -> Self::F;
+    fn next_up(&self, a: &Self::F) -> Self::F;
+    fn next_down(&self, a: &Self::F) -> Self::F;
+
+    fn lt(&self, a: &Self::F, b: &Self::F) -> Self::B;
+    fn le(&self, a: &Self::F, b: &Self::F) -> Self::B;
+    fn eq(&self, a: &Self::F, b: &Self::F) -> Self::B;
+    fn is_nan(&self, a: &Self::F) -> Self::B;
+    fn is_finite(&self, a: &Self::F) -> Self::B;
+
+    fn truth(&self, b: bool) -> Self::B;
+    fn and(&self, a: &Self::B, b: &Self::B) -> Self::B;
+    fn or(&self, a: &Self::B, b: &Self::B) -> Self::B;
+    fn not(&self, a: &Self::B) -> Self::B;
+    /// `if c { a } else { b }`.
+    fn select(&self, c: &Self::B, a: &Self::F, b: &Self::F) -> Self::F;
+
+    /// `a > b`.
+    fn gt(&self, a: &Self::F, b: &Self::F) -> Self::B {
+        self.lt(b, a)
+    }
+    /// The conjunction of many truth values (true when there are none).
+    fn all(&self, bs: &[Self::B]) -> Self::B {
+        bs.iter().fold(self.truth(true), |acc, b| self.and(&acc, b))
+    }
+    /// The disjunction of many truth values (false when there are none).
+    fn any(&self, bs: &[Self::B]) -> Self::B {
+        bs.iter().fold(self.truth(false), |acc, b| self.or(&acc, b))
+    }
+}
+
+/// The f32 instance: the method as the gate runs it.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Plain;
+
+impl F32Arith for Plain {
+    type F = f32;
+    type B = bool;
+
+    fn lit(&self, v: f32) -> f32 {
+        v
+    }
+    fn add(&self, a: &f32, b: &f32) -> f32 {
+        a + b
+    }
+    fn sub(&self, a: &f32, b: &f32) -> f32 {
+        a - b
+    }
+    fn mul(&self, a: &f32, b: &f32) -> f32 {
+        a * b
+    }
+    fn div(&self, a: &f32, b: &f32) -> f32 {
+        a / b
+    }
+    fn fma(&self, a: &f32, b: &f32, c: &f32) -> f32 {
+        a.mul_add(*b, *c)
+    }
+    fn neg(&self, a: &f32) -> f32 {
+        -a
+    }
+    fn abs(&self, a: &f32) -> f32 {
+        a.abs()
+    }
+    fn min(&self, a: &f32, b: &f32) -> f32 {
+        if a.is_nan() || b < a {
+            *b
+        } else {
+            *a
+        }
+    }
+    fn max(&self, a: &f32, b: &f32) -> f32 {
+        if a.is_nan() || b > a {
+            *b
+        } else {
+            *a
+        }
+    }
+    fn next_up(&self, a: &f32) -> f32 {
+        a.next_up()
+    }
+    fn next_down(&self, a: &f32) -> f32 {
+        a.next_down()
+    }
+    fn lt(&self, a: &f32, b: &f32) -> bool {
+        a < b
+    }
+    fn le(&self, a: &f32, b: &f32) -> bool {
+        a <= b
+    }
+    fn eq(&self, a: &f32, b: &f32) -> bool {
+        a == b
+    }
+    fn is_nan(&self, a: &f32) -> bool {
+        a.is_nan()
+    }
+    fn is_finite(&self, a: &f32) -> bool {
+        a.is_finite()
+    }
+    fn truth(&self, b: bool) -> bool {
+        b
+    }
+    fn and(&self, a: &bool, b: &bool) -> bool {
+        *a && *b
+    }
+    fn or(&self, a: &bool, b: &bool) -> bool {
+        *a || *b
+    }
+    fn not(&self, a: &bool) -> bool {
+        !a
+    }
+    fn select(&self, c: &bool, a: &f32, b: &f32) -> f32 {
+        if *c {
+            *a
+        } else {
+            *b
+        }
+    }
+}
+
+/// A triangle whose numbers are values of some [`F32Arith`] (f32 numbers or terms),
+/// laid out as [`Triangle`].
+#[derive(Clone, Debug)]
+pub struct TriOf<T> {
+    pub q: [[T; 4]; 3],
+    pub r: [[T; 4]; 3],
+    pub c0: [T; 3],
+    pub c1: [T; 3],
+    pub k: T,
+}
+
+impl TriOf<f32> {
+    /// The plain triangle's numbers.
+    pub fn of(t: &Triangle) -> Self {
+        TriOf { q: t.q, r: t.r, c0: t.c0, c1: t.c1, k: t.k }
+    }
+    /// Back to a [`Triangle`].
+    pub fn triangle(&self) -> Triangle {
+        Triangle { q: self.q, r: self.r, c0: self.c0, c1: self.c1, k: self.k }
+    }
+}
+
+impl<T: Clone> TriOf<T> {
+    /// The same triangle with every number mapped.
+    pub fn map<U>(&self, f: impl Fn(&T) -> U) -> TriOf<U> {
+        TriOf {
+            q: self.q.each_ref().map(|p| p.each_ref().map(&f)),
+            r: self.r.each_ref().map(|p| p.each_ref().map(&f)),
+            c0: self.c0.each_ref().map(&f),
+            c1: self.c1.each_ref().map(&f),
+            k: f(&self.k),
+        }
+    }
+}
+
+/// A tile's edges `[x0, y0, x1, y1]` as values of some [`F32Arith`].
+pub fn tile_of(t: &Tile) -> [f32; 4] {
+    [t.x0, t.y0, t.x1, t.y1]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn plain_min_max_follow_the_stated_rule() {
+        let p = Plain;
+        assert_eq!(p.min(&f32::NAN, &1.0), 1.0);
+        assert!(p.min(&1.0, &f32::NAN) == 1.0);
+        assert_eq!(p.max(&f32::NAN, &-1.0), -1.0);
+        assert_eq!(p.min(&2.0, &-3.0), -3.0);
+        assert_eq!(p.max(&2.0, &-3.0), 2.0);
+        // equal values keep the first (the sign of a zero included)
+        assert!(p.min(&-0.0, &0.0).is_sign_negative());
+        assert!(p.max(&0.0, &-0.0).is_sign_positive());
+    }
+}
