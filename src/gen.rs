@@ -409,6 +409,23 @@ pub fn tile_sample(rng: &mut ChaCha8Rng, tile: &Tile) -> Sample {
 /// Samples for a case: half uniform over the triangle's screen region, half drawn near
 /// its edges (a point on an edge of the sheared triangle at a random (u, v, t), pushed
 /// off by 2^-e pixels, e uniform in [0, 40]). Rounded to f32 as hardware samples are.
+/// A tile size in pixels: `fixed`, or drawn from 1, 2, 4, 8, 16.
+pub fn tile_size(fixed: Option<f32>, rng: &mut ChaCha8Rng) -> f32 {
+    use rand::seq::SliceRandom;
+    fixed.unwrap_or_else(|| *[1.0f32, 2.0, 4.0, 8.0, 16.0].choose(rng).expect("five sizes"))
+}
+
+/// A tile of `size` pixels (on the grid of that size) holding a sample drawn near an
+/// edge of the triangle ([`samples_for`]): where its footprint's boundary is. The
+/// gate's cases (`check::make_case`) and the stability sweeps place tiles this way.
+pub fn boundary_tile(case: &Case, rng: &mut ChaCha8Rng, size: f32) -> Tile {
+    let pts = samples_for(case, rng, 16);
+    // odd indices are the edge-biased samples
+    let p = pts[1 + 2 * rng.gen_range(0..8)];
+    let (x0, y0) = ((p[0] as f32 / size).floor() * size, (p[1] as f32 / size).floor() * size);
+    Tile::square(x0, y0, size)
+}
+
 pub fn samples_for(case: &Case, rng: &mut ChaCha8Rng, n: usize) -> Vec<[f64; 5]> {
     let tri = &case.triangle;
     let dims = tri.dims();

@@ -31,17 +31,17 @@ pub mod tiles;
 pub use expect::{Allowance, Cap, Entry, Expectations, Expected};
 pub use judge::{bound_kind, culled_by, in_domain, Judgement, Unproven, Verdict};
 pub use report::{render, CheckReport, CrossCheck, Row, Status};
+/// Case making lives with the generators; re-exported where the gate's users look.
+pub use crate::gen::boundary_tile;
 
 use crate::agree::lens_tri;
 use crate::bounds::{Method, MethodRef, TileResult};
-use crate::gen::{physical_case, rng_for, samples_for, tile_sample, Regime};
+use crate::gen::{physical_case, rng_for, tile_sample, Regime};
 use crate::model::{Case, Sample, SampleSet, Snap, Tile, Viewport};
 use indicatif::{ProgressBar, ProgressStyle};
 use judge::TileJudge;
 use oracles::extents::ExtentsConfig;
 use oracles::{classify, Coverage};
-use rand::seq::SliceRandom;
-use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use samples::SetJudge;
@@ -180,17 +180,7 @@ pub fn try_make_case(cfg: &CheckConfig, i: u64) -> Option<(Regime, Case, Tile)> 
 }
 
 fn tile_size(cfg: &CheckConfig, rng: &mut ChaCha8Rng) -> f32 {
-    cfg.tile.unwrap_or_else(|| *[1.0f32, 2.0, 4.0, 8.0, 16.0].choose(rng).unwrap())
-}
-
-/// A tile of `size` pixels (on the grid of that size) holding a sample drawn near an
-/// edge of the triangle: where its footprint's boundary is.
-pub fn boundary_tile(case: &Case, rng: &mut ChaCha8Rng, size: f32) -> Tile {
-    let pts = samples_for(case, rng, 16);
-    // odd indices are the edge-biased samples
-    let p = pts[1 + 2 * rng.gen_range(0..8)];
-    let (x0, y0) = ((p[0] as f32 / size).floor() * size, (p[1] as f32 / size).floor() * size);
-    Tile::square(x0, y0, size)
+    crate::gen::tile_size(cfg.tile, rng)
 }
 
 fn embree_for(case: &Case) -> Option<oracles::embree::EmbreeOracle> {

@@ -9,7 +9,7 @@
 //! The case index `i` (0-based within a step) alternates the dimensions where a family
 //! mixes them, so every step sees the same mix.
 
-use crate::gen::{camera, samples_for, Source};
+use crate::gen::{camera, Source};
 use crate::model::{Case, ThinLens, Tile};
 use crate::Interval;
 use anyhow::{bail, Result};
@@ -58,14 +58,7 @@ fn log_steps(e0: i32, e1: i32, n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// A tile on the footprint's boundary, placed exactly as `check::make_case` places it:
-/// the `size` grid cell holding one of the edge-biased samples of `gen::samples_for`.
-fn boundary_tile(case: &Case, rng: &mut ChaCha8Rng, size: f32) -> Tile {
-    let pts = samples_for(case, rng, 16);
-    let p = pts[1 + 2 * rng.gen_range(0..8)];
-    let (x0, y0) = ((p[0] as f32 / size).floor() * size, (p[1] as f32 / size).floor() * size);
-    Tile::square(x0, y0, size)
-}
+use crate::gen::boundary_tile;
 
 impl Family {
     pub const ALL: [Family; 6] =
