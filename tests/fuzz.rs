@@ -845,7 +845,7 @@ fn case_files_take_any_text() {
         fz.input(format!("case file text: {}", short(&String::from_utf8_lossy(&text), 4000)));
         let Some(Ok(cf)) = fz.call("CaseFile::load", || cullproof::corpus::CaseFile::load(&path)) else { continue };
         ok += 1;
-        let Some(m) = cullproof::bounds::by_id(&cf.method) else {
+        let Some(m) = cullproof::corpus::method_of(&cf.method) else {
             panic!("CaseFile::load accepted an unknown method {:?}", cf.method)
         };
         if let Some(w) = &cf.witness {
