@@ -28,11 +28,11 @@ pub mod report;
 pub mod samples;
 pub mod tiles;
 
+/// Case making lives with the generators; re-exported where the gate's users look.
+pub use crate::gen::boundary_tile;
 pub use expect::{Allowance, Cap, Entry, Expectations, Expected};
 pub use judge::{bound_kind, culled_by, in_domain, Judgement, Unproven, Verdict};
 pub use report::{render, CheckReport, CrossCheck, Row, Status};
-/// Case making lives with the generators; re-exported where the gate's users look.
-pub use crate::gen::boundary_tile;
 
 use crate::agree::lens_tri;
 use crate::bounds::{Method, MethodRef, TileResult};
