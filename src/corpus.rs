@@ -124,6 +124,45 @@ pub fn method_of(id: &str) -> Option<&'static dyn Method> {
 }
 
 impl CaseFile {
+    /// The case file of a violation found by `found_by` (a command: "check", "search",
+    /// "symbolic"): the method's case and tile, the witness, where it came from; the
+    /// sample set, snap and viewport of `cfg`. `note` says what the case shows.
+    pub fn violation(
+        method: &str,
+        (case, tile): (Case, Tile),
+        w: &crate::check::Witness,
+        cfg: &CheckConfig,
+        (found_by, case_index, regime): (&str, u64, String),
+        shrink_steps: Vec<String>,
+        note: String,
+    ) -> CaseFile {
+        CaseFile {
+            format: FORMAT.into(),
+            method: method.into(),
+            case,
+            tile,
+            expected: Verdict::Violation,
+            witness: Some(WitnessRecord {
+                sample: w.sample,
+                bound: w.bound.clone(),
+                margin: w.margin,
+                embree_hit: w.embree_hit,
+            }),
+            provenance: Provenance {
+                found_by: found_by.into(),
+                seed: cfg.seed,
+                case_index,
+                regime,
+                tool_version: env!("CARGO_PKG_VERSION").into(),
+                shrink_steps,
+            },
+            note,
+            samples: cfg.sample_set,
+            snap: cfg.snap,
+            viewport: cfg.viewport,
+        }
+    }
+
     /// Read and check a case file; errors name the file and the field.
     pub fn load(path: &Path) -> Result<CaseFile> {
         let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
@@ -573,31 +612,15 @@ pub fn search(
             }
             let (c, t, j, steps) = shrink(cfg, &m, case, tile, j, i);
             let w = j.violation.clone().unwrap();
-            let cf = CaseFile {
-                format: FORMAT.into(),
-                method: m.info().id.into(),
-                case: c,
-                tile: t,
-                expected: Verdict::Violation,
-                witness: Some(WitnessRecord {
-                    sample: w.sample,
-                    bound: w.bound.clone(),
-                    margin: w.margin,
-                    embree_hit: w.embree_hit,
-                }),
-                provenance: Provenance {
-                    found_by: "search".into(),
-                    seed: cfg.seed,
-                    case_index: i,
-                    regime: regime.name().into(),
-                    tool_version: env!("CARGO_PKG_VERSION").into(),
-                    shrink_steps: steps.clone(),
-                },
-                note: String::new(),
-                samples: cfg.sample_set,
-                snap: cfg.snap,
-                viewport: cfg.viewport,
-            };
+            let cf = CaseFile::violation(
+                m.info().id,
+                (c, t),
+                &w,
+                cfg,
+                ("search", i, regime.name().into()),
+                steps.clone(),
+                String::new(),
+            );
             let file = match out {
                 Some(dir) => cf.write_new(dir)?.map(|p| p.display().to_string()),
                 None => None,

@@ -10,7 +10,7 @@
 //! file is never overwritten (the same witness has the same name).
 
 use super::report::{CheckReport, Row, Status};
-use crate::corpus::{CaseFile, Provenance, Verdict, WitnessRecord};
+use crate::corpus::CaseFile;
 use anyhow::{Context, Result};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -42,31 +42,21 @@ fn esc(s: &str) -> String {
 /// existing file's when the same witness was written before).
 fn write_witness(r: &CheckReport, row: &Row, dir: &Path) -> Result<Option<PathBuf>> {
     let Some(w) = &row.worst else { return Ok(None) };
-    let cf = CaseFile {
-        format: crate::corpus::FORMAT.into(),
-        method: row.method.clone(),
-        case: w.case,
-        tile: w.tile,
-        expected: Verdict::Violation,
-        witness: Some(WitnessRecord {
-            sample: w.sample,
-            bound: w.bound.clone(),
-            margin: w.margin,
-            embree_hit: w.embree_hit,
-        }),
-        provenance: Provenance {
-            found_by: "check".into(),
-            seed: r.seed,
-            case_index: w.case_index,
-            regime: row.regime.clone(),
-            tool_version: env!("CARGO_PKG_VERSION").into(),
-            shrink_steps: Vec::new(),
-        },
-        note: format!("the worst violation of {} / {} in a gate run ({})", row.method, row.regime, row.status.text()),
-        samples: r.samples.as_ref().map_or_else(Default::default, |n| n.set),
-        snap: r.samples.as_ref().and_then(|n| n.snap),
-        viewport: r.samples.as_ref().and_then(|n| n.viewport),
-    };
+    let mut cfg = crate::check::CheckConfig::default_for(Vec::new());
+    cfg.seed = r.seed;
+    if let Some(n) = &r.samples {
+        (cfg.sample_set, cfg.snap, cfg.viewport) = (n.set, n.snap, n.viewport);
+    }
+    let note = format!("the worst violation of {} / {} in a gate run ({})", row.method, row.regime, row.status.text());
+    let cf = CaseFile::violation(
+        &row.method,
+        (w.case, w.tile),
+        w,
+        &cfg,
+        ("check", w.case_index, row.regime.clone()),
+        Vec::new(),
+        note,
+    );
     let path = dir.join(&cf.method).join(format!("{}.json", cf.short_hash()));
     cf.write_new(dir)?;
     Ok(Some(path))

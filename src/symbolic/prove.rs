@@ -11,7 +11,7 @@ use super::z3::{self, Answer};
 use crate::bounds::bbox::{Corner, PlainCorner, SafeCorner};
 use crate::bounds::{shared, Method, TileResult};
 use crate::check::{judge, CheckConfig};
-use crate::corpus::{shrink, CaseFile, Provenance, Verdict, WitnessRecord, FORMAT};
+use crate::corpus::{shrink, CaseFile};
 use crate::model::Case;
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
@@ -151,27 +151,14 @@ pub fn prove(
                         rep.confirmed = true;
                         rep.judged = Some(format!("violation ({})", w.bound));
                         rep.shrink_steps = steps.clone();
-                        let cf = CaseFile {
-                            format: FORMAT.into(),
-                            method: m.info().id.into(),
-                            case: c,
-                            tile: t,
-                            expected: Verdict::Violation,
-                            witness: Some(WitnessRecord {
-                                sample: w.sample,
-                                bound: w.bound,
-                                margin: w.margin,
-                                embree_hit: w.embree_hit,
-                            }),
-                            provenance: Provenance {
-                                found_by: "symbolic".into(),
-                                seed: 0,
-                                case_index: qi as u64,
-                                regime: format!("symbolic {} {}", q.side.name(), q.ranges_text()),
-                                tool_version: env!("CARGO_PKG_VERSION").into(),
-                                shrink_steps: steps,
-                            },
-                            note: format!(
+                        let cf = CaseFile::violation(
+                            m.info().id,
+                            (c, t),
+                            &w,
+                            &CheckConfig { seed: 0, ..cfg.clone() },
+                            ("symbolic", qi as u64, format!("symbolic {} {}", q.side.name(), q.ranges_text())),
+                            steps,
+                            format!(
                                 "z3 model a = {:e}, c = {:e}, w = {:e}, t = {:e} of the {} template (src/symbolic/bbox_query.rs), confirmed by the exact judge",
                                 v[0],
                                 v[1],
@@ -179,10 +166,7 @@ pub fn prove(
                                 v[3],
                                 q.side.name()
                             ),
-                            samples: Default::default(),
-                            snap: None,
-                            viewport: None,
-                        };
+                        );
                         if let Some(dir) = out {
                             rep.file = cf.write_new(dir)?.map(|p| p.display().to_string());
                         }
