@@ -102,9 +102,10 @@ impl<'a> SetJudge<'a> {
                 if !in_domain(&tile, p) || classify(self.tj.tri, p) != Coverage::Interior {
                     continue;
                 }
+                // The point is confirmed culled by the answer itself (a NaN interval
+                // end culls it with an infinite margin, as `culled_by` says).
                 let culled = match answer {
                     TileResult::Empty => Some(("tile culled".to_string(), f64::INFINITY)),
-                    TileResult::Bounds(_) if w.margin.is_infinite() => Some((w.bound.clone(), f64::INFINITY)),
                     TileResult::Bounds(b) => culled_by(b, p),
                 };
                 if let Some((bound, margin)) = culled {
