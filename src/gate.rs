@@ -255,6 +255,12 @@ pub struct MethodReport {
     /// Unproven cases by reason (a case may have several).
     pub unproven_by: BTreeMap<Unproven, u64>,
     pub verdict: MethodVerdict,
+    /// The strongest verdict it reaches: a proof for all inputs in ranges counts above
+    /// the run's cases ([`crate::check::strength`]).
+    pub strength: crate::check::Strength,
+    /// That verdict in words, with its numbers (and, for a proof, see
+    /// `raw.methods` for its ranges and scripts).
+    pub strength_text: String,
     /// False when some row of this method fails its expectation (or the baseline).
     pub passed: bool,
     /// The worst counterexample of each regime with one.
@@ -283,6 +289,8 @@ impl GateReport {
                         unproven: 0,
                         unproven_by: BTreeMap::new(),
                         verdict: MethodVerdict::Proven,
+                        strength: crate::check::Strength::Unproven,
+                        strength_text: String::new(),
                         passed: true,
                         counterexamples: Vec::new(),
                     });
@@ -318,6 +326,10 @@ impl GateReport {
             } else {
                 MethodVerdict::Proven
             };
+            if let Some(st) = raw.methods.iter().find(|x| x.method == m.id) {
+                m.strength = st.strength;
+                m.strength_text = st.text.clone();
+            }
         }
         GateReport { methods, raw }
     }

@@ -355,6 +355,7 @@ mod tests {
             shard: "0/1".into(),
             run: crate::check::merge::RunInfo::of(&cfg),
             rows: vec![row(n, &[], 0.5)],
+            methods: vec![],
             cross_check: vec![],
             solver_boxes: 0,
             seconds: 0.0,

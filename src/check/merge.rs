@@ -231,13 +231,15 @@ pub fn merge(
         n.outside_viewport = shards.iter().filter_map(|(_, r)| r.samples.as_ref()).map(|x| x.outside_viewport).sum();
         n
     });
+    let rows: Vec<Row> = rows.into_values().collect();
     let mut rep = CheckReport {
+        methods: super::strength::of_rows(&rows),
         samples,
         seed: first.seed,
         cases,
         shard: "0/1".into(),
         run: RunInfo { shard: [0, 1], ..run.clone() },
-        rows: rows.into_values().collect(),
+        rows,
         cross_check: cross.into_values().collect(),
         solver_boxes: boxes,
         seconds,

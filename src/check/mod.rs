@@ -26,6 +26,7 @@ pub mod merge;
 pub mod power;
 pub mod report;
 pub mod samples;
+pub mod strength;
 pub mod tiles;
 
 /// Case making lives with the generators; re-exported where the gate's users look.
@@ -33,6 +34,7 @@ pub use crate::gen::boundary_tile;
 pub use expect::{Allowance, Cap, Entry, Expectations, Expected};
 pub use judge::{bound_kind, culled_by, in_domain, Judgement, Unproven, Verdict};
 pub use report::{render, CheckReport, CrossCheck, Row, Status};
+pub use strength::{MethodStrength, Strength};
 
 use crate::agree::lens_tri;
 use crate::bounds::{Method, MethodRef, TileResult};

@@ -122,6 +122,10 @@ pub struct CheckReport {
     /// The run's methods and settings (what `cullproof merge` checks shards against).
     pub run: RunInfo,
     pub rows: Vec<Row>,
+    /// Per method, the strongest verdict it reaches ([`super::strength`]): violated,
+    /// proven for all inputs in ranges (symbolic), proven on the run's cases, unproven.
+    #[serde(default)]
+    pub methods: Vec<super::strength::MethodStrength>,
     /// The sampled cross-check of Embree against the exact oracle, per regime.
     pub cross_check: Vec<CrossCheck>,
     /// Boxes the extents solver examined in all.
@@ -266,12 +270,14 @@ impl<'a> Accumulator<'a> {
             finish_row(row);
         }
         let (k, n) = cfg.shard;
+        let rows: Vec<Row> = self.rows.into_values().collect();
         CheckReport {
+            methods: super::strength::of_rows(&rows),
             seed: cfg.seed,
             cases: judged,
             shard: format!("{k}/{n}"),
             run: RunInfo::of(cfg),
-            rows: self.rows.into_values().collect(),
+            rows,
             cross_check: self.cross.into_values().collect(),
             solver_boxes: self.boxes,
             seconds,
@@ -342,40 +348,24 @@ fn fmt_margin(row: &Row) -> String {
 /// One line per method over all regimes: the verdict at a glance.
 fn render_summary(r: &CheckReport) -> String {
     let mut s = format!(
-        "\nper method, all regimes:\n{:<26} {:>6} {:>7} {:>10} {:>8} {:>11}  {}\n",
+        "\nper method, all regimes (the strongest verdict each reaches):\n{:<26} {:>6} {:>7} {:>10} {:>8} {:>11}  {}\n",
         "method", "cases", "proven", "violated", "unproven", "margin", "verdict"
     );
-    let mut methods: Vec<&str> = Vec::new();
-    for row in &r.rows {
-        if !methods.contains(&row.method.as_str()) {
-            methods.push(&row.method);
-        }
-    }
-    for m in methods {
-        let rows: Vec<&Row> = r.rows.iter().filter(|x| x.method == m).collect();
-        let sum = |f: fn(&Row) -> u64| rows.iter().map(|x| f(x)).sum::<u64>();
-        let (cases, proven, violations, unproven) =
-            (sum(|x| x.cases), sum(|x| x.proven), sum(|x| x.violations), sum(|x| x.unproven));
+    let strengths = if r.methods.is_empty() { super::strength::of_rows(&r.rows) } else { r.methods.clone() };
+    for m in &strengths {
+        let rows: Vec<&Row> = r.rows.iter().filter(|x| x.method == m.method).collect();
         let margin = rows.iter().filter(|x| x.violations > 0).map(|x| x.margin_needed).fold(0.0, f64::max);
         let failing = rows.iter().filter(|x| x.status.fails()).count();
-        let verdict = if violations > 0 {
-            let n = rows.iter().filter(|x| x.violations > 0).count();
-            format!("violated in {n} of {} regimes", rows.len())
-        } else if unproven > 0 {
-            format!("no violation; {unproven} cases unproven")
-        } else {
-            format!("proven conservative on {cases} cases")
-        };
         let gate = if failing > 0 { format!(" — FAILS in {failing} rows") } else { String::new() };
         s += &format!(
             "{:<26} {:>6} {:>7} {:>10} {:>8} {:>11}  {}{}\n",
-            m,
-            cases,
-            proven,
-            violations,
-            unproven,
-            if violations == 0 { "-".to_string() } else { format!("{margin:.3e}") },
-            verdict,
+            m.method,
+            m.cases,
+            m.proven,
+            m.violations,
+            m.unproven,
+            if m.violations == 0 { "-".to_string() } else { format!("{margin:.3e}") },
+            m.text,
             gate
         );
     }
