@@ -88,6 +88,15 @@ pub fn render(r: &CheckReport, dir: &Path) -> Result<String> {
             esc(m),
             rows.len()
         );
+        let strengths = if r.methods.is_empty() { super::strength::of_rows(&r.rows) } else { r.methods.clone() };
+        if let Some(st) = strengths.iter().find(|x| x.method == m) {
+            let _ = writeln!(
+                s,
+                "    <properties><property name=\"strength\" value=\"{}\"/><property name=\"verdict\" value=\"{}\"/></properties>",
+                esc(st.strength.name()),
+                esc(&st.text)
+            );
+        }
         for row in rows {
             let _ = write!(
                 s,
