@@ -72,9 +72,10 @@ pub mod scene;
 
 pub use cli::{run_cli, TightnessArgs};
 
-use crate::bounds::{Method, Prepared, TileBounds, TileResult};
+use crate::bounds::{Method, Prepared, SampleCols, TileBounds, TileResult};
 use crate::model::{Dims, Sample, Tile, Triangle};
 use indicatif::ProgressBar;
+use oracles::batch::Batch;
 use oracles::extents::{Extent, ExtentsConfig, Occupancy, TileSolver};
 use oracles::Coverage;
 use pattern::Pattern;
@@ -251,8 +252,9 @@ pub struct SampleTable {
     pub height: u32,
     pub spp: usize,
     pub samples: Vec<Sample>,
-    /// The samples' u, v and t side by side (the interval tests run over these).
-    pub uvt: [Vec<f32>; 3],
+    /// The samples' x, y, u, v and t side by side (the interval tests and the
+    /// per-sample constraints run over these, see [`SampleTable::cols`]).
+    pub cols: [Vec<f32>; 5],
 }
 
 impl SampleTable {
@@ -268,12 +270,19 @@ impl SampleTable {
             })
             .collect();
         let samples = rows.concat();
-        let uvt = [
+        let cols = [
+            samples.iter().map(|s| s.x).collect(),
+            samples.iter().map(|s| s.y).collect(),
             samples.iter().map(|s| s.u).collect(),
             samples.iter().map(|s| s.v).collect(),
             samples.iter().map(|s| s.t).collect(),
         ];
-        SampleTable { width, height, spp: pattern.spp as usize, samples, uvt }
+        SampleTable { width, height, spp: pattern.spp as usize, samples, cols }
+    }
+    /// The `n` samples from `start` on, side by side.
+    pub fn cols(&self, start: usize, n: usize) -> SampleCols<'_> {
+        let c = |k: usize| &self.cols[k][start..start + n];
+        SampleCols { x: c(0), y: c(1), u: c(2), v: c(3), t: c(4) }
     }
     /// Where pixel (px, py)'s samples start.
     pub fn start(&self, px: u32, py: u32) -> usize {
@@ -523,11 +532,42 @@ fn certify(
     row
 }
 
-/// The exact coverage of `samples` by `tri`, one entry per sample (interior only:
-/// boundary samples are not covered), appended to `out`; returns (covered, boundary,
-/// exact fallbacks). The one place the measurement asks the exact oracle, sample by
-/// sample: a batched oracle plugs in here.
-pub fn exact_coverage(tri: &oracles::Tri, samples: &[Sample], out: &mut [bool]) -> (u64, u64, u64) {
+/// Buffers of [`exact_coverage`], reused from call to call.
+#[derive(Default)]
+pub struct CoverageScratch {
+    points: Vec<[f64; 5]>,
+    classes: Vec<Coverage>,
+}
+
+/// The exact coverage of `samples` by the triangle of `batch`, one entry per sample
+/// (interior only: boundary samples are not covered), written to `out`; returns
+/// (covered, boundary, exact). The one place the measurement asks the exact oracle: the
+/// batched oracle (`oracles::batch`), which classifies the samples side by side in lanes
+/// and sends every sample whose signs it cannot certify to the scalar oracle, so every
+/// class is the scalar oracle's (`oracles::coverage::classify`). `exact` counts the
+/// samples decided by exact dyadic arithmetic: those neither the lanes nor the scalar
+/// oracle's floating-point filter could settle.
+pub fn exact_coverage(
+    batch: &Batch,
+    samples: &[Sample],
+    scratch: &mut CoverageScratch,
+    out: &mut [bool],
+) -> (u64, u64, u64) {
+    scratch.points.clear();
+    scratch.points.extend(samples.iter().map(Sample::to_oracle));
+    let st = batch.classify(&scratch.points, &mut scratch.classes);
+    let (mut covered, mut boundary) = (0u64, 0u64);
+    for (c, o) in scratch.classes.iter().zip(out.iter_mut()) {
+        *o = *c == Coverage::Interior;
+        covered += *o as u64;
+        boundary += (*c == Coverage::Boundary) as u64;
+    }
+    (covered, boundary, st.exact_fallbacks)
+}
+
+/// [`exact_coverage`] sample by sample with the scalar oracle (the reference the
+/// batched path is tested against).
+pub fn exact_coverage_scalar(tri: &oracles::Tri, samples: &[Sample], out: &mut [bool]) -> (u64, u64, u64) {
     let (mut covered, mut boundary, mut exact) = (0u64, 0u64, 0u64);
     for (s, o) in samples.iter().zip(out.iter_mut()) {
         let (c, ex) = oracles::coverage::classify_traced(tri, s.to_oracle());
@@ -551,8 +591,9 @@ struct Ctx<'a> {
 #[derive(Default)]
 struct Scratch {
     covered: Vec<bool>,
-    mask: Vec<bool>,
     rows: Vec<(usize, usize, usize)>,
+    coverage: CoverageScratch,
+    admit: AdmitScratch,
 }
 
 fn measure_triangle(
@@ -598,10 +639,16 @@ fn measure_triangle(
     covered.resize(u.pixels() as usize * spp, false);
     let mut local = Local { rect: u, spp, covered };
     let otri = tri.to_oracle();
+    let batch = Batch::new(&otri);
     let n_row = (r.x1 - r.x0 + 1) as usize * spp;
     for py in r.y0..=r.y1 {
         let (ts, ls) = (table.start(r.x0, py), local.start(r.x0, py));
-        let (c, b, e) = exact_coverage(&otri, &table.samples[ts..ts + n_row], &mut local.covered[ls..ls + n_row]);
+        let (c, b, e) = exact_coverage(
+            &batch,
+            &table.samples[ts..ts + n_row],
+            &mut scratch.coverage,
+            &mut local.covered[ls..ls + n_row],
+        );
         out.classified += n_row as u64;
         out.covered += c;
         out.boundary += b;
@@ -613,7 +660,7 @@ fn measure_triangle(
         *d = p.disabled().is_some();
     }
     let mut rows = std::mem::take(&mut scratch.rows);
-    let mut mask = std::mem::take(&mut scratch.mask);
+    let mut admit = std::mem::take(&mut scratch.admit);
     for (ti, &s) in cfg.tiles.iter().enumerate() {
         for (mi, w) in out.work[ti].iter_mut().enumerate() {
             w.add_setup(out.disabled[mi]);
@@ -652,7 +699,7 @@ fn measure_triangle(
                         }
                         TileResult::Bounds(b) => {
                             w.add_tile(out.disabled[mi], n_here);
-                            count_admitted(&mut mask, &b, table, &local, &rows, n_here, cov_here, c)
+                            count_admitted(&mut admit, &b, table, &local, &rows, n_here, cov_here, c)
                         }
                     }
                 }
@@ -664,17 +711,37 @@ fn measure_triangle(
         }
     }
     scratch.rows = rows;
-    scratch.mask = mask;
+    scratch.admit = admit;
     scratch.covered = local.covered;
     out
 }
 
+/// Buffers of [`count_admitted`], reused from tile to tile.
+#[derive(Default)]
+struct AdmitScratch {
+    /// Per sample of a row: inside the intervals.
+    mask: Vec<bool>,
+    /// The row's samples inside the intervals, side by side (x, y, u, v, t), and
+    /// their index in the row.
+    inside: [Vec<f32>; 5],
+    index: Vec<u32>,
+    /// Per inside sample: no constraint culled it so far.
+    alive: Vec<bool>,
+    /// One constraint's values on the inside samples.
+    values: Vec<f32>,
+}
+
 /// Count the samples of a tile that `b` admits (`n` samples, `cov` of them covered).
 /// An answer with the whole (u, v, t) domain and no per-sample constraint admits every
-/// sample ([`TileBounds::admits`] would say so sample by sample).
+/// sample ([`TileBounds::admits`] would say so sample by sample). Otherwise, row by
+/// row, the samples inside the intervals are found side by side, and each per-sample
+/// constraint is evaluated once on each of them ([`SampleConstraint::eval_row`], the
+/// same values as `eval`): a sample passes when no value is negative, as in `admits`.
+///
+/// [`SampleConstraint::eval_row`]: crate::bounds::SampleConstraint::eval_row
 #[allow(clippy::too_many_arguments)]
 fn count_admitted(
-    mask: &mut Vec<bool>,
+    sc: &mut AdmitScratch,
     b: &TileBounds,
     table: &SampleTable,
     local: &Local,
@@ -692,7 +759,7 @@ fn count_admitted(
     let (mut tested, mut hits) = (0u64, 0u64);
     let ([u0, u1], [v0, v1], [t0, t1]) = (b.u, b.v, b.t);
     for &(ts, ls, n) in rows {
-        let (us, vs, tv) = (&table.uvt[0][ts..ts + n], &table.uvt[1][ts..ts + n], &table.uvt[2][ts..ts + n]);
+        let (us, vs, tv) = (&table.cols[2][ts..ts + n], &table.cols[3][ts..ts + n], &table.cols[4][ts..ts + n]);
         let cv = &local.covered[ls..ls + n];
         if b.constraints.is_empty() {
             // The interval test of `TileBounds::admits`, side by side (vectorised).
@@ -704,20 +771,53 @@ fn count_admitted(
             }
             tested += t_row as u64;
             hits += h_row as u64;
-        } else {
-            // The intervals first (side by side), the constraints only inside them (as
-            // `admits`: a sample passes when no constraint is negative).
-            mask.clear();
-            mask.extend((0..n).map(|i| {
+            continue;
+        }
+        // The intervals first (side by side), then the constraints on the samples
+        // inside them (the whole row's columns when every sample is inside).
+        sc.mask.clear();
+        sc.mask
+            .extend((0..n).map(|i| {
                 (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1)
             }));
-            for (i, _) in mask.iter().enumerate().filter(|(_, &m)| m) {
-                if !b.constraints.iter().any(|k| k.eval(&table.samples[ts + i]) < 0.0) {
-                    tested += 1;
-                    hits += cv[i] as u64;
-                }
+        let m = sc.mask.iter().filter(|&&x| x).count();
+        if m == 0 {
+            continue;
+        }
+        let all = m == n;
+        if !all {
+            sc.index.clear();
+            sc.index.extend((0..n as u32).filter(|&i| sc.mask[i as usize]));
+            for (k, col) in sc.inside.iter_mut().enumerate() {
+                let src = &table.cols[k][ts..ts + n];
+                col.clear();
+                col.extend(sc.index.iter().map(|&i| src[i as usize]));
             }
         }
+        let cols = if all {
+            table.cols(ts, n)
+        } else {
+            let [x, y, u, v, t] = &sc.inside;
+            SampleCols { x, y, u, v, t }
+        };
+        sc.alive.clear();
+        sc.alive.resize(m, true);
+        sc.values.clear();
+        sc.values.resize(m, 0.0);
+        for k in &b.constraints {
+            k.eval_row(&cols, &mut sc.values);
+            for (a, &g) in sc.alive.iter_mut().zip(&sc.values) {
+                *a &= !(g < 0.0);
+            }
+        }
+        let (mut t_row, mut h_row) = (0u32, 0u32);
+        for (j, &a) in sc.alive.iter().enumerate() {
+            let i = if all { j } else { sc.index[j] as usize };
+            t_row += a as u32;
+            h_row += (a & cv[i]) as u32;
+        }
+        tested += t_row as u64;
+        hits += h_row as u64;
     }
     c.tested += tested;
     c.hits += hits;
