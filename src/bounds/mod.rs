@@ -29,6 +29,8 @@ pub mod proofs;
 mod shared;
 pub use shared::{shared, shared_all, MethodRef};
 #[cfg(test)]
+mod row_tests;
+#[cfg(test)]
 pub(crate) mod testkit;
 pub mod wu2013;
 

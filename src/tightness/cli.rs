@@ -584,7 +584,9 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
     let m = pool.install(|| measure_with(&scene, &table, &methods, &settings, &cfg, &pb));
     let ops = (!args.no_timing).then(|| {
         pb.set_message("per-operation costs");
-        cost::time_ops(&scene, &table, &methods, &settings, cost_tile, repeats, args.cost_triangles, &pb)
+        pool.install(|| {
+            cost::time_ops(&scene, &table, &methods, &settings, cost_tile, repeats, args.cost_triangles, &pb)
+        })
     });
     pb.finish_and_clear();
     let costs = ops.as_ref().map(|o| cost::costs(&m.rows, o, cost_tile)).unwrap_or_default();

@@ -464,6 +464,23 @@ fn covered_box(
     b
 }
 
+/// The samples `start..start + n` of the table inside the (u, v, t) box `b` (the test
+/// of [`in_box`], side by side).
+fn count_in_box(table: &SampleTable, start: usize, n: usize, b: &[[f32; 2]; 3]) -> u64 {
+    let (us, vs, ts) =
+        (&table.cols[2][start..start + n], &table.cols[3][start..start + n], &table.cols[4][start..start + n]);
+    let mut k = 0u32;
+    for i in 0..n {
+        k += ((b[0][0] <= us[i])
+            & (us[i] <= b[0][1])
+            & (b[1][0] <= vs[i])
+            & (vs[i] <= b[1][1])
+            & (b[2][0] <= ts[i])
+            & (ts[i] <= b[2][1])) as u32;
+    }
+    k as u64
+}
+
 fn in_box(b: &[[f32; 2]; 3], s: &Sample) -> bool {
     let c = uvt(s);
     (0..3).all(|k| b[k][0] <= c[k] && c[k] <= b[k][1])
@@ -675,16 +692,11 @@ fn measure_triangle(
                 let n_here = rows.iter().map(|r| r.2 as u64).sum::<u64>();
                 let cov_here = rows
                     .iter()
-                    .map(|&(_, ls, n)| local.covered[ls..ls + n].iter().filter(|&&c| c).count() as u64)
+                    .map(|&(_, ls, n)| local.covered[ls..ls + n].iter().map(|&c| c as u32).sum::<u32>() as u64)
                     .sum::<u64>();
                 if cov_here > 0 {
                     if let Some(b) = covered_box(table, &local, &rows, dims) {
-                        let tested = rows
-                            .iter()
-                            .map(|&(ts, _, n)| {
-                                table.samples[ts..ts + n].iter().filter(|x| in_box(&b, x)).count() as u64
-                            })
-                            .sum::<u64>();
+                        let tested = rows.iter().map(|&(ts, _, n)| count_in_box(table, ts, n, &b)).sum::<u64>();
                         out.ceiling[ti].0 += tested;
                         out.ceiling[ti].1 += cov_here;
                     }
@@ -731,6 +743,21 @@ struct AdmitScratch {
     values: Vec<f32>,
 }
 
+impl AdmitScratch {
+    /// Room for a row of `n` samples in every buffer.
+    fn reserve(&mut self, n: usize) {
+        if self.mask.len() < n {
+            self.mask.resize(n, false);
+            self.index.resize(n, 0);
+            for c in &mut self.inside {
+                c.resize(n, 0.0);
+            }
+            self.alive.resize(n, false);
+            self.values.resize(n, 0.0);
+        }
+    }
+}
+
 /// Count the samples of a tile that `b` admits (`n` samples, `cov` of them covered).
 /// An answer with the whole (u, v, t) domain and no per-sample constraint admits every
 /// sample ([`TileBounds::admits`] would say so sample by sample). Otherwise, row by
@@ -775,46 +802,58 @@ fn count_admitted(
         }
         // The intervals first (side by side), then the constraints on the samples
         // inside them (the whole row's columns when every sample is inside).
-        sc.mask.clear();
-        sc.mask
-            .extend((0..n).map(|i| {
-                (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1)
-            }));
-        let m = sc.mask.iter().filter(|&&x| x).count();
+        sc.reserve(n);
+        let mask = &mut sc.mask[..n];
+        let mut m = 0usize;
+        for i in 0..n {
+            let a = (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1);
+            mask[i] = a;
+            m += a as usize;
+        }
         if m == 0 {
             continue;
         }
         let all = m == n;
         if !all {
-            sc.index.clear();
-            sc.index.extend((0..n as u32).filter(|&i| sc.mask[i as usize]));
-            for (k, col) in sc.inside.iter_mut().enumerate() {
-                let src = &table.cols[k][ts..ts + n];
-                col.clear();
-                col.extend(sc.index.iter().map(|&i| src[i as usize]));
+            // The indices of the inside samples (written branch-free), then their columns.
+            let index = &mut sc.index[..n];
+            let mut k = 0usize;
+            for (i, &a) in mask.iter().enumerate() {
+                index[k] = i as u32;
+                k += a as usize;
+            }
+            for (col, src) in sc.inside.iter_mut().zip(&table.cols) {
+                let src = &src[ts..ts + n];
+                for (d, &i) in col[..m].iter_mut().zip(&index[..m]) {
+                    *d = src[i as usize];
+                }
             }
         }
         let cols = if all {
             table.cols(ts, n)
         } else {
             let [x, y, u, v, t] = &sc.inside;
-            SampleCols { x, y, u, v, t }
+            SampleCols::new(x, y, u, v, t, m)
         };
-        sc.alive.clear();
-        sc.alive.resize(m, true);
-        sc.values.clear();
-        sc.values.resize(m, 0.0);
+        let (alive, values) = (&mut sc.alive[..m], &mut sc.values[..m]);
+        alive.fill(true);
         for k in &b.constraints {
-            k.eval_row(&cols, &mut sc.values);
-            for (a, &g) in sc.alive.iter_mut().zip(&sc.values) {
+            k.eval_row(&cols, values);
+            for (a, &g) in alive.iter_mut().zip(values.iter()) {
                 *a &= !(g < 0.0);
             }
         }
         let (mut t_row, mut h_row) = (0u32, 0u32);
-        for (j, &a) in sc.alive.iter().enumerate() {
-            let i = if all { j } else { sc.index[j] as usize };
-            t_row += a as u32;
-            h_row += (a & cv[i]) as u32;
+        if all {
+            for (&a, &cv) in alive.iter().zip(cv) {
+                t_row += a as u32;
+                h_row += (a & cv) as u32;
+            }
+        } else {
+            for (&a, &i) in alive.iter().zip(&sc.index[..m]) {
+                t_row += a as u32;
+                h_row += (a & cv[i as usize]) as u32;
+            }
         }
         tested += t_row as u64;
         hits += h_row as u64;
