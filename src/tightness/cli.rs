@@ -340,7 +340,7 @@ pub fn render(r: &TightnessReport, md: bool) -> String {
     }
     s += "whole-screen: triangles with a vertex at w <= 0, traversed over the whole screen; off-screen: skipped; \
           classified: samples judged by the exact oracle (boundary samples count as not covered; exact: decided \
-          by the exact fallback).\n";
+          by exact dyadic arithmetic, where no floating-point filter could certify the signs).\n";
     // Disabled.
     let dis: Vec<String> = methods
         .iter()

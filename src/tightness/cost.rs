@@ -14,7 +14,9 @@
 //!   and, once per setting for every method, the f32 coverage test and Gouraud shade of
 //!   a sample ([`super::raster`]). Each operation is timed over at least
 //!   [`MIN_TIMED`] of calls, in `rounds` rounds run round robin over the methods (a slow
-//!   spell of the machine hits them all).
+//!   spell of the machine hits them all); within a round the methods are timed side by
+//!   side on the run's threads (`--jobs`), each operation on one thread, so every cost
+//!   is a cost per thread with the other threads busy alike.
 //!
 //! Round r gives every method an estimated total `sum(count x cost_r)`; a method's cost
 //! is the **median over the rounds, with the lowest and highest as its interval** (the

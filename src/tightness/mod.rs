@@ -23,7 +23,10 @@
 //!    test, not a coverage test, and is not applied).
 //! 4. **Coverage** of each (triangle, sample) by the exact oracle
 //!    (`oracles::classify == Interior`; boundary samples count as not covered), computed
-//!    once and reused for every method and tile size (it does not depend on either).
+//!    once and reused for every method and tile size (it does not depend on either). The
+//!    samples go through the batched oracle (`oracles::batch`: lanes with certified
+//!    signs, every uncertain sample sent to the scalar oracle), which gives every sample
+//!    the scalar oracle's class.
 //!
 //! Per (method, tile size, setting): `tested` = samples let through, `hits` = tested and
 //! covered, `missed` = covered but culled (by the tile test or a per-sample test; a
@@ -53,11 +56,15 @@
 //! # How it runs
 //! The whole screen's sample pattern is built once ([`SampleTable`]) and shared by every
 //! triangle, setting and method; each triangle is set up once per method and the setup
-//! serves every tile size; the samples of a tile are counted row by row (u, v, t side by
-//! side, the per-sample constraints evaluated only inside the intervals), nothing per
-//! sample is stored but the triangle's coverage, in a buffer reused by each worker.
-//! Exact coverage goes through one function ([`exact_coverage`]). Each count also feeds
-//! the cost model ([`Work`], [`cost`]).
+//! serves every tile size; the samples of a tile are counted row by row: the intervals
+//! tested with u, v, t side by side, then each per-sample constraint evaluated once per
+//! row on the samples inside them, in columns
+//! ([`SampleConstraint::eval_row`](crate::bounds::SampleConstraint::eval_row): the
+//! values of `eval`, bit for bit, computed side by side by the constraints the methods
+//! use). Nothing per sample is stored but the triangle's coverage, in a buffer reused by
+//! each worker, and no buffer is allocated per tile. Exact coverage goes through one
+//! function ([`exact_coverage`]). Each count also feeds the cost model ([`Work`],
+//! [`cost`]).
 //!
 //! Results are integer counts summed in triangle order: identical at any thread count.
 
@@ -367,7 +374,8 @@ pub struct SettingSummary {
     pub covered: u64,
     /// Samples on an edge (not covered by the interior rule).
     pub boundary: u64,
-    /// Samples the oracle's fast path could not settle (decided exactly).
+    /// Samples decided by exact dyadic arithmetic: those whose signs neither the batched
+    /// oracle's lanes nor the scalar oracle's floating-point filter could certify.
     pub exact_fallbacks: u64,
 }
 
@@ -840,7 +848,9 @@ fn count_admitted(
         for k in &b.constraints {
             k.eval_row(&cols, values);
             for (a, &g) in alive.iter_mut().zip(values.iter()) {
-                *a &= !(g < 0.0);
+                // Culled when negative (a NaN value culls nothing, as in `admits`).
+                let culled = g < 0.0;
+                *a &= !culled;
             }
         }
         let (mut t_row, mut h_row) = (0u32, 0u32);
