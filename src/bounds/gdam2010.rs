@@ -317,6 +317,13 @@ impl SampleConstraint for TimeSpans {
     fn eval(&self, s: &Sample) -> f32 {
         self.spans_at(s.x, s.y).signed_distance(s.t)
     }
+    /// `eval` over the columns (the time set at each sample's (x, y), sample by sample,
+    /// without a call through the trait object per sample).
+    fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {
+        for (((o, &x), &y), &t) in out.iter_mut().zip(c.x).zip(c.y).zip(c.t) {
+            *o = self.spans_at(x, y).signed_distance(t);
+        }
+    }
     fn eval_box(&self, b: &SampleBox) -> Interval {
         spans_eval_box(|x, y| self.spans_at(x, y), b)
     }
@@ -580,6 +587,13 @@ impl SampleConstraint for SafeTimeSpans {
     }
     fn eval(&self, s: &Sample) -> f32 {
         self.spans_at(s.x, s.y).signed_distance(s.t)
+    }
+    /// `eval` over the columns (the time set at each sample's (x, y), sample by sample,
+    /// without a call through the trait object per sample).
+    fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {
+        for (((o, &x), &y), &t) in out.iter_mut().zip(c.x).zip(c.y).zip(c.t) {
+            *o = self.spans_at(x, y).signed_distance(t);
+        }
     }
     fn eval_box(&self, b: &SampleBox) -> Interval {
         spans_eval_box(|x, y| self.spans_at(x, y), b)

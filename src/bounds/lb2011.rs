@@ -315,6 +315,17 @@ impl SampleConstraint for Patch {
         let t = smp.t;
         (self.p + self.q * l) + t * (self.r + self.s * l)
     }
+    /// `eval` over the columns (the same four operations per sample, side by side).
+    fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {
+        let ls = match self.lens {
+            Lens::U => c.u,
+            Lens::V => c.v,
+        };
+        let (p, q, r, s) = (self.p, self.q, self.r, self.s);
+        for ((o, &l), &t) in out.iter_mut().zip(ls).zip(c.t) {
+            *o = (p + q * l) + t * (r + s * l);
+        }
+    }
     fn eval_box(&self, b: &SampleBox) -> Interval {
         let l = match self.lens {
             Lens::U => b.u,

@@ -416,6 +416,19 @@ impl SampleConstraint for Line {
             w - l
         }
     }
+    /// `eval` over the columns (the same two f32 operations per sample, side by side).
+    fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {
+        let (w, a, b) = (if self.is_v { c.v } else { c.u }, self.a, self.b);
+        if self.upper {
+            for ((o, &w), &t) in out.iter_mut().zip(w).zip(c.t) {
+                *o = (a * t + b) - w;
+            }
+        } else {
+            for ((o, &w), &t) in out.iter_mut().zip(w).zip(c.t) {
+                *o = w - (a * t + b);
+            }
+        }
+    }
     fn eval_box(&self, bx: &SampleBox) -> Interval {
         let w = if self.is_v { bx.v } else { bx.u };
         let (a, b) = (Interval::point(self.a as f64), Interval::point(self.b as f64));
@@ -709,6 +722,20 @@ impl SampleConstraint for SafeLine {
             ((a * s.t).next_up() + b).next_up() - w
         } else {
             w - ((a * s.t).next_down() + b).next_down()
+        }
+    }
+    /// `eval` over the columns (the same operations and steps per sample).
+    fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {
+        let Line { is_v, upper, a, b } = self.0;
+        let w = if is_v { c.v } else { c.u };
+        if upper {
+            for ((o, &w), &t) in out.iter_mut().zip(w).zip(c.t) {
+                *o = ((a * t).next_up() + b).next_up() - w;
+            }
+        } else {
+            for ((o, &w), &t) in out.iter_mut().zip(w).zip(c.t) {
+                *o = w - ((a * t).next_down() + b).next_down();
+            }
         }
     }
     fn eval_box(&self, bx: &SampleBox) -> Interval {

@@ -664,6 +664,33 @@ impl SampleConstraint for Plane {
         acc += a[5] * s.t;
         -acc
     }
+    /// `eval` over the columns: per sample the same f32 operations in the same order
+    /// (the sum from `a[0]` through the x, y, u, v, t terms), side by side.
+    fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {
+        let a = self.a;
+        let n = c.len().min(out.len());
+        let (xs, ys, us, vs, ts, out) = (&c.x[..n], &c.y[..n], &c.u[..n], &c.v[..n], &c.t[..n], &mut out[..n]);
+        if self.safe {
+            let dn = f32::next_down;
+            for i in 0..n {
+                let mut acc = a[0];
+                for (ai, si) in a[1..].iter().zip([xs[i], ys[i], us[i], vs[i], ts[i]]) {
+                    acc = dn(acc + dn(ai * si));
+                }
+                out[i] = -acc;
+            }
+            return;
+        }
+        for i in 0..n {
+            let mut acc = a[0];
+            acc += a[1] * xs[i];
+            acc += a[2] * ys[i];
+            acc += a[3] * us[i];
+            acc += a[4] * vs[i];
+            acc += a[5] * ts[i];
+            out[i] = -acc;
+        }
+    }
     fn eval_box(&self, b: &SampleBox) -> Interval {
         let p = |i: usize| Interval::point(self.a[i] as f64);
         let terms = [p(0), p(1) * b.x, p(2) * b.y, p(3) * b.u, p(4) * b.v, p(5) * b.t];

@@ -29,6 +29,8 @@ pub mod proofs;
 mod shared;
 pub use shared::{shared, shared_all, MethodRef};
 #[cfg(test)]
+mod row_tests;
+#[cfg(test)]
 pub(crate) mod testkit;
 pub mod wu2013;
 
@@ -71,12 +73,51 @@ pub struct SampleBox {
     pub t: Interval,
 }
 
+/// Samples side by side: one slice per coordinate, every slice of the same length
+/// (sample `i` is `(x[i], y[i], u[i], v[i], t[i])`). What [`SampleConstraint::eval_row`]
+/// takes.
+#[derive(Clone, Copy, Debug)]
+pub struct SampleCols<'a> {
+    pub x: &'a [f32],
+    pub y: &'a [f32],
+    pub u: &'a [f32],
+    pub v: &'a [f32],
+    pub t: &'a [f32],
+}
+
+impl<'a> SampleCols<'a> {
+    /// The columns of `n` samples; panics when a slice is shorter than `n`.
+    pub fn new(x: &'a [f32], y: &'a [f32], u: &'a [f32], v: &'a [f32], t: &'a [f32], n: usize) -> Self {
+        SampleCols { x: &x[..n], y: &y[..n], u: &u[..n], v: &v[..n], t: &t[..n] }
+    }
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+    /// Sample `i`.
+    pub fn sample(&self, i: usize) -> Sample {
+        Sample { x: self.x[i], y: self.y[i], u: self.u[i], v: self.v[i], t: self.t[i] }
+    }
+}
+
 /// A per-sample culling constraint: the sample is culled when `eval(s) < 0`.
 pub trait SampleConstraint: Send + Sync + std::fmt::Debug {
     /// A short label for reports ("ut lower line", "edge 1 hyperplane").
     fn name(&self) -> String;
     /// The value hardware would compute for this sample, in f32.
     fn eval(&self, s: &Sample) -> f32;
+    /// [`eval`](Self::eval) of every sample of `cols`, in order, into `out` (of the
+    /// same length): the same f32 values, bit for bit (NaN included). The default calls
+    /// `eval` sample by sample; a constraint evaluated on many samples overrides it with
+    /// a loop over the columns that performs the same f32 operations in the same order
+    /// (so the compiler can run the samples side by side).
+    fn eval_row(&self, cols: &SampleCols, out: &mut [f32]) {
+        for (i, o) in out.iter_mut().enumerate().take(cols.len()) {
+            *o = self.eval(&cols.sample(i));
+        }
+    }
     /// An enclosure of every value [`eval`](Self::eval) can return for a sample in the
     /// box, f32 rounding included (compute in outward-rounded f64 and widen by a
     /// documented bound on the f32 evaluation error).

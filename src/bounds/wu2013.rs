@@ -375,6 +375,23 @@ impl SampleConstraint for TimeLine {
             s.t - line
         }
     }
+    /// `eval` over the columns (the same operations per sample, side by side).
+    fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {
+        let ls = match self.lens {
+            Lens::U => c.u,
+            Lens::V => c.v,
+        };
+        let (a, b) = (self.a, self.b);
+        if self.upper {
+            for ((o, &l), &t) in out.iter_mut().zip(ls).zip(c.t) {
+                *o = (a * l + b) - t;
+            }
+        } else {
+            for ((o, &l), &t) in out.iter_mut().zip(ls).zip(c.t) {
+                *o = t - (a * l + b);
+            }
+        }
+    }
     /// Real value `+-(t - (a l + b))` over the box, widened by `2^-20 (|a| |l| + |b| + |t|)`
     /// (three f32 roundings of at most `2^-24` of partial results bounded by those
     /// magnitudes) plus `2^-140` for subnormal results.

@@ -340,7 +340,7 @@ pub fn render(r: &TightnessReport, md: bool) -> String {
     }
     s += "whole-screen: triangles with a vertex at w <= 0, traversed over the whole screen; off-screen: skipped; \
           classified: samples judged by the exact oracle (boundary samples count as not covered; exact: decided \
-          by the exact fallback).\n";
+          by exact dyadic arithmetic, where no floating-point filter could certify the signs).\n";
     // Disabled.
     let dis: Vec<String> = methods
         .iter()
@@ -553,15 +553,33 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
             check_replaceable(j)?;
         }
     }
+    // The bar runs from the start: reading a large OBJ file takes time too.
+    let pb = ProgressBar::new(0);
+    pb.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} {elapsed_precise} eta {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    pb.set_message(format!("reading the scene {}", args.scene));
+    pb.enable_steady_tick(std::time::Duration::from_millis(200));
     let is_obj = args.scene.to_ascii_lowercase().ends_with(".obj");
-    let (scene, mesh) = if is_obj {
-        let (s, m) = mesh::from_obj_with(Path::new(&args.scene), args.seed, w, h, &args.mesh)?;
-        (s, Some(m))
-    } else {
-        args.mesh.refuse_for(&args.scene)?;
-        (scene::by_name(&args.scene, args.seed, w, h)?, None)
+    let loaded = (|| -> Result<_> {
+        let (scene, mesh) = if is_obj {
+            let (s, m) = mesh::from_obj_with(Path::new(&args.scene), args.seed, w, h, &args.mesh)?;
+            (s, Some(m))
+        } else {
+            args.mesh.refuse_for(&args.scene)?;
+            (scene::by_name(&args.scene, args.seed, w, h)?, None)
+        };
+        check_scene_finite(&scene, &settings, &args.scene)?;
+        Ok((scene, mesh))
+    })();
+    let (scene, mesh) = match loaded {
+        Ok(x) => x,
+        Err(e) => {
+            pb.finish_and_clear();
+            return Err(e);
+        }
     };
-    check_scene_finite(&scene, &settings, &args.scene)?;
     let pattern = Pattern::new(args.pattern, args.spp, args.seed);
     let mut cfg = Config::new(tiles.clone(), pattern);
     cfg.certified_tiles = args.certified;
@@ -572,19 +590,16 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
     let repeats = args.repeats;
     let total = (scene.triangle_count() * settings.len()) as u64
         + if args.no_timing { 0 } else { (methods.len() * settings.len()) as u64 * repeats as u64 };
-    let pb = ProgressBar::new(total);
-    pb.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} {elapsed_precise} eta {eta}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    pb.set_length(total);
     pb.set_message("sample pattern");
-    pb.enable_steady_tick(std::time::Duration::from_millis(200));
     let table = pool.install(|| SampleTable::new(&pattern, w, h));
     pb.set_message("triangles (STE)");
     let m = pool.install(|| measure_with(&scene, &table, &methods, &settings, &cfg, &pb));
     let ops = (!args.no_timing).then(|| {
         pb.set_message("per-operation costs");
-        cost::time_ops(&scene, &table, &methods, &settings, cost_tile, repeats, args.cost_triangles, &pb)
+        pool.install(|| {
+            cost::time_ops(&scene, &table, &methods, &settings, cost_tile, repeats, args.cost_triangles, &pb)
+        })
     });
     pb.finish_and_clear();
     let costs = ops.as_ref().map(|o| cost::costs(&m.rows, o, cost_tile)).unwrap_or_default();

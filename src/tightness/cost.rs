@@ -14,7 +14,9 @@
 //!   and, once per setting for every method, the f32 coverage test and Gouraud shade of
 //!   a sample ([`super::raster`]). Each operation is timed over at least
 //!   [`MIN_TIMED`] of calls, in `rounds` rounds run round robin over the methods (a slow
-//!   spell of the machine hits them all).
+//!   spell of the machine hits them all); within a round the methods are timed side by
+//!   side on the run's threads (`--jobs`), each operation on one thread, so every cost
+//!   is a cost per thread with the other threads busy alike.
 //!
 //! Round r gives every method an estimated total `sum(count x cost_r)`; a method's cost
 //! is the **median over the rounds, with the lowest and highest as its interval** (the
@@ -35,6 +37,7 @@ use super::{footprint, tile_of, tile_pixels, tile_range, Footprint, MethodRow, P
 use crate::bounds::{Method, Prepared, TileBounds, TileResult};
 use crate::model::{Tile, Triangle};
 use indicatif::ProgressBar;
+use rayon::prelude::*;
 use serde::Serialize;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -189,9 +192,35 @@ fn for_samples(table: &SampleTable, p: &PixelRect, mut f: impl FnMut(&crate::mod
     }
 }
 
-/// Time the operations of every method on every setting (one thread), `rounds` rounds
-/// round robin, on up to `per_setting` triangles of each setting. `pb` advances by one
-/// per method, setting and round.
+/// One round of one method: ns per setup, tile test and sample test (each operation
+/// timed on the calling thread).
+fn time_method(m: &dyn Method, j: &Job, table: &SampleTable) -> [f64; 3] {
+    let setup = time_per_op(j.tris.len(), || {
+        for t in &j.tris {
+            black_box(m.setup(black_box(t)));
+        }
+    });
+    let tiles = time_per_op(j.tiles.len(), || {
+        for (i, t) in &j.tiles {
+            black_box(j.preps[*i].tile(black_box(t)));
+        }
+    });
+    let samples = time_per_op(j.samples, || {
+        for (b, p) in &j.kept {
+            let mut n = 0u32;
+            for_samples(table, p, |s| n += b.admits(black_box(s)) as u32);
+            black_box(n);
+        }
+    });
+    [setup, tiles, samples]
+}
+
+/// Time the operations of every method on every setting, `rounds` rounds round robin,
+/// on up to `per_setting` triangles of each setting. The methods of a round are timed
+/// side by side on the threads of the current rayon pool (each operation on one
+/// thread, so a method's costs are per thread; with one thread, one after the other);
+/// the shading cost once per round, alone. `pb` advances by one per method, setting
+/// and round.
 #[allow(clippy::too_many_arguments)]
 pub fn time_ops(
     scene: &Scene,
@@ -211,7 +240,7 @@ pub fn time_ops(
         let idx = subset(&fps_all, per_setting);
         let tris: Vec<&Triangle> = idx.iter().map(|&i| &all[i]).collect();
         let fps: Vec<Footprint> = idx.iter().map(|&i| fps_all[i]).collect();
-        let jobs: Vec<Job> = methods.iter().map(|m| job(*m, &tris, &fps, table, tile)).collect();
+        let jobs: Vec<Job> = methods.par_iter().map(|m| job(*m, &tris, &fps, table, tile)).collect();
         // Shading: every sample of the tiles bbox keeps (or of every tile), triangle by triangle.
         let shade_jobs: Vec<(Raster, PixelRect)> = {
             let mut v = Vec::new();
@@ -240,31 +269,24 @@ pub fn time_ops(
         }
         let mut shade = Vec::new();
         for _ in 0..rounds.max(1) {
-            for (k, (m, j)) in methods.iter().zip(&jobs).enumerate() {
-                let setup = time_per_op(j.tris.len(), || {
-                    for t in &j.tris {
-                        black_box(m.setup(black_box(t)));
-                    }
-                });
-                let tiles = time_per_op(j.tiles.len(), || {
-                    for (i, t) in &j.tiles {
-                        black_box(j.preps[*i].tile(black_box(t)));
-                    }
-                });
-                let samples = time_per_op(j.samples, || {
-                    for (b, p) in &j.kept {
-                        let mut n = 0u32;
-                        for_samples(table, p, |s| n += b.admits(black_box(s)) as u32);
-                        black_box(n);
-                    }
-                });
+            // The methods of a round side by side on the pool's threads (each operation
+            // timed on one thread); their costs kept in method order.
+            let timed: Vec<[f64; 3]> = methods
+                .par_iter()
+                .zip(&jobs)
+                .map(|(m, j)| {
+                    let t = time_method(*m, j, table);
+                    pb.inc(1);
+                    t
+                })
+                .collect();
+            for (k, (j, [setup, tiles, samples])) in jobs.iter().zip(timed).enumerate() {
                 let row = &mut out.ops[first + k];
                 if !j.tris.is_empty() {
                     row.setup_ns.push(setup);
                     row.tile_ns.push(if tiles.is_nan() { 0.0 } else { tiles });
                     row.sample_ns.push(if samples.is_nan() { 0.0 } else { samples });
                 }
-                pb.inc(1);
             }
             shade.push(time_per_op(shade_n, || {
                 let mut acc = 0u32;

@@ -23,7 +23,10 @@
 //!    test, not a coverage test, and is not applied).
 //! 4. **Coverage** of each (triangle, sample) by the exact oracle
 //!    (`oracles::classify == Interior`; boundary samples count as not covered), computed
-//!    once and reused for every method and tile size (it does not depend on either).
+//!    once and reused for every method and tile size (it does not depend on either). The
+//!    samples go through the batched oracle (`oracles::batch`: lanes with certified
+//!    signs, every uncertain sample sent to the scalar oracle), which gives every sample
+//!    the scalar oracle's class.
 //!
 //! Per (method, tile size, setting): `tested` = samples let through, `hits` = tested and
 //! covered, `missed` = covered but culled (by the tile test or a per-sample test; a
@@ -53,11 +56,15 @@
 //! # How it runs
 //! The whole screen's sample pattern is built once ([`SampleTable`]) and shared by every
 //! triangle, setting and method; each triangle is set up once per method and the setup
-//! serves every tile size; the samples of a tile are counted row by row (u, v, t side by
-//! side, the per-sample constraints evaluated only inside the intervals), nothing per
-//! sample is stored but the triangle's coverage, in a buffer reused by each worker.
-//! Exact coverage goes through one function ([`exact_coverage`]). Each count also feeds
-//! the cost model ([`Work`], [`cost`]).
+//! serves every tile size; the samples of a tile are counted row by row: the intervals
+//! tested with u, v, t side by side, then each per-sample constraint evaluated once per
+//! row on the samples inside them, in columns
+//! ([`SampleConstraint::eval_row`](crate::bounds::SampleConstraint::eval_row): the
+//! values of `eval`, bit for bit, computed side by side by the constraints the methods
+//! use). Nothing per sample is stored but the triangle's coverage, in a buffer reused by
+//! each worker, and no buffer is allocated per tile. Exact coverage goes through one
+//! function ([`exact_coverage`]). Each count also feeds the cost model ([`Work`],
+//! [`cost`]).
 //!
 //! Results are integer counts summed in triangle order: identical at any thread count.
 
@@ -72,9 +79,10 @@ pub mod scene;
 
 pub use cli::{run_cli, TightnessArgs};
 
-use crate::bounds::{Method, Prepared, TileBounds, TileResult};
+use crate::bounds::{Method, Prepared, SampleCols, TileBounds, TileResult};
 use crate::model::{Dims, Sample, Tile, Triangle};
 use indicatif::ProgressBar;
+use oracles::batch::Batch;
 use oracles::extents::{Extent, ExtentsConfig, Occupancy, TileSolver};
 use oracles::Coverage;
 use pattern::Pattern;
@@ -251,8 +259,9 @@ pub struct SampleTable {
     pub height: u32,
     pub spp: usize,
     pub samples: Vec<Sample>,
-    /// The samples' u, v and t side by side (the interval tests run over these).
-    pub uvt: [Vec<f32>; 3],
+    /// The samples' x, y, u, v and t side by side (the interval tests and the
+    /// per-sample constraints run over these, see [`SampleTable::cols`]).
+    pub cols: [Vec<f32>; 5],
 }
 
 impl SampleTable {
@@ -268,12 +277,19 @@ impl SampleTable {
             })
             .collect();
         let samples = rows.concat();
-        let uvt = [
+        let cols = [
+            samples.iter().map(|s| s.x).collect(),
+            samples.iter().map(|s| s.y).collect(),
             samples.iter().map(|s| s.u).collect(),
             samples.iter().map(|s| s.v).collect(),
             samples.iter().map(|s| s.t).collect(),
         ];
-        SampleTable { width, height, spp: pattern.spp as usize, samples, uvt }
+        SampleTable { width, height, spp: pattern.spp as usize, samples, cols }
+    }
+    /// The `n` samples from `start` on, side by side.
+    pub fn cols(&self, start: usize, n: usize) -> SampleCols<'_> {
+        let c = |k: usize| &self.cols[k][start..start + n];
+        SampleCols { x: c(0), y: c(1), u: c(2), v: c(3), t: c(4) }
     }
     /// Where pixel (px, py)'s samples start.
     pub fn start(&self, px: u32, py: u32) -> usize {
@@ -358,7 +374,8 @@ pub struct SettingSummary {
     pub covered: u64,
     /// Samples on an edge (not covered by the interior rule).
     pub boundary: u64,
-    /// Samples the oracle's fast path could not settle (decided exactly).
+    /// Samples decided by exact dyadic arithmetic: those whose signs neither the batched
+    /// oracle's lanes nor the scalar oracle's floating-point filter could certify.
     pub exact_fallbacks: u64,
 }
 
@@ -455,6 +472,23 @@ fn covered_box(
     b
 }
 
+/// The samples `start..start + n` of the table inside the (u, v, t) box `b` (the test
+/// of [`in_box`], side by side).
+fn count_in_box(table: &SampleTable, start: usize, n: usize, b: &[[f32; 2]; 3]) -> u64 {
+    let (us, vs, ts) =
+        (&table.cols[2][start..start + n], &table.cols[3][start..start + n], &table.cols[4][start..start + n]);
+    let mut k = 0u32;
+    for i in 0..n {
+        k += ((b[0][0] <= us[i])
+            & (us[i] <= b[0][1])
+            & (b[1][0] <= vs[i])
+            & (vs[i] <= b[1][1])
+            & (b[2][0] <= ts[i])
+            & (ts[i] <= b[2][1])) as u32;
+    }
+    k as u64
+}
+
 fn in_box(b: &[[f32; 2]; 3], s: &Sample) -> bool {
     let c = uvt(s);
     (0..3).all(|k| b[k][0] <= c[k] && c[k] <= b[k][1])
@@ -523,11 +557,42 @@ fn certify(
     row
 }
 
-/// The exact coverage of `samples` by `tri`, one entry per sample (interior only:
-/// boundary samples are not covered), appended to `out`; returns (covered, boundary,
-/// exact fallbacks). The one place the measurement asks the exact oracle, sample by
-/// sample: a batched oracle plugs in here.
-pub fn exact_coverage(tri: &oracles::Tri, samples: &[Sample], out: &mut [bool]) -> (u64, u64, u64) {
+/// Buffers of [`exact_coverage`], reused from call to call.
+#[derive(Default)]
+pub struct CoverageScratch {
+    points: Vec<[f64; 5]>,
+    classes: Vec<Coverage>,
+}
+
+/// The exact coverage of `samples` by the triangle of `batch`, one entry per sample
+/// (interior only: boundary samples are not covered), written to `out`; returns
+/// (covered, boundary, exact). The one place the measurement asks the exact oracle: the
+/// batched oracle (`oracles::batch`), which classifies the samples side by side in lanes
+/// and sends every sample whose signs it cannot certify to the scalar oracle, so every
+/// class is the scalar oracle's (`oracles::coverage::classify`). `exact` counts the
+/// samples decided by exact dyadic arithmetic: those neither the lanes nor the scalar
+/// oracle's floating-point filter could settle.
+pub fn exact_coverage(
+    batch: &Batch,
+    samples: &[Sample],
+    scratch: &mut CoverageScratch,
+    out: &mut [bool],
+) -> (u64, u64, u64) {
+    scratch.points.clear();
+    scratch.points.extend(samples.iter().map(Sample::to_oracle));
+    let st = batch.classify(&scratch.points, &mut scratch.classes);
+    let (mut covered, mut boundary) = (0u64, 0u64);
+    for (c, o) in scratch.classes.iter().zip(out.iter_mut()) {
+        *o = *c == Coverage::Interior;
+        covered += *o as u64;
+        boundary += (*c == Coverage::Boundary) as u64;
+    }
+    (covered, boundary, st.exact_fallbacks)
+}
+
+/// [`exact_coverage`] sample by sample with the scalar oracle (the reference the
+/// batched path is tested against).
+pub fn exact_coverage_scalar(tri: &oracles::Tri, samples: &[Sample], out: &mut [bool]) -> (u64, u64, u64) {
     let (mut covered, mut boundary, mut exact) = (0u64, 0u64, 0u64);
     for (s, o) in samples.iter().zip(out.iter_mut()) {
         let (c, ex) = oracles::coverage::classify_traced(tri, s.to_oracle());
@@ -551,8 +616,9 @@ struct Ctx<'a> {
 #[derive(Default)]
 struct Scratch {
     covered: Vec<bool>,
-    mask: Vec<bool>,
     rows: Vec<(usize, usize, usize)>,
+    coverage: CoverageScratch,
+    admit: AdmitScratch,
 }
 
 fn measure_triangle(
@@ -598,10 +664,16 @@ fn measure_triangle(
     covered.resize(u.pixels() as usize * spp, false);
     let mut local = Local { rect: u, spp, covered };
     let otri = tri.to_oracle();
+    let batch = Batch::new(&otri);
     let n_row = (r.x1 - r.x0 + 1) as usize * spp;
     for py in r.y0..=r.y1 {
         let (ts, ls) = (table.start(r.x0, py), local.start(r.x0, py));
-        let (c, b, e) = exact_coverage(&otri, &table.samples[ts..ts + n_row], &mut local.covered[ls..ls + n_row]);
+        let (c, b, e) = exact_coverage(
+            &batch,
+            &table.samples[ts..ts + n_row],
+            &mut scratch.coverage,
+            &mut local.covered[ls..ls + n_row],
+        );
         out.classified += n_row as u64;
         out.covered += c;
         out.boundary += b;
@@ -613,7 +685,7 @@ fn measure_triangle(
         *d = p.disabled().is_some();
     }
     let mut rows = std::mem::take(&mut scratch.rows);
-    let mut mask = std::mem::take(&mut scratch.mask);
+    let mut admit = std::mem::take(&mut scratch.admit);
     for (ti, &s) in cfg.tiles.iter().enumerate() {
         for (mi, w) in out.work[ti].iter_mut().enumerate() {
             w.add_setup(out.disabled[mi]);
@@ -628,16 +700,11 @@ fn measure_triangle(
                 let n_here = rows.iter().map(|r| r.2 as u64).sum::<u64>();
                 let cov_here = rows
                     .iter()
-                    .map(|&(_, ls, n)| local.covered[ls..ls + n].iter().filter(|&&c| c).count() as u64)
+                    .map(|&(_, ls, n)| local.covered[ls..ls + n].iter().map(|&c| c as u32).sum::<u32>() as u64)
                     .sum::<u64>();
                 if cov_here > 0 {
                     if let Some(b) = covered_box(table, &local, &rows, dims) {
-                        let tested = rows
-                            .iter()
-                            .map(|&(ts, _, n)| {
-                                table.samples[ts..ts + n].iter().filter(|x| in_box(&b, x)).count() as u64
-                            })
-                            .sum::<u64>();
+                        let tested = rows.iter().map(|&(ts, _, n)| count_in_box(table, ts, n, &b)).sum::<u64>();
                         out.ceiling[ti].0 += tested;
                         out.ceiling[ti].1 += cov_here;
                     }
@@ -652,7 +719,7 @@ fn measure_triangle(
                         }
                         TileResult::Bounds(b) => {
                             w.add_tile(out.disabled[mi], n_here);
-                            count_admitted(&mut mask, &b, table, &local, &rows, n_here, cov_here, c)
+                            count_admitted(&mut admit, &b, table, &local, &rows, n_here, cov_here, c)
                         }
                     }
                 }
@@ -664,17 +731,52 @@ fn measure_triangle(
         }
     }
     scratch.rows = rows;
-    scratch.mask = mask;
+    scratch.admit = admit;
     scratch.covered = local.covered;
     out
 }
 
+/// Buffers of [`count_admitted`], reused from tile to tile.
+#[derive(Default)]
+struct AdmitScratch {
+    /// Per sample of a row: inside the intervals.
+    mask: Vec<bool>,
+    /// The row's samples inside the intervals, side by side (x, y, u, v, t), and
+    /// their index in the row.
+    inside: [Vec<f32>; 5],
+    index: Vec<u32>,
+    /// Per inside sample: no constraint culled it so far.
+    alive: Vec<bool>,
+    /// One constraint's values on the inside samples.
+    values: Vec<f32>,
+}
+
+impl AdmitScratch {
+    /// Room for a row of `n` samples in every buffer.
+    fn reserve(&mut self, n: usize) {
+        if self.mask.len() < n {
+            self.mask.resize(n, false);
+            self.index.resize(n, 0);
+            for c in &mut self.inside {
+                c.resize(n, 0.0);
+            }
+            self.alive.resize(n, false);
+            self.values.resize(n, 0.0);
+        }
+    }
+}
+
 /// Count the samples of a tile that `b` admits (`n` samples, `cov` of them covered).
 /// An answer with the whole (u, v, t) domain and no per-sample constraint admits every
-/// sample ([`TileBounds::admits`] would say so sample by sample).
+/// sample ([`TileBounds::admits`] would say so sample by sample). Otherwise, row by
+/// row, the samples inside the intervals are found side by side, and each per-sample
+/// constraint is evaluated once on each of them ([`SampleConstraint::eval_row`], the
+/// same values as `eval`): a sample passes when no value is negative, as in `admits`.
+///
+/// [`SampleConstraint::eval_row`]: crate::bounds::SampleConstraint::eval_row
 #[allow(clippy::too_many_arguments)]
 fn count_admitted(
-    mask: &mut Vec<bool>,
+    sc: &mut AdmitScratch,
     b: &TileBounds,
     table: &SampleTable,
     local: &Local,
@@ -692,7 +794,7 @@ fn count_admitted(
     let (mut tested, mut hits) = (0u64, 0u64);
     let ([u0, u1], [v0, v1], [t0, t1]) = (b.u, b.v, b.t);
     for &(ts, ls, n) in rows {
-        let (us, vs, tv) = (&table.uvt[0][ts..ts + n], &table.uvt[1][ts..ts + n], &table.uvt[2][ts..ts + n]);
+        let (us, vs, tv) = (&table.cols[2][ts..ts + n], &table.cols[3][ts..ts + n], &table.cols[4][ts..ts + n]);
         let cv = &local.covered[ls..ls + n];
         if b.constraints.is_empty() {
             // The interval test of `TileBounds::admits`, side by side (vectorised).
@@ -704,20 +806,67 @@ fn count_admitted(
             }
             tested += t_row as u64;
             hits += h_row as u64;
-        } else {
-            // The intervals first (side by side), the constraints only inside them (as
-            // `admits`: a sample passes when no constraint is negative).
-            mask.clear();
-            mask.extend((0..n).map(|i| {
-                (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1)
-            }));
-            for (i, _) in mask.iter().enumerate().filter(|(_, &m)| m) {
-                if !b.constraints.iter().any(|k| k.eval(&table.samples[ts + i]) < 0.0) {
-                    tested += 1;
-                    hits += cv[i] as u64;
+            continue;
+        }
+        // The intervals first (side by side), then the constraints on the samples
+        // inside them (the whole row's columns when every sample is inside).
+        sc.reserve(n);
+        let mask = &mut sc.mask[..n];
+        let mut m = 0usize;
+        for i in 0..n {
+            let a = (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1);
+            mask[i] = a;
+            m += a as usize;
+        }
+        if m == 0 {
+            continue;
+        }
+        let all = m == n;
+        if !all {
+            // The indices of the inside samples (written branch-free), then their columns.
+            let index = &mut sc.index[..n];
+            let mut k = 0usize;
+            for (i, &a) in mask.iter().enumerate() {
+                index[k] = i as u32;
+                k += a as usize;
+            }
+            for (col, src) in sc.inside.iter_mut().zip(&table.cols) {
+                let src = &src[ts..ts + n];
+                for (d, &i) in col[..m].iter_mut().zip(&index[..m]) {
+                    *d = src[i as usize];
                 }
             }
         }
+        let cols = if all {
+            table.cols(ts, n)
+        } else {
+            let [x, y, u, v, t] = &sc.inside;
+            SampleCols::new(x, y, u, v, t, m)
+        };
+        let (alive, values) = (&mut sc.alive[..m], &mut sc.values[..m]);
+        alive.fill(true);
+        for k in &b.constraints {
+            k.eval_row(&cols, values);
+            for (a, &g) in alive.iter_mut().zip(values.iter()) {
+                // Culled when negative (a NaN value culls nothing, as in `admits`).
+                let culled = g < 0.0;
+                *a &= !culled;
+            }
+        }
+        let (mut t_row, mut h_row) = (0u32, 0u32);
+        if all {
+            for (&a, &cv) in alive.iter().zip(cv) {
+                t_row += a as u32;
+                h_row += (a & cv) as u32;
+            }
+        } else {
+            for (&a, &i) in alive.iter().zip(&sc.index[..m]) {
+                t_row += a as u32;
+                h_row += (a & cv[i as usize]) as u32;
+            }
+        }
+        tested += t_row as u64;
+        hits += h_row as u64;
     }
     c.tested += tested;
     c.hits += hits;

@@ -378,3 +378,94 @@ fn the_same_seed_gives_the_same_report() {
     assert_eq!(a["mesh"]["motion"], serde_json::json!(["dolly", "wobble"]));
     assert_eq!(a["mesh"]["lens_radius"], 0.05);
 }
+
+#[test]
+fn batched_exact_coverage_is_the_scalar_oracles() {
+    use crate::gen::{physical_case, rng_for, samples_for, Regime};
+    let mut scratch = CoverageScratch::default();
+    let mut regimes = 0;
+    for (ri, regime) in Regime::ALL.into_iter().enumerate() {
+        let mut classes = [0u64; 2];
+        for k in 0..3u64 {
+            let mut rng = rng_for(5, ri as u64 * 8 + k);
+            let case = physical_case(&mut rng, regime);
+            let otri = case.triangle.to_oracle();
+            // Half uniform over the footprint, half next to an edge (where the lanes defer).
+            let samples: Vec<Sample> = samples_for(&case, &mut rng, 700)
+                .iter()
+                .map(|p| Sample::new(p[0] as f32, p[1] as f32, p[2] as f32, p[3] as f32, p[4] as f32))
+                .collect();
+            let (mut a, mut b) = (vec![false; samples.len()], vec![false; samples.len()]);
+            let batch = Batch::new(&otri);
+            let (ca, ba, _) = exact_coverage(&batch, &samples, &mut scratch, &mut a);
+            let (cb, bb, _) = exact_coverage_scalar(&otri, &samples, &mut b);
+            assert_eq!(a, b, "{}: classes differ", regime.name());
+            assert_eq!((ca, ba), (cb, bb), "{}", regime.name());
+            classes[0] += ca;
+            classes[1] += samples.len() as u64 - ca;
+        }
+        regimes += (classes[0] > 0 && classes[1] > 0) as usize;
+    }
+    assert!(regimes >= 8, "only {regimes} regimes had both covered and uncovered samples");
+}
+
+/// The counts of the measurement are those of [`TileBounds::admits`] sample by sample
+/// over every traversed tile (the row-by-row count with `eval_row` changes nothing).
+#[test]
+fn counts_are_those_of_admits_sample_by_sample() {
+    let s = tiny("forest", 32, 24);
+    let p = Pattern::new(PatternKind::Stratified, 2, 3);
+    let cfg = Config::new(vec![1, 4], p);
+    let methods = registry();
+    let m = measure(&s, &methods, &Setting::ALL, &cfg, &ProgressBar::hidden());
+    let table = SampleTable::new(&p, s.width, s.height);
+    let mut per_sample_tiles = 0u64;
+    for &setting in &Setting::ALL {
+        for (ti, &size) in cfg.tiles.iter().enumerate() {
+            let mut want = vec![Counts::default(); methods.len()];
+            for tri in s.triangles(setting) {
+                let r = match footprint(&tri, s.width, s.height) {
+                    Footprint::OffScreen => continue,
+                    Footprint::WholeScreen => PixelRect { x0: 0, y0: 0, x1: s.width - 1, y1: s.height - 1 },
+                    Footprint::Region(r) => r,
+                };
+                let o = tri.to_oracle();
+                let (tx0, ty0, tx1, ty1) = tile_range(&r, size);
+                let preps: Vec<_> = methods.iter().map(|m| m.setup(&tri)).collect();
+                for ty in ty0..=ty1 {
+                    for tx in tx0..=tx1 {
+                        let px = tile_pixels(tx, ty, size, s.width, s.height);
+                        let mut smp = Vec::new();
+                        for py in px.y0..=px.y1 {
+                            let st = table.start(px.x0, py);
+                            smp.extend_from_slice(&table.samples[st..st + (px.x1 - px.x0 + 1) as usize * table.spp]);
+                        }
+                        let cov: Vec<bool> =
+                            smp.iter().map(|x| oracles::classify(&o, x.to_oracle()) == Coverage::Interior).collect();
+                        for (mi, prep) in preps.iter().enumerate() {
+                            let c = &mut want[mi];
+                            match prep.tile(&tile_of(&px)) {
+                                TileResult::Empty => c.missed += cov.iter().filter(|&&x| x).count() as u64,
+                                TileResult::Bounds(b) => {
+                                    per_sample_tiles += !b.constraints.is_empty() as u64;
+                                    for (x, &cv) in smp.iter().zip(&cov) {
+                                        let a = b.admits(x);
+                                        c.tested += a as u64;
+                                        c.hits += (a && cv) as u64;
+                                        c.missed += (!a && cv) as u64;
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            for (mi, meth) in methods.iter().enumerate() {
+                let id = meth.info().id;
+                let row = m.rows.iter().find(|r| r.method == id && r.setting == setting && r.tile == size).unwrap();
+                assert_eq!(row.counts, want[mi], "{id} {setting:?} tile {size} (index {ti})");
+            }
+        }
+    }
+    assert!(per_sample_tiles > 100, "only {per_sample_tiles} tiles with per-sample constraints");
+}
