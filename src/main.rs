@@ -229,8 +229,8 @@ enum Cmd {
         /// reported as a timeout (machine-dependent).
         #[arg(long, default_value_t = 60.0)]
         timeout: f64,
-        /// z3's resource limit per query (deterministic; 0: none). Default: 2000000 for
-        /// the concolic plan (about a second of z3 on a quiet core), none for `whole`.
+        /// z3's resource limit per query (deterministic; 0: none). Default: 4000000 for
+        /// the concolic plan (about 1.5 s of z3 on a quiet core), none for `whole`.
         #[arg(long)]
         rlimit: Option<u64>,
         /// Queries run at once (z3 processes; default 2).

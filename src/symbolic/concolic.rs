@@ -7,8 +7,10 @@
 //! # How a query is drawn (deterministic for a seed)
 //! - Side and range set in turn (query `i` takes set `i mod n`).
 //! - The tile's inputs ([`Family::tile_inputs`]) are always free; of the other inputs,
-//!   none (15 %), one (55 %) or two (30 %) are free, chosen at random, and each free one
-//!   is confined, half of the time, to one *piece* of its range.
+//!   none (35 %), one (50 %) or two (15 %) are free, chosen at random. A free one keeps
+//!   its whole range (30 %), or is confined to one *piece* of it (40 %), or to a
+//!   *window* of 2^4 to 2^12 consecutive f32 values around a value drawn as for a fixed
+//!   input (30 %: its high bits fixed, its low bits free).
 //! - The pieces of an input's range are cut at its *boundary points*: the range's ends,
 //!   the powers of two inside it (binade boundaries, at most 24 binades below its
 //!   largest magnitude) and every literal constant the method's and the template's code
@@ -16,9 +18,9 @@
 //!   Harvesting is generic: every `lit()` the encoding of the side calls, nothing chosen
 //!   by hand.
 //! - A fixed input is, with probability 0.3, a boundary point or one of its two f32
-//!   neighbours; with probability 0.15 the value (or its negation) of an input fixed
-//!   before it (coinciding inputs); otherwise uniform in a piece drawn uniformly. A draw
-//!   outside the range falls back to the uniform one.
+//!   neighbours; with probability 0.3 the value (3 in 4) or the negation of an input
+//!   fixed before it (coinciding inputs); otherwise uniform in a piece drawn uniformly.
+//!   A draw outside the range falls back to the uniform one.
 //!
 //! An `unsat` of such a query says nothing about other values of the fixed inputs: the
 //! runner reports it as "none with these fixed values", never as a proof.
@@ -65,6 +67,50 @@ fn piece(rng: &mut ChaCha8Rng, pts: &[f32]) -> [f32; 2] {
     [pts[i], pts[i + 1]]
 }
 
+/// A value for an input in `[lo, hi)` with boundary points `pts`, given the values of
+/// the inputs fixed before it (see the module doc).
+fn draw(rng: &mut ChaCha8Rng, lo: f32, hi: f32, pts: &[f32], earlier: &[Option<f32>]) -> f32 {
+    let earlier: Vec<f32> = earlier.iter().flatten().copied().collect();
+    let r = rng.gen::<f64>();
+    let v = if r < 0.3 {
+        let p = pts[rng.gen_range(0..pts.len())];
+        match rng.gen_range(0..3) {
+            0 => p.next_down(),
+            1 => p,
+            _ => p.next_up(),
+        }
+    } else if r < 0.6 && !earlier.is_empty() {
+        let x = earlier[rng.gen_range(0..earlier.len())];
+        if rng.gen_bool(0.75) {
+            x
+        } else {
+            -x
+        }
+    } else {
+        f32::NAN
+    };
+    if v >= lo && v < hi {
+        v
+    } else {
+        let [plo, phi] = piece(rng, pts);
+        uniform(rng, plo, phi)
+    }
+}
+
+/// The `2^bits` consecutive f32 values around `v` (a third below, two thirds above),
+/// clipped to `[lo, hi)`: the free input's high bits fixed, its low bits free.
+pub fn window(v: f32, bits: u32, lo: f32, hi: f32) -> [f32; 2] {
+    let n = 1u32 << bits;
+    let (mut a, mut b) = (v, v);
+    for _ in 0..n / 3 {
+        a = a.next_down();
+    }
+    for _ in 0..n - n / 3 {
+        b = b.next_up();
+    }
+    [a.max(lo), b.min(hi)]
+}
+
 /// `n` queries over the range sets `sets` (a side and a range per input each), for a seed.
 pub fn plan(f: &dyn Family, sets: &[(usize, Vec<[f32; 2]>)], seed: u64, n: usize) -> Vec<Query> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -76,8 +122,8 @@ pub fn plan(f: &dyn Family, sets: &[(usize, Vec<[f32; 2]>)], seed: u64, n: usize
         let (side, ranges) = &sets[i % sets.len()];
         let pts: Vec<Vec<f32>> = ranges.iter().map(|r| boundaries(r[0], r[1], &lits[*side])).collect();
         let nfree = match rng.gen::<f64>() {
-            x if x < 0.15 => 0,
-            x if x < 0.70 => 1,
+            x if x < 0.35 => 0,
+            x if x < 0.85 => 1,
             _ => 2,
         }
         .min(others.len());
@@ -89,38 +135,17 @@ pub fn plan(f: &dyn Family, sets: &[(usize, Vec<[f32; 2]>)], seed: u64, n: usize
         let mut q = Query::free(*side, ranges.clone());
         for k in 0..ranges.len() {
             let [lo, hi] = ranges[k];
-            if free.contains(&k) {
-                if !tile.contains(&k) && rng.gen_bool(0.5) {
+            let v = draw(&mut rng, lo, hi, &pts[k], &q.fixed[..k]);
+            if !free.contains(&k) {
+                q.fixed[k] = Some(v);
+            } else if !tile.contains(&k) {
+                let r = rng.gen::<f64>();
+                if r < 0.4 {
                     q.ranges[k] = piece(&mut rng, &pts[k]);
+                } else if r < 0.7 {
+                    q.ranges[k] = window(v, rng.gen_range(4..=12), lo, hi);
                 }
-                continue;
             }
-            let r = rng.gen::<f64>();
-            let earlier: Vec<f32> = q.fixed[..k].iter().flatten().copied().collect();
-            let v = if r < 0.3 {
-                let p = pts[k][rng.gen_range(0..pts[k].len())];
-                match rng.gen_range(0..3) {
-                    0 => p.next_down(),
-                    1 => p,
-                    _ => p.next_up(),
-                }
-            } else if r < 0.45 && !earlier.is_empty() {
-                let x = earlier[rng.gen_range(0..earlier.len())];
-                if rng.gen_bool(0.5) {
-                    x
-                } else {
-                    -x
-                }
-            } else {
-                f32::NAN
-            };
-            let v = if v >= lo && v < hi {
-                v
-            } else {
-                let [plo, phi] = piece(&mut rng, &pts[k]);
-                uniform(&mut rng, plo, phi)
-            };
-            q.fixed[k] = Some(v);
         }
         out.push(q);
     }

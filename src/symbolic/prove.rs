@@ -112,8 +112,8 @@ pub fn queries(f: &dyn Family, strategy: Strategy, sets: &[(usize, Vec<[f32; 2]>
 }
 
 /// The concolic plan's default resource limit per query (z3's `rlimit`; about a
-/// second of z3 on a quiet core for the bbox queries).
-pub const DEFAULT_RLIMIT: u64 = 2_000_000;
+/// second and a half of z3 on a quiet core for the bbox queries).
+pub const DEFAULT_RLIMIT: u64 = 4_000_000;
 
 /// The limits of each query and of the run.
 #[derive(Clone, Copy, Debug, Serialize)]

@@ -64,6 +64,8 @@ pub struct Smt {
     seen: RefCell<HashMap<(String, String), String>>,
     /// The bits of every literal the code asked for ([`F32Arith::lit`]).
     lits: RefCell<BTreeSet<u32>>,
+    /// Each named step's line (its `declare-const`; its defining `assert` follows).
+    defs: RefCell<HashMap<String, usize>>,
 }
 
 impl Smt {
@@ -113,6 +115,7 @@ impl Smt {
         let name = format!("t{}", *n);
         *n += 1;
         let mut l = self.lines.borrow_mut();
+        self.defs.borrow_mut().insert(name.clone(), l.len());
         l.push(format!("(declare-const {name} {sort})"));
         l.push(format!("(assert (= {name} {body}))"));
         if let Some(k) = key {
@@ -150,12 +153,57 @@ impl Smt {
         self.push(format!("(assert (and (fp.leq {} {v}) (fp.lt {v} {})))", lit(lo), lit(hi)));
     }
 
-    /// The whole script: the definitions so far, then `check-sat` and the values of `show`.
+    /// The lines to write: all of them; with folding, only the named steps that an
+    /// assertion (or a shown value) depends on. A step nothing depends on is a fresh
+    /// constant equal to a total function of others, which any model can satisfy, so
+    /// dropping it changes no answer (the method's code computes it, the query does
+    /// not ask about it: e.g. the y axis of a box when only its x side is attacked).
+    fn live_lines(&self, show: &[String]) -> Vec<bool> {
+        let lines = self.lines.borrow();
+        let defs = self.defs.borrow();
+        let n = lines.len();
+        if !self.fold {
+            return vec![true; n];
+        }
+        let mut keep = vec![true; n];
+        for &i in defs.values() {
+            keep[i] = false;
+            keep[i + 1] = false;
+        }
+        let words = |l: &str| -> Vec<String> {
+            l.split(|c: char| c.is_whitespace() || c == '(' || c == ')')
+                .filter(|w| !w.is_empty())
+                .map(String::from)
+                .collect()
+        };
+        let mut stack: Vec<String> = show.to_vec();
+        for (i, l) in lines.iter().enumerate() {
+            if keep[i] {
+                stack.extend(words(l));
+            }
+        }
+        while let Some(w) = stack.pop() {
+            if let Some(&i) = defs.get(&w) {
+                if !keep[i] {
+                    keep[i] = true;
+                    keep[i + 1] = true;
+                    stack.extend(words(&lines[i + 1]));
+                }
+            }
+        }
+        keep
+    }
+
+    /// The whole script: the definitions so far (with folding, those the assertions
+    /// depend on), then `check-sat` and the values of `show`.
     pub fn script(&self, show: &[String]) -> String {
         let mut s = String::from("(set-logic QF_FPBV)\n");
-        for l in self.lines.borrow().iter() {
-            s += l;
-            s.push('\n');
+        let keep = self.live_lines(show);
+        for (l, k) in self.lines.borrow().iter().zip(keep) {
+            if k {
+                s += l;
+                s.push('\n');
+            }
         }
         s += "(check-sat)\n";
         if !show.is_empty() {
@@ -357,6 +405,12 @@ mod tests {
         assert_eq!(s.and(&s.truth(true), &s.lt(&x, &a)), s.lt(&x, &a));
         assert_eq!(s.select(&s.truth(false), &a, &x), x);
         assert_eq!(s.literals(), vec![1.0, 3.0]);
+        // a step no assertion depends on is left out of the script
+        let dead = s.mul(&x, &x);
+        s.assert(&s.lt(&p, &b));
+        let script = s.script(&[]);
+        assert!(script.contains(&format!("(declare-const {p} ")), "{script}");
+        assert!(!script.contains(&format!("(declare-const {dead} ")), "{script}");
         // without folding every step is written
         let u = Smt::new();
         let y = u.var("y");

@@ -143,7 +143,9 @@ pub fn run_limited(script: &str, seconds: f64, rlimit: Option<u64>) -> Result<Ru
         _ if killed => Answer::Timeout,
         "sat" => Answer::Sat,
         "unsat" => Answer::Unsat,
-        "unknown" if output.contains("resource limit") => Answer::Budget,
+        "unknown" if rlimit.is_some() && (output.contains("resource limit") || output.contains("\"canceled\"")) => {
+            Answer::Budget
+        }
         "unknown" => Answer::Unknown,
         "timeout" => Answer::Timeout,
         _ => {
