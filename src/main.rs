@@ -223,21 +223,25 @@ enum Cmd {
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Concolic queries planned (the run stops at the first confirmed violation).
-        #[arg(long, default_value_t = 400)]
+        #[arg(long, default_value_t = 4000)]
         queries: usize,
+        /// Share of concolic queries that leave one triangle input free (0 to 1; the
+        /// others fix the triangle and leave the tile to the solver).
+        #[arg(long, default_value_t = cullproof::symbolic::prove::DEFAULT_FREE_SHARE)]
+        free_share: f64,
         /// Wall-clock seconds per query (z3's limit; 1 to 3600). A query that hits it is
         /// reported as a timeout (machine-dependent).
         #[arg(long, default_value_t = 60.0)]
         timeout: f64,
-        /// z3's resource limit per query (deterministic; 0: none). Default: 4000000 for
-        /// the concolic plan (about 1.5 s of z3 on a quiet core), none for `whole`.
+        /// z3's resource limit per query (deterministic; 0: none). Default: 1500000 for
+        /// the concolic plan (about 0.5 s of z3 on a quiet core), none for `whole`.
         #[arg(long)]
         rlimit: Option<u64>,
         /// Queries run at once (z3 processes; default 2).
         #[arg(long, default_value_t = 2)]
         jobs: usize,
         /// One range per input, a=LO:HI,c=LO:HI,w=LO:HI,t=LO:HI (half-open; c and w
-        /// positive), queried on both x sides; default: a narrow, a middle and a wide set.
+        /// positive), queried on both x sides; default: a middle and a wide set.
         #[arg(long)]
         ranges: Option<String>,
         /// Where to write the confirmed cases.
@@ -593,6 +597,7 @@ fn run() -> Result<()> {
             strategy,
             seed,
             queries,
+            free_share,
             timeout,
             rlimit,
             jobs,
@@ -609,12 +614,13 @@ fn run() -> Result<()> {
             );
             anyhow::ensure!((1..=64).contains(&jobs), "--jobs {jobs}: give 1 to 64");
             anyhow::ensure!(queries >= 1, "--queries {queries}: give at least 1");
+            anyhow::ensure!((0.0..=1.0).contains(&free_share), "--free-share {free_share}: give 0 to 1");
             let m = cullproof::args::method("--method", &method, true)?;
             use cullproof::symbolic::{family, prove};
             let fam = prove::family(m.info().id)?;
             let given = ranges.as_deref().map(|r| family::parse_ranges(fam.as_ref(), "--ranges", r)).transpose()?;
             let sets = prove::range_sets(fam.as_ref(), given);
-            let plan = prove::queries(fam.as_ref(), strategy, &sets, seed, queries);
+            let plan = prove::queries(fam.as_ref(), strategy, &sets, seed, queries, free_share);
             let rlimit = match (rlimit, strategy) {
                 (Some(0), _) | (None, prove::Strategy::Whole) => None,
                 (Some(r), _) => Some(r),

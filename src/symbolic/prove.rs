@@ -103,17 +103,29 @@ pub fn range_sets(f: &dyn Family, given: Option<Vec<[f32; 2]>>) -> Vec<(usize, V
     }
 }
 
-/// The queries of a strategy over range sets (`seed` and `n` for the concolic plan).
-pub fn queries(f: &dyn Family, strategy: Strategy, sets: &[(usize, Vec<[f32; 2]>)], seed: u64, n: usize) -> Vec<Query> {
+/// The share of concolic queries with a triangle input free (the others fix the
+/// whole triangle; see [`concolic`]).
+pub const DEFAULT_FREE_SHARE: f64 = 0.05;
+
+/// The queries of a strategy over range sets (`seed`, `n` and `free_share` for the
+/// concolic plan).
+pub fn queries(
+    f: &dyn Family,
+    strategy: Strategy,
+    sets: &[(usize, Vec<[f32; 2]>)],
+    seed: u64,
+    n: usize,
+    free_share: f64,
+) -> Vec<Query> {
     match strategy {
         Strategy::Whole => sets.iter().map(|(s, r)| Query::free(*s, r.clone())).collect(),
-        Strategy::Concolic => concolic::plan(f, sets, seed, n),
+        Strategy::Concolic => concolic::plan(f, sets, seed, n, free_share),
     }
 }
 
 /// The concolic plan's default resource limit per query (z3's `rlimit`; about a
-/// second and a half of z3 on a quiet core for the bbox queries).
-pub const DEFAULT_RLIMIT: u64 = 4_000_000;
+/// half a second of z3 on a quiet core for the bbox queries).
+pub const DEFAULT_RLIMIT: u64 = 1_500_000;
 
 /// The limits of each query and of the run.
 #[derive(Clone, Copy, Debug, Serialize)]

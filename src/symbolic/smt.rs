@@ -212,6 +212,12 @@ impl Smt {
         s
     }
 
+    /// `(OP MODE a b)` with a directed rounding mode (the exact side of a query, not the
+    /// method): `fp.add`, `fp.sub`, `fp.mul` or `fp.div`.
+    pub fn op_mode(&self, op: &str, mode: &str, a: &str, b: &str) -> String {
+        self.f(format!("({op} {mode} {a} {b})"))
+    }
+
     /// A term with a directed rounding mode (the exact side of a query, not the method).
     pub fn fma_mode(&self, mode: &str, a: &str, b: &str, c: &str) -> String {
         self.f(format!("(fp.fma {mode} {a} {b} {c})"))
