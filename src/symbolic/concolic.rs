@@ -7,8 +7,8 @@
 //! # How a query is drawn (deterministic for a seed)
 //! - Side and range set in turn (query `i` takes set `i mod n`).
 //! - The tile's inputs ([`Family::tile_inputs`]) are always free; of the other inputs,
-//!   one, chosen at random, is free in a share `free_share` of the queries (default
-//!   5 %), none in the others. A free one keeps
+//!   one, chosen at random, is free in a share `free_share` of the queries (`--free-share`,
+//!   default none), none in the others. A free one keeps
 //!   its whole range (30 %), or is confined to one *piece* of it (40 %), or to a
 //!   *window* of 2^4 to 2^12 consecutive f32 values around a value drawn as for a fixed
 //!   input (30 %: its high bits fixed, its low bits free).
@@ -28,7 +28,7 @@
 //! box and the exact edge, or shows there is none), while one with a triangle input
 //! free, even confined to 16 consecutive values, takes about a second (it must invert
 //! an f32 division bit by bit): enumerating is faster than solving there. The free
-//! queries stay in the plan for the slips a solver finds and a draw does not.
+//! queries stay available (`--free-share`) for templates where solving pays.
 //!
 //! An `unsat` of such a query says nothing about other values of the fixed inputs: the
 //! runner reports it as "none with these fixed values", never as a proof.

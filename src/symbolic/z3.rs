@@ -91,12 +91,8 @@ pub fn run_limited(script: &str, seconds: f64, rlimit: Option<u64>) -> Result<Ru
         cmd.arg(format!("rlimit={r}"));
         script += "(get-info :reason-unknown)\n";
     }
-    let mut child = cmd
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .with_context(|| {
+    let mut child =
+        cmd.stdin(Stdio::piped()).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().with_context(|| {
             format!("cannot start `{bin}` (install z3, e.g. `apt-get install z3`, or set CULLPROOF_Z3)")
         })?;
     // Feed the script and drain both outputs on their own threads: a long script and
