@@ -199,9 +199,10 @@ enum Cmd {
         #[command(flatten)]
         sample: cullproof::args::SampleFlags,
     },
-    /// Symbolic counterexample search (needs z3): asks z3, one query at a time with a
-    /// time limit, for f32 inputs in stated ranges where the method culls a tile that
-    /// the exact footprint reaches (the method's own f32 code, encoded bit for bit; see
+    /// Symbolic counterexample search (needs z3): asks z3, in queries with a resource
+    /// and a time limit each (by default many small ones: a triangle drawn for the seed,
+    /// the tile left to the solver), for f32 inputs in stated ranges where the method
+    /// culls a tile that the exact footprint reaches (the method's own f32 code, encoded bit for bit; see
     /// src/symbolic/). Every model becomes a case judged exactly: a confirmed violation
     /// is shrunk and written to corpus/cases/<method>/<hash>.json (never overwriting);
     /// a model the judge does not confirm is reported as such. Methods with an

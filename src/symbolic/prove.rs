@@ -75,7 +75,7 @@ pub fn family(id: &str) -> Result<Box<dyn Family>> {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum Strategy {
-    /// Many small queries with some inputs fixed ([`concolic`]).
+    /// Many small queries with some inputs fixed to values drawn for the seed.
     Concolic,
     /// One query per side and range set with every input free.
     Whole,
