@@ -126,7 +126,7 @@ pub fn queries(
 }
 
 /// The concolic plan's default resource limit per query (z3's `rlimit`; about a
-/// half a second of z3 on a quiet core for the bbox queries).
+/// half a second to a second of z3 CPU for the bbox queries).
 pub const DEFAULT_RLIMIT: u64 = 1_500_000;
 
 /// The limits of each query and of the run.
