@@ -199,9 +199,10 @@ enum Cmd {
         #[command(flatten)]
         sample: cullproof::args::SampleFlags,
     },
-    /// Symbolic counterexample search (needs z3): asks z3, one query at a time with a
-    /// time limit, for f32 inputs in stated ranges where the method culls a tile that
-    /// the exact footprint reaches (the method's own f32 code, encoded bit for bit; see
+    /// Symbolic counterexample search (needs z3): asks z3, in queries with a resource
+    /// and a time limit each (by default many small ones: a triangle drawn for the seed,
+    /// the tile left to the solver), for f32 inputs in stated ranges where the method
+    /// culls a tile that the exact footprint reaches (the method's own f32 code, encoded bit for bit; see
     /// src/symbolic/). Every model becomes a case judged exactly: a confirmed violation
     /// is shrunk and written to corpus/cases/<method>/<hash>.json (never overwriting);
     /// a model the judge does not confirm is reported as such. Methods with an
@@ -214,11 +215,34 @@ enum Cmd {
         /// Search symbolically (the only mode so far; required).
         #[arg(long)]
         symbolic: bool,
-        /// Seconds per query (z3's limit; 1 to 3600).
+        /// How the queries are made: `concolic` (many small queries, some inputs fixed
+        /// to values drawn for the seed, the rest free) or `whole` (one query per side
+        /// and range set, every input free).
+        #[arg(long, value_enum, default_value_t = cullproof::symbolic::prove::Strategy::Concolic)]
+        strategy: cullproof::symbolic::prove::Strategy,
+        /// Seed of the concolic plan (the report for a seed does not depend on --jobs).
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Concolic queries planned (the run stops at the first confirmed violation).
+        #[arg(long, default_value_t = 4000)]
+        queries: usize,
+        /// Share of concolic queries that leave one triangle input free (0 to 1; the
+        /// others fix the triangle and leave the tile to the solver).
+        #[arg(long, default_value_t = cullproof::symbolic::prove::DEFAULT_FREE_SHARE)]
+        free_share: f64,
+        /// Wall-clock seconds per query (z3's limit; 1 to 3600). A query that hits it is
+        /// reported as a timeout (machine-dependent).
         #[arg(long, default_value_t = 60.0)]
         timeout: f64,
+        /// z3's resource limit per query (deterministic; 0: none). Default: 1500000 for
+        /// the concolic plan (about 0.5 to 1 s of z3 CPU), none for `whole`.
+        #[arg(long)]
+        rlimit: Option<u64>,
+        /// Queries run at once (z3 processes; default 2).
+        #[arg(long, default_value_t = 2)]
+        jobs: usize,
         /// One range per input, a=LO:HI,c=LO:HI,w=LO:HI,t=LO:HI (half-open; c and w
-        /// positive), queried on both x sides; default: a narrow and a wide set.
+        /// positive), queried on both x sides; default: a middle and a wide set.
         #[arg(long)]
         ranges: Option<String>,
         /// Where to write the confirmed cases.
@@ -568,20 +592,52 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
         }
-        Cmd::Prove { method, symbolic, timeout, ranges, out, dry_run, emit_smt, json } => {
+        Cmd::Prove {
+            method,
+            symbolic,
+            strategy,
+            seed,
+            queries,
+            free_share,
+            timeout,
+            rlimit,
+            jobs,
+            ranges,
+            out,
+            dry_run,
+            emit_smt,
+            json,
+        } => {
             anyhow::ensure!(symbolic, "prove: only the symbolic search exists so far; add --symbolic");
             anyhow::ensure!(
                 timeout.is_finite() && (1.0..=3600.0).contains(&timeout),
                 "--timeout {timeout}: give seconds from 1 to 3600"
             );
+            anyhow::ensure!((1..=64).contains(&jobs), "--jobs {jobs}: give 1 to 64");
+            anyhow::ensure!((1..=1_000_000).contains(&queries), "--queries {queries}: give 1 to 1000000");
+            anyhow::ensure!((0.0..=1.0).contains(&free_share), "--free-share {free_share}: give 0 to 1");
             let m = cullproof::args::method("--method", &method, true)?;
-            use cullproof::symbolic::{bbox_query, prove};
-            prove::rule(m.info().id)?;
-            let queries = match &ranges {
-                Some(r) => bbox_query::parse_ranges("--ranges", r)?,
-                None => bbox_query::default_queries(),
+            use cullproof::symbolic::{family, prove};
+            let fam = prove::family(m.info().id)?;
+            let given = ranges.as_deref().map(|r| family::parse_ranges(fam.as_ref(), "--ranges", r)).transpose()?;
+            let sets = prove::range_sets(fam.as_ref(), given);
+            let plan = prove::queries(fam.as_ref(), strategy, &sets, seed, queries, free_share);
+            let rlimit = match (rlimit, strategy) {
+                (Some(0), _) | (None, prove::Strategy::Whole) => None,
+                (Some(r), _) => Some(r),
+                (None, prove::Strategy::Concolic) => Some(prove::DEFAULT_RLIMIT),
             };
-            let r = prove::prove(m, &queries, timeout, (!dry_run).then_some(out.as_path()), emit_smt.as_deref(), true)?;
+            let limits = prove::Limits { timeout, rlimit, jobs };
+            let r = prove::prove(
+                m,
+                strategy,
+                seed,
+                &plan,
+                limits,
+                (!dry_run).then_some(out.as_path()),
+                emit_smt.as_deref(),
+                true,
+            )?;
             print!("{}", r.render());
             if let Some(p) = &json {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;

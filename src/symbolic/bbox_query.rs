@@ -19,14 +19,23 @@
 //! that real number rounded down and up (`fp.fma RTN t w c` and `fp.fma RTP t w c`,
 //! one rounding each), `a < t w + c` exactly iff `a < lo`, or `a = lo` and `lo < hi`
 //! (then `lo` is below the real value). Side `x-max` asks `a > t w - c` the same way.
-//! No division, no reals: the query stays in the floating-point theory. The solver's
+//! No real arithmetic: the query stays in the floating-point theory.
+//!
+//! One redundant constraint helps the solver without changing the set of solutions: the
+//! exact side implies a bound on the tile's edge `t` computed with directed roundings
+//! (x-min: `a < t w + c` with `w > 0` gives `t > (a - c) / w`, and `(a - c) / w >=
+//! RTN(RTN(a - c) / w)` because both roundings go down and `w > 0`; x-max the mirror
+//! with RTP). When `a`, `c` and `w` are fixed the bound is a constant, and the solver
+//! places `t` in the gap between it and the method's box without searching through the
+//! multiplications of the exact side. The solver's
 //! answer is a hint, never a verdict: every model becomes a case that the exact judge
 //! decides.
 
 use super::arith::{F32Arith, Plain, TriOf};
+use super::family::Family;
+use super::prove::Rule;
 use super::smt::Smt;
-use crate::bounds::bbox::{aabb_of, Corner};
-use anyhow::{bail, Result};
+use crate::bounds::bbox::aabb_of;
 
 /// Which side of the box a query attacks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -43,41 +52,28 @@ impl Side {
             Side::XMax => "x-max",
         }
     }
+    /// The side of a [`Family`] side index.
+    pub fn of(i: usize) -> Side {
+        if i == 0 {
+            Side::XMin
+        } else {
+            Side::XMax
+        }
+    }
 }
 
 /// The names of the inputs, in order.
 pub const INPUTS: [&str; 4] = ["a", "c", "w", "t"];
 
-/// One query: a side and a half-open range `[lo, hi)` per input.
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct Query {
-    pub side: Side,
-    pub ranges: [[f32; 2]; 4],
-}
-
-impl Query {
-    /// The ranges as `a=LO:HI,c=...` (the syntax of `--ranges`).
-    pub fn ranges_text(&self) -> String {
-        INPUTS.iter().zip(&self.ranges).map(|(n, r)| format!("{n}={}:{}", r[0], r[1])).collect::<Vec<_>>().join(",")
-    }
-}
-
-/// The default queries, each on both sides: inputs confined to a few binades (the
-/// solver finds rounding coincidences far faster there), a middle set in which inputs
-/// can coincide (`a` and `c` overlap), and wide ranges.
-pub fn default_queries() -> Vec<Query> {
-    let sets: [[[f32; 2]; 4]; 3] = [
-        [[64.0, 256.0], [1.0, 2.0], [1.0, 2.0], [64.0, 128.0]],
-        [[-64.0, 64.0], [0.5, 64.0], [0.5, 4.0], [-64.0, 64.0]],
-        [[-4096.0, 4096.0], [0.25, 64.0], [0.25, 64.0], [-4096.0, 4096.0]],
-    ];
-    let mut out = Vec::new();
-    for r in sets {
-        out.push(Query { side: Side::XMin, ranges: r });
-        out.push(Query { side: Side::XMax, ranges: mirrored(r) });
-    }
-    out
-}
+/// The default range sets of the x-min side: a middle set in which inputs can coincide
+/// (`a` and `c` overlap; the f32 culls are densest there, about one triangle in 140
+/// drawn uniformly admits a culled tile) and wide ranges. The x-max side mirrors them.
+/// Narrower ranges (e.g. `a=128:256,c=1:2,w=1.875:2,t=0:256`, about one in 5000) are a
+/// `--ranges` away.
+const SETS: [[[f32; 2]; 4]; 2] = [
+    [[-64.0, 64.0], [0.5, 64.0], [0.5, 4.0], [-256.0, 256.0]],
+    [[-4096.0, 4096.0], [0.25, 64.0], [0.25, 64.0], [-16384.0, 16384.0]],
+];
 
 /// The ranges of the other side: `a` and `t` negated (the x-max template is the
 /// mirror image of the x-min one).
@@ -86,47 +82,38 @@ fn mirrored(r: [[f32; 2]; 4]) -> [[f32; 2]; 4] {
     [neg(r[0]), r[1], r[2], neg(r[3])]
 }
 
-/// Parse `--ranges a=LO:HI,c=LO:HI,w=LO:HI,t=LO:HI` (every input named once; c and w
-/// positive, each range non-empty) into one query per side.
-pub fn parse_ranges(flag: &str, s: &str) -> Result<Vec<Query>> {
-    let mut ranges: [Option<[f32; 2]>; 4] = [None; 4];
-    for part in s.split(',') {
-        let Some((name, r)) = part.trim().split_once('=') else {
-            bail!("{flag} {s}: `{part}` is not NAME=LO:HI (names: a, c, w, t)");
-        };
-        let Some(k) = INPUTS.iter().position(|n| *n == name.trim()) else {
-            bail!("{flag} {s}: `{name}` is not an input (names: a, c, w, t)");
-        };
-        let Some((lo, hi)) = r.split_once(':') else {
-            bail!("{flag} {s}: `{r}` for `{name}` is not LO:HI");
-        };
-        let num = |v: &str| -> Result<f32> {
-            match v.trim().parse::<f32>() {
-                Ok(x) if x.is_finite() => Ok(x),
-                _ => bail!("{flag} {s}: `{v}` for `{name}` is not a finite number"),
-            }
-        };
-        let (lo, hi) = (num(lo)?, num(hi)?);
-        if lo >= hi {
-            bail!("{flag} {s}: the range {lo}:{hi} of `{name}` is empty (LO must be below HI)");
-        }
+/// The bbox family under one corner rule (bbox, bbox-safe or a planted slip).
+#[derive(Clone, Copy, Debug)]
+pub struct BBoxFamily(pub Rule);
+
+impl Family for BBoxFamily {
+    fn inputs(&self) -> &'static [&'static str] {
+        &INPUTS
+    }
+    fn sides(&self) -> &'static [&'static str] {
+        &["x-min", "x-max"]
+    }
+    fn tile_inputs(&self) -> &'static [usize] {
+        &[3]
+    }
+    fn default_ranges(&self, side: usize) -> Vec<Vec<[f32; 2]>> {
+        SETS.iter().map(|r| if side == 0 { r.to_vec() } else { mirrored(*r).to_vec() }).collect()
+    }
+    fn check_range(&self, k: usize, lo: f32, _hi: f32) -> Result<(), String> {
         if (k == 1 || k == 2) && lo <= 0.0 {
-            bail!(
-                "{flag} {s}: the range of `{name}` must be positive (the template has c > 0 and w > 0), not from {lo}"
-            );
+            return Err(format!(
+                "the range of `{}` must be positive (the template has c > 0 and w > 0), not from {lo}",
+                INPUTS[k]
+            ));
         }
-        if ranges[k].replace([lo, hi]).is_some() {
-            bail!("{flag} {s}: `{name}` is given twice");
-        }
+        Ok(())
     }
-    let mut out = [[0.0f32; 2]; 4];
-    for (k, r) in ranges.iter().enumerate() {
-        match r {
-            Some(r) => out[k] = *r,
-            None => bail!("{flag} {s}: no range for `{}` (give a, c, w and t)", INPUTS[k]),
-        }
+    fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
+        assert_violation(smt, &self.0, Side::of(side), &[v[0].clone(), v[1].clone(), v[2].clone(), v[3].clone()])
     }
-    Ok(vec![Query { side: Side::XMin, ranges: out }, Query { side: Side::XMax, ranges: out }])
+    fn instance(&self, side: usize, v: &[f32]) -> (crate::model::Triangle, crate::model::Tile) {
+        instance(Side::of(side), [v[0], v[1], v[2], v[3]])
+    }
 }
 
 /// The template triangle and tile `[x0, y0, x1, y1]` of a side, from the inputs
@@ -154,41 +141,43 @@ pub fn template<A: F32Arith>(ar: &A, side: Side, v: &[A::F; 4]) -> (TriOf<A::F>,
     (tri, tile)
 }
 
-/// The SMT-LIB2 script of a query against a corner rule: the inputs in their ranges,
-/// the method's setup and tile reject on the template (the reject asserted), and the
-/// exact footprint reaching into the tile.
-pub fn script<C: Corner>(corner: &C, q: &Query) -> String {
-    let smt = Smt::new();
-    let v = INPUTS.map(|n| smt.var(n));
-    for (name, r) in v.iter().zip(&q.ranges) {
-        smt.range(name, r[0], r[1]);
-    }
-    let (tri, tile) = template(&smt, q.side, &v);
-    let (enabled, bx) = aabb_of(&smt, corner, &tri);
+/// Assert the query over `smt` for the inputs `v` (free variables or literals): the
+/// method's setup and tile reject on the template (the reject asserted), and the exact
+/// footprint reaching into the tile.
+pub fn assert_violation(smt: &Smt, rule: &Rule, side: Side, v: &[String; 4]) {
+    let (tri, tile) = template(smt, side, v);
+    let (enabled, bx) = aabb_of(smt, rule, &tri);
     // The method's reject is `enabled` and one of four disjoint-side tests; the query
     // asserts the side it attacks (a model satisfies the whole reject, and z3 need not
     // rule out the y sides, whose terms then drop out of the query).
-    let side = match q.side {
+    let cull = match side {
         Side::XMin => smt.lt(&tile[2], &bx[0]),
         Side::XMax => smt.gt(&tile[0], &bx[1]),
     };
-    smt.assert(&smt.and(&enabled, &side));
-    let [a, c, w, t] = &v;
-    let reach = match q.side {
+    smt.assert(&smt.and(&enabled, &cull));
+    let [a, c, w, t] = v;
+    let reach = match side {
         Side::XMin => {
             let lo = smt.fma_mode("RTN", t, w, c);
             let hi = smt.fma_mode("RTP", t, w, c);
+            // Implied: a < t w + c with w > 0 gives t > (a - c) / w >= RTN(RTN(a - c) / w).
+            let d = smt.op_mode("fp.sub", "RTN", a, c);
+            let bound = smt.op_mode("fp.div", "RTN", &d, w);
+            smt.assert(&format!("(fp.lt {bound} {t})"));
             format!("(or (fp.lt {a} {lo}) (and (fp.eq {a} {lo}) (fp.lt {lo} {hi})))")
         }
         Side::XMax => {
             let mc = smt.neg(c);
             let lo = smt.fma_mode("RTN", t, w, &mc);
             let hi = smt.fma_mode("RTP", t, w, &mc);
+            // Implied: a > t w - c with w > 0 gives t < (a + c) / w <= RTP(RTP(a + c) / w).
+            let d = smt.op_mode("fp.add", "RTP", a, c);
+            let bound = smt.op_mode("fp.div", "RTP", &d, w);
+            smt.assert(&format!("(fp.lt {t} {bound})"));
             format!("(or (fp.gt {a} {hi}) (and (fp.eq {a} {hi}) (fp.lt {lo} {hi})))")
         }
     };
     smt.assert(&reach);
-    smt.script(&v)
 }
 
 /// The triangle and tile of a model's inputs, computed in f32 by the same template.

@@ -13,10 +13,15 @@
 //! - Two slips planted in `bbox-safe` ([`planted`]), to measure the search on rare bugs.
 //!
 //! The queries ([`bbox_query`]) attack the x sides of the box on a template triangle
-//! (four free inputs); the other methods have no encoding yet.
+//! (four inputs); the other methods have no encoding yet. A method's template is a
+//! [`family::Family`]; by default the search runs the concolic plan ([`concolic`]):
+//! many small queries, each with some inputs fixed, under a deterministic resource
+//! limit, in parallel.
 
 pub mod arith;
 pub mod bbox_query;
+pub mod concolic;
+pub mod family;
 pub mod planted;
 pub mod prove;
 pub mod smt;

@@ -15,6 +15,8 @@ pub enum Answer {
     Unsat,
     Unknown,
     Timeout,
+    /// The query's resource limit (z3's deterministic `rlimit`) ran out.
+    Budget,
 }
 
 impl Answer {
@@ -24,6 +26,7 @@ impl Answer {
             Answer::Unsat => "unsat",
             Answer::Unknown => "unknown",
             Answer::Timeout => "timeout",
+            Answer::Budget => "budget",
         }
     }
 }
@@ -34,9 +37,9 @@ pub struct Run {
     pub answer: Answer,
     /// Wall-clock seconds.
     pub seconds: f64,
-    /// CPU seconds z3 used (user + system, from the process's waited-for children in
-    /// `/proc/self/stat`; None where that is not readable). On a busy machine this is
-    /// the figure to compare.
+    /// CPU seconds z3 used (user + system, from `/proc/<pid>/stat` sampled every 10 ms
+    /// while it runs, else from the waited-for children in `/proc/self/stat`; None where
+    /// neither is readable). On a busy machine this is the figure to compare.
     pub cpu_seconds: Option<f64>,
     pub output: String,
 }
@@ -57,26 +60,47 @@ pub fn binary() -> String {
     std::env::var("CULLPROOF_Z3").unwrap_or_else(|_| "z3".into())
 }
 
+/// User + system CPU seconds of a running (or exited, not yet waited-for) process.
+fn process_cpu(pid: u32) -> Option<f64> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    let rest = &stat[stat.rfind(')')? + 1..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let u: f64 = f.get(11)?.parse().ok()?;
+    let s: f64 = f.get(12)?.parse().ok()?;
+    Some((u + s) / 100.0)
+}
+
 /// Run a script with a time limit of `seconds` (a positive number).
 pub fn run(script: &str, seconds: f64) -> Result<Run> {
+    run_limited(script, seconds, None)
+}
+
+/// Run a script with a time limit of `seconds` and, with `rlimit`, z3's resource limit
+/// (deterministic: the same script gives the same answer on any machine and load; a
+/// query that exhausts it answers [`Answer::Budget`]). The CPU seconds are this z3
+/// process's own (sampled while it runs), so queries may run in parallel.
+pub fn run_limited(script: &str, seconds: f64, rlimit: Option<u64>) -> Result<Run> {
     let bin = binary();
     let secs = seconds.ceil().max(1.0) as u64;
     let start = Instant::now();
     let cpu0 = children_cpu();
-    let mut child = Command::new(&bin)
-        .arg("-in")
-        .arg(format!("-T:{secs}"))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .with_context(|| {
+    let mut cmd = Command::new(&bin);
+    cmd.arg("-in").arg(format!("-T:{secs}"));
+    let mut script = script.to_string();
+    if let Some(r) = rlimit {
+        cmd.arg(format!("rlimit={r}"));
+        script += "(get-info :reason-unknown)\n";
+    }
+    let mut child =
+        cmd.stdin(Stdio::piped()).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().with_context(|| {
             format!("cannot start `{bin}` (install z3, e.g. `apt-get install z3`, or set CULLPROOF_Z3)")
         })?;
     // Feed the script and drain both outputs on their own threads: a long script and
     // a long answer must not wait for each other through full pipes.
     let mut stdin = child.stdin.take().expect("piped");
-    let text = script.to_string();
+    let text = script;
+    let pid = child.id();
+    let mut own_cpu = None;
     let writer = std::thread::spawn(move || stdin.write_all(text.as_bytes()));
     let drain = |mut r: Box<dyn Read + Send>| {
         std::thread::spawn(move || {
@@ -91,6 +115,7 @@ pub fn run(script: &str, seconds: f64) -> Result<Run> {
     let guard = Duration::from_secs_f64(secs as f64 + 10.0);
     let mut killed = false;
     loop {
+        own_cpu = process_cpu(pid).or(own_cpu);
         if child.try_wait()?.is_some() {
             break;
         }
@@ -108,12 +133,15 @@ pub fn run(script: &str, seconds: f64) -> Result<Run> {
     // only matters when no answer came.
     let written = writer.join().map_err(|_| anyhow!("writing the query to `{bin}` failed"))?;
     let seconds = start.elapsed().as_secs_f64();
-    let cpu_seconds = cpu0.zip(children_cpu()).map(|(a, b)| (b - a).max(0.0));
+    let cpu_seconds = own_cpu.or_else(|| cpu0.zip(children_cpu()).map(|(a, b)| (b - a).max(0.0)));
     let first = output.lines().next().unwrap_or("").trim();
     let answer = match first {
         _ if killed => Answer::Timeout,
         "sat" => Answer::Sat,
         "unsat" => Answer::Unsat,
+        "unknown" if rlimit.is_some() && (output.contains("resource limit") || output.contains("\"canceled\"")) => {
+            Answer::Budget
+        }
         "unknown" => Answer::Unknown,
         "timeout" => Answer::Timeout,
         _ => {
