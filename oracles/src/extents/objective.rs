@@ -2,6 +2,7 @@
 //! about each: the key of a box, the value at a witness, and where to look for
 //! witnesses.
 
+use super::elimination::{behind_at, clipped_point, corner_points};
 use super::enclosure::{Box5, BoxValues};
 use crate::coverage::certainly_interior;
 use crate::interval::Interval;
@@ -142,13 +143,13 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5) -> Vec<[f64;
     // The centroid of the projected triangle (at the box's centre in u, v, t) clipped to
     // the box's (x, y) rectangle, when that is not empty: near an extreme the triangle
     // only grazes the tile and scattered points miss it.
-    if let Some((cx, cy)) = clipped_centroid(tri, centre, b) {
+    if let Some((cx, cy)) = clipped_centroid(tri, centre, b).or_else(|| clipped_point(tri, centre, b)) {
         let mut p = centre;
         (p[0], p[1]) = (cx, cy);
         if let Objective::Coord { index, max } = obj {
             let mut near = p;
             near[index] = if max { b[index].hi } else { b[index].lo };
-            if let Some((nx, ny)) = clipped_centroid(tri, near, b) {
+            if let Some((nx, ny)) = clipped_centroid(tri, near, b).or_else(|| clipped_point(tri, near, b)) {
                 (near[0], near[1]) = (nx, ny);
                 pts.push(near);
             }
@@ -165,6 +166,9 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5) -> Vec<[f64;
         pts.push(far);
     } else {
         pts.push(centre);
+    }
+    if behind_at(tri, centre[4]) {
+        pts.extend(corner_points(tri, b));
     }
     let mut seed = b
         .iter()

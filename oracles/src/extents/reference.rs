@@ -177,7 +177,18 @@ pub(super) fn box_values_with(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValue
         depth_smear = [0.0; 5];
     }
     let nz = nz.unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY));
-    BoxValues { e: e.map(|v| v.unwrap()), d, nz, depth, vertex_depth: None, smear, depth_smear, in_front, separated }
+    BoxValues {
+        e: e.map(|v| v.unwrap()),
+        d,
+        nz,
+        depth,
+        vertex_depth: None,
+        smear,
+        depth_smear,
+        in_front,
+        separated,
+        eliminated: false,
+    }
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! [`super::bnb`].
 
 use super::bnb::{self, Flow, Frontier, Open, Problem, Ties};
-use super::enclosure::{box_values_with, classify_values, Box5, BoxClass, BoxValues};
+use super::enclosure::{box_values_eliminating, classify_values, Box5, BoxClass, BoxValues};
 use super::objective::{candidate_points, key_of, push_towards_bound, value_at, Extent, Objective};
 use crate::coverage::{classify, Coverage};
 use crate::interval::Interval;
@@ -181,6 +181,19 @@ impl Problem for ExtentSearch<'_> {
             return Flow::Stop;
         }
         let class = classify_values(&bv);
+        if std::env::var("XTRACE").is_ok()
+            && matches!(obj, Objective::Coord { index: 2, max: false })
+            && (self.boxes < 60 || self.boxes % 1000 == 0)
+        {
+            eprintln!(
+                "visit {} key {key} class {class:?} box {:?} best {:?} e {:?} d {:?}",
+                self.boxes,
+                b.map(|i| (i.lo, i.hi)),
+                self.best.map(|b| b.0),
+                bv.e.map(|i| (i.lo, i.hi)),
+                (bv.d.lo, bv.d.hi)
+            );
+        }
         if class == BoxClass::Empty {
             return Flow::Continue;
         }
@@ -211,7 +224,12 @@ impl Problem for ExtentSearch<'_> {
         // every other time until it is finer than half the resolution, and after that
         // like any other coordinate (for deciding boxes, not for the bound).
         let (init, active, min_w) = (&self.init, &self.active, &self.min_w);
-        let smear = bv.open_smear();
+        let mut smear = bv.open_smear();
+        if matches!(obj, Objective::Coord { .. }) && !bv.in_front && bv.elim_smear.iter().any(|&v| v > 0.0) {
+            // While (x, y) is eliminated, (u, v, t) are split where the combination
+            // that nearly certified the box moves most.
+            smear[2..5].copy_from_slice(&bv.elim_smear);
+        }
         let max_smear = smear.iter().cloned().fold(0.0, f64::max);
         let mut dim = None;
         let mut best_score = 0.0; // a coordinate that moves no open value is never split
@@ -233,9 +251,9 @@ impl Problem for ExtentSearch<'_> {
                     score = b[i].width() / init[i].width();
                 }
             }
-            if i < 2 && bv.in_front && matches!(obj, Objective::Coord { .. }) && uvt_open(&b, init, min_w, active) {
-                // In front of the lens the side test decides (x, y) for a point of
-                // (u, v, t): refine (u, v, t) first.
+            if i < 2 && matches!(obj, Objective::Coord { .. }) && uvt_open(&b, init, min_w, active) {
+                // The elimination (and in front of the lens the side test) decides
+                // (x, y) for a small enough box of (u, v, t): refine (u, v, t) first.
                 continue;
             }
             if matches!(obj, Objective::Coord { index, .. } if i == index) && b[i].width() > cfg.resolution * 0.5 {
@@ -250,6 +268,15 @@ impl Problem for ExtentSearch<'_> {
             }
         }
         let Some(dim) = dim else {
+            if std::env::var("XDEBUG").is_ok() {
+                eprintln!(
+                    "stuck {obj:?} {:?} e {:?} d {:?} cands {:?}",
+                    b,
+                    bv.e,
+                    bv.d,
+                    candidate_points(tri, obj, &b).iter().map(|p| (p, classify(tri, *p))).collect::<Vec<_>>()
+                );
+            }
             if class != BoxClass::Full {
                 // (a full box's witness already stands for it)
                 self.stuck.push(key);
@@ -261,7 +288,7 @@ impl Problem for ExtentSearch<'_> {
         for half in [Interval::new(b[dim].lo, m), Interval::new(m, b[dim].hi)] {
             let mut c = b;
             c[dim] = half;
-            let cv = box_values_with(tri, &c, self.with_depth);
+            let cv = box_values_eliminating(tri, &c, self.with_depth);
             if classify_values(&cv) == BoxClass::Empty {
                 continue;
             }
@@ -305,7 +332,7 @@ pub fn search(tri: &Tri, init: Box5, ext: Extent, cfg: &ExtentsConfig, opts: Sea
         moved_at: 0,
     };
     let mut frontier = Frontier::new(Ties::Deepest);
-    let bv = box_values_with(tri, &init, with_depth);
+    let bv = box_values_eliminating(tri, &init, with_depth);
     frontier.push(key_of(obj, &init, &bv), 0, Cell { b: init, bv });
     bnb::run(&mut s, &mut frontier);
     let mut final_lo = s.final_lo;

@@ -1,0 +1,226 @@
+//! Eliminating (x, y): for a fixed lens position and time the covered pixels of a box's
+//! (x, y) rectangle form a convex polygon, decided without splitting x or y.
+//!
+//! For fixed (u, v, t) each edge value `E_k` is affine in (x, y) (the `x y` terms of
+//! `P_i.x P_j.y - P_i.y P_j.x` cancel) and `D` does not depend on (x, y), so the
+//! interior samples at that (u, v, t) are the pixels where the three affine functions
+//! `sigma E_k` are all positive (`sigma` the sign of `D`): an intersection of three open
+//! half-planes, bounded or not, whatever the signs of the `w_i`. It misses the
+//! rectangle exactly when some non-negative combination of the three (Farkas, and Helly
+//! in the plane: at most three of the seven half-planes are needed) is `<= 0` on the
+//! whole rectangle.
+//!
+//! [`no_covered_xy`] certifies that for a whole box of (u, v, t): it picks the
+//! multipliers `lambda` from the mid values (a tiny linear programme over the simplex,
+//! solved by enumerating its vertices) and then checks `G = sum lambda_k sigma E_k <= 0`
+//! over the box with the same outward-rounded corner enclosures as the edge values
+//! themselves. `G` is affine in each of x, y, u, v separately (as every `E_k` is), so its
+//! extremes over the box are at the 16 corners, and in t it is bounded term by term
+//! ([`super::tpoly::TPoly::range`]). A covered sample of the box would make every
+//! `sigma E_k > 0` and so `G > 0`: the check rules every one out. The multipliers are
+//! a heuristic (any non-negative, not all zero, are sound); only the check certifies.
+//!
+//! [`clipped_point`] proposes a witness at one (u, v, t): the centroid of the
+//! rectangle clipped by the three half-planes (plain f64: the exact classifier judges
+//! it).
+
+use super::enclosure::Box5;
+use super::lanes::{lconst, LPoly};
+use crate::interval::Interval;
+use crate::tri::Tri;
+
+/// What the elimination learnt about a box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Elimination {
+    /// No sample of the box is interior (certified).
+    Empty,
+    /// Not certified; for the combination that came closest, how much u, v and t each
+    /// move it over the box (the largest change between corners that differ in that
+    /// coordinate only; t: its non-constant terms): where to split next.
+    Open([f64; 3]),
+    /// No combination was tried (D unknown, or none is negative at the middle).
+    Unknown,
+}
+
+/// Certify that no sample of the box is interior, by one combination of the edge
+/// values per sign of `D` that `d` (D's enclosure over the box) leaves possible.
+/// `ev` are the edge values in the lanes of [`super::box_values_with`] (lane
+/// `8 iu + 4 iv + 2 ix + iy`), `h` the half-width of the box's times.
+pub(super) fn no_covered_xy(ev: &[LPoly<3, 16>; 3], h: f64, d: Interval) -> Elimination {
+    if d.lo.is_nan() || d.hi.is_nan() {
+        return Elimination::Unknown;
+    }
+    // D > 0 needs every E_k > 0; D < 0 every E_k < 0.
+    let signs: &[f64] = match (d.lo > 0.0, d.hi < 0.0) {
+        (true, _) => &[1.0],
+        (_, true) => &[-1.0],
+        _ => &[1.0, -1.0],
+    };
+    let mut out = Elimination::Empty;
+    for &sg in signs {
+        match (certified(ev, h, sg), out) {
+            (Elimination::Empty, _) => {}
+            (Elimination::Open(a), Elimination::Open(b)) => {
+                out = Elimination::Open(std::array::from_fn(|i| a[i].max(b[i])))
+            }
+            (Elimination::Open(a), Elimination::Empty) => out = Elimination::Open(a),
+            _ => return Elimination::Unknown,
+        }
+    }
+    out
+}
+
+/// One sign: multipliers from the mid values, then the rigorous check.
+fn certified(ev: &[LPoly<3, 16>; 3], h: f64, sg: f64) -> Elimination {
+    let mid: [[f64; 16]; 3] = std::array::from_fn(|k| ev[k].0[0].v.map(|v| sg * v));
+    let Some(lam) = multipliers(&mid) else { return Elimination::Unknown };
+    let mut g = LPoly::<3, 16>::zero();
+    for (k, &l) in lam.iter().enumerate() {
+        if l != 0.0 {
+            g = g.add(&lconst(&[sg * l; 16]).mul::<3, 3>(&ev[k]));
+        }
+    }
+    let (_, hi) = g.range(h);
+    if hi.iter().all(|&v| v <= 0.0) {
+        return Elimination::Empty;
+    }
+    let gm = &g.0[0].v;
+    let spread = |bit: usize| (0..16).filter(|n| n & bit == 0).map(|n| (gm[n | bit] - gm[n]).abs()).fold(0.0, f64::max);
+    let t = g.variation(h).iter().fold(0.0f64, |a, &v| a.max(v));
+    Elimination::Open([spread(8), spread(4), t])
+}
+
+/// Non-negative multipliers (summing to 1) that make `sum_k lam_k a_k` as negative as
+/// possible at the rectangle's four corners at the box's middle (u, v) (the mean of
+/// the four lens corners: exact for a function affine in u and in v), scored by the
+/// largest value over all 16 corner lanes. None when no candidate is negative there.
+fn multipliers(a: &[[f64; 16]; 3]) -> Option<[f64; 3]> {
+    // Values at the (x, y) corners c = 2 ix + iy, at the middle of the lens box.
+    let m: [[f64; 4]; 3] =
+        std::array::from_fn(|k| std::array::from_fn(|c| 0.25 * (a[k][c] + a[k][4 + c] + a[k][8 + c] + a[k][12 + c])));
+    let score = |l: &[f64; 3]| -> f64 {
+        (0..16).map(|n| l[0] * a[0][n] + l[1] * a[1][n] + l[2] * a[2][n]).fold(f64::NEG_INFINITY, f64::max)
+    };
+    let mut best: Option<([f64; 3], f64)> = None;
+    let mut consider = |l: [f64; 3]| {
+        if l.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
+            return;
+        }
+        let s = score(&l);
+        if s < 0.0 && best.is_none_or(|(_, b)| s < b) {
+            best = Some((l, s));
+        }
+    };
+    // Vertices of the simplex: one edge value alone.
+    for k in 0..3 {
+        let mut l = [0.0; 3];
+        l[k] = 1.0;
+        consider(l);
+    }
+    // On an edge of the simplex: where two corners' values tie.
+    for (k, j) in [(0, 1), (1, 2), (0, 2)] {
+        for c in 0..4 {
+            for c2 in c + 1..4 {
+                let (dk, dj) = (m[k][c] - m[k][c2], m[j][c] - m[j][c2]);
+                let den = dk - dj;
+                if den != 0.0 {
+                    let s = dk / den;
+                    if s > 0.0 && s < 1.0 {
+                        let mut l = [0.0; 3];
+                        (l[k], l[j]) = (1.0 - s, s);
+                        consider(l);
+                    }
+                }
+            }
+        }
+    }
+    // Inside: where three corners' values tie.
+    for skip in 0..4 {
+        let cs: Vec<usize> = (0..4).filter(|&c| c != skip).collect();
+        let p: [f64; 3] = std::array::from_fn(|k| m[k][cs[0]] - m[k][cs[1]]);
+        let q: [f64; 3] = std::array::from_fn(|k| m[k][cs[0]] - m[k][cs[2]]);
+        let n = [p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]];
+        let sum = n[0] + n[1] + n[2];
+        if sum != 0.0 {
+            consider(n.map(|v| v / sum));
+        }
+    }
+    best.map(|(l, _)| l)
+}
+
+/// The centroid of the box's (x, y) rectangle clipped by the half-planes where every
+/// `sigma E_k > 0` at (u, v, t) = `s[2..5]` (any signs of the `w_i`), clamped into the
+/// rectangle; None when the clipped polygon is empty or D is 0 there. Plain f64: it only
+/// proposes a point.
+pub(super) fn clipped_point(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
+    let (u, v, t) = (s[2], s[3], s[4]);
+    let mut xs = [0.0; 3];
+    let mut ys = [0.0; 3];
+    let mut ws = [0.0; 3];
+    for i in 0..3 {
+        let at = |j: usize| (1.0 - t) * tri.q[i][j] + t * tri.r[i][j];
+        let c = (1.0 - t) * tri.c0[i] + t * tri.c1[i];
+        xs[i] = at(0) + u * c;
+        ys[i] = at(1) + tri.k * v * c;
+        ws[i] = at(3);
+    }
+    // E_k = C_k + A_k x + B_k y for (k, i, j) = (0, 1, 2), (1, 2, 0), (2, 0, 1).
+    let lines: [[f64; 3]; 3] = std::array::from_fn(|k| {
+        let (i, j) = [(1, 2), (2, 0), (0, 1)][k];
+        [ys[i] * ws[j] - ws[i] * ys[j], ws[i] * xs[j] - xs[i] * ws[j], xs[i] * ys[j] - ys[i] * xs[j]]
+    });
+    let d: f64 = (0..3).map(|k| ws[k] * lines[k][2]).sum();
+    if !(d.is_finite() && d != 0.0) {
+        return None;
+    }
+    let sg = d.signum();
+    let mut poly: Vec<(f64, f64)> =
+        vec![(b[0].lo, b[1].lo), (b[0].hi, b[1].lo), (b[0].hi, b[1].hi), (b[0].lo, b[1].hi)];
+    for l in &lines {
+        let f = |p: &(f64, f64)| sg * (l[0] * p.0 + l[1] * p.1 + l[2]);
+        let mut out = Vec::with_capacity(poly.len() + 1);
+        for k in 0..poly.len() {
+            let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (fp, fq) = (f(&p), f(&q));
+            if fp > 0.0 {
+                out.push(p);
+            }
+            if (fp > 0.0) != (fq > 0.0) && fp != fq {
+                let r = fp / (fp - fq);
+                out.push((p.0 + r * (q.0 - p.0), p.1 + r * (q.1 - p.1)));
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            return None;
+        }
+    }
+    let n = poly.len() as f64;
+    let (sx, sy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+    let (cx, cy) = (sx / n, sy / n);
+    (cx.is_finite() && cy.is_finite()).then_some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
+}
+
+/// True when some vertex is on or behind the lens plane (`w_i <= 0`) at time `t`.
+pub(super) fn behind_at(tri: &Tri, t: f64) -> bool {
+    (0..3).any(|i| !((1.0 - t) * tri.q[i][3] + t * tri.r[i][3] > 0.0))
+}
+
+/// Witness proposals at the corners of the box's (u, v, t) (each with the point of
+/// [`clipped_point`] there): with a vertex behind the lens the covered set near an
+/// extreme is a thin wedge whose apex a box's centre keeps missing, while a corner on
+/// the wedge's open side lies in it.
+pub(super) fn corner_points(tri: &Tri, b: &Box5) -> Vec<[f64; 5]> {
+    let mut pts = Vec::with_capacity(8);
+    for n in 0..8 {
+        let mut p = b.map(|i| i.mid());
+        for (bit, k) in [(4, 2), (2, 3), (1, 4)] {
+            p[k] = if n & bit == 0 { b[k].lo } else { b[k].hi };
+        }
+        if let Some((x, y)) = clipped_point(tri, p, b) {
+            (p[0], p[1]) = (x, y);
+            pts.push(p);
+        }
+    }
+    pts
+}
