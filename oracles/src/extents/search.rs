@@ -181,19 +181,6 @@ impl Problem for ExtentSearch<'_> {
             return Flow::Stop;
         }
         let class = classify_values(&bv);
-        if std::env::var("XTRACE").is_ok()
-            && matches!(obj, Objective::Coord { index: 2, max: false })
-            && (self.boxes < 60 || self.boxes % 1000 == 0)
-        {
-            eprintln!(
-                "visit {} key {key} class {class:?} box {:?} best {:?} e {:?} d {:?}",
-                self.boxes,
-                b.map(|i| (i.lo, i.hi)),
-                self.best.map(|b| b.0),
-                bv.e.map(|i| (i.lo, i.hi)),
-                (bv.d.lo, bv.d.hi)
-            );
-        }
         if class == BoxClass::Empty {
             return Flow::Continue;
         }
@@ -268,15 +255,6 @@ impl Problem for ExtentSearch<'_> {
             }
         }
         let Some(dim) = dim else {
-            if std::env::var("XDEBUG").is_ok() {
-                eprintln!(
-                    "stuck {obj:?} {:?} e {:?} d {:?} cands {:?}",
-                    b,
-                    bv.e,
-                    bv.d,
-                    candidate_points(tri, obj, &b).iter().map(|p| (p, classify(tri, *p))).collect::<Vec<_>>()
-                );
-            }
             if class != BoxClass::Full {
                 // (a full box's witness already stands for it)
                 self.stuck.push(key);
