@@ -224,3 +224,143 @@ pub(super) fn corner_points(tri: &Tri, b: &Box5) -> Vec<[f64; 5]> {
     }
     pts
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::{classify, Coverage};
+    use crate::extents::enclosure::{box_values_eliminating, box_values_with, classify_values, BoxClass};
+
+    /// Uniform numbers in [0, 1) from a xorshift stream (reproducible test inputs).
+    fn unit_stream(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// A moving, defocused triangle in clip space whose `w` may be negative or cross 0
+    /// during the shutter (one vertex in three on average behind the lens at some time).
+    fn random_tri(next: &mut impl FnMut() -> f64) -> Tri {
+        let mut v = |lo: f64, hi: f64| lo + (hi - lo) * next();
+        let mut q = [[0.0; 4]; 3];
+        let mut r = [[0.0; 4]; 3];
+        let (mut c0, mut c1) = ([0.0; 3], [0.0; 3]);
+        for i in 0..3 {
+            q[i] = [v(-12.0, 12.0), v(-12.0, 12.0), v(-1.0, 1.0), v(-1.0, 2.5)];
+            r[i] = [v(-12.0, 12.0), v(-12.0, 12.0), v(-1.0, 1.0), v(-1.0, 2.5)];
+            c0[i] = v(-3.0, 3.0);
+            c1[i] = v(-3.0, 3.0);
+        }
+        Tri { q, r, c0, c1, k: v(0.5, 2.0) }
+    }
+
+    /// A box around `s`: (x, y) a rectangle of 1/64 to 4 pixels (as a tile), (u, v, t)
+    /// each of a random width from 1 down to 2^-20 of its range.
+    fn box_around(s: [f64; 5], next: &mut impl FnMut() -> f64) -> Box5 {
+        let scale = [4.0, 4.0, 2.0, 2.0, 1.0];
+        std::array::from_fn(|k| {
+            let f = scale[k] * 0.5f64.powi((next() * if k < 2 { 8.0 } else { 20.0 }) as i32);
+            Interval::new(s[k] - f * next(), s[k] + f * next())
+        })
+    }
+
+    /// The certificate never rules out a box that holds an interior sample: boxes of
+    /// every size drawn around interior samples (w of every sign, crossing 0 too) are
+    /// never eliminated, while undecided boxes where random points find no covered
+    /// sample are eliminated at a fair rate (the test would notice an elimination that
+    /// never fires).
+    #[test]
+    fn elimination_keeps_every_box_with_a_covered_sample() {
+        let mut next = unit_stream(0x2545_F491_4F6C_DD1D);
+        let (mut kept, mut crossing, mut eliminated, mut undecided) = (0, 0, 0, 0);
+        for _ in 0..400 {
+            let tri = random_tri(&mut next);
+            for _ in 0..40 {
+                let s = [next() * 8.0 - 4.0, next() * 8.0 - 4.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0, next()];
+                let b = box_around(s, &mut next);
+                let bv = box_values_eliminating(&tri, &b, false);
+                if classify(&tri, s) == Coverage::Interior {
+                    assert!(!bv.eliminated, "box {b:?} eliminated but {s:?} is interior in {tri:?}");
+                    assert_ne!(classify_values(&bv), BoxClass::Empty, "{b:?} {s:?} {tri:?}");
+                    kept += 1;
+                    let w = |t: f64| (0..3).map(move |i| (1.0 - t) * tri.q[i][3] + t * tri.r[i][3]);
+                    crossing += w(b[4].lo).zip(w(b[4].hi)).any(|(a, c)| a * c <= 0.0) as usize;
+                } else if classify_values(&box_values_with(&tri, &b, false)) == BoxClass::Undecided {
+                    let hit = (0..200).any(|_| {
+                        let p: [f64; 5] = std::array::from_fn(|k| b[k].lo + next() * b[k].width());
+                        classify(&tri, p) == Coverage::Interior
+                    });
+                    if !hit {
+                        undecided += 1;
+                        eliminated += bv.eliminated as usize;
+                    }
+                }
+            }
+        }
+        assert!(kept > 1000 && crossing > 50, "{kept} covered boxes, {crossing} with w crossing 0");
+        // (boxes wide in (u, v, t) need splitting before one combination serves them)
+        assert!(eliminated * 20 > undecided, "eliminated {eliminated} of {undecided} undecided boxes");
+    }
+
+    /// An eliminated box holds no interior sample: random points of every eliminated box
+    /// are judged exactly.
+    #[test]
+    fn eliminated_boxes_hold_no_covered_sample() {
+        let mut next = unit_stream(0x9E37_79B9_7F4A_7C15);
+        let mut checked = 0;
+        for _ in 0..1200 {
+            let tri = random_tri(&mut next);
+            for _ in 0..30 {
+                let s = [next() * 8.0 - 4.0, next() * 8.0 - 4.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0, next()];
+                let b = box_around(s, &mut next);
+                if !box_values_eliminating(&tri, &b, false).eliminated {
+                    continue;
+                }
+                for _ in 0..50 {
+                    let p: [f64; 5] = std::array::from_fn(|k| b[k].lo + next() * b[k].width());
+                    assert_ne!(classify(&tri, p), Coverage::Interior, "{p:?} in eliminated {b:?} of {tri:?}");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 4000, "only {checked} points checked");
+    }
+
+    /// The clipped point is a covered sample whenever the rectangle holds one at that
+    /// (u, v, t) (up to f64 rounding at slivers), and None when it holds none.
+    #[test]
+    fn clipped_points_are_covered() {
+        let mut next = unit_stream(0xD1B5_4A32_D192_ED03);
+        let (mut found, mut interior, mut missed) = (0, 0, 0);
+        for _ in 0..3000 {
+            let tri = random_tri(&mut next);
+            let s = [0.0, 0.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0, next()];
+            let (x0, y0) = (next() * 8.0 - 4.0, next() * 8.0 - 4.0);
+            let b: Box5 = [
+                Interval::new(x0, x0 + 2.0),
+                Interval::new(y0, y0 + 2.0),
+                Interval::point(s[2]),
+                Interval::point(s[3]),
+                Interval::point(s[4]),
+            ];
+            let any = (0..64).any(|_| {
+                let p = [x0 + 2.0 * next(), y0 + 2.0 * next(), s[2], s[3], s[4]];
+                classify(&tri, p) == Coverage::Interior
+            });
+            match clipped_point(&tri, s, &b) {
+                Some((x, y)) => {
+                    found += 1;
+                    assert!(b[0].contains(x) && b[1].contains(y));
+                    interior += (classify(&tri, [x, y, s[2], s[3], s[4]]) == Coverage::Interior) as usize;
+                }
+                None => missed += any as usize,
+            }
+        }
+        assert!(found > 300, "{found} rectangles with a covered part");
+        assert!(interior * 100 >= found * 99, "{interior} of {found} clipped points interior");
+        assert_eq!(missed, 0, "{missed} rectangles with covered samples and no clipped point");
+    }
+}

@@ -137,19 +137,23 @@ pub(super) fn value_at(tri: &Tri, obj: Objective, s: [f64; 5]) -> Interval {
 /// from a generator seeded by the box itself (so runs are reproducible). Near an
 /// extreme the covered set is often a thin wedge through a box corner that its centre
 /// misses; scattered points find it.
-pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5) -> Vec<[f64; 5]> {
+pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: bool) -> Vec<[f64; 5]> {
+    // Behind the lens, with elimination: the clipped point at a (u, v, t) (any signs of
+    // w) and at the corners of the box's (u, v, t).
+    let clip =
+        |p: [f64; 5]| clipped_centroid(tri, p, b).or_else(|| if eliminate { clipped_point(tri, p, b) } else { None });
     let centre = b.map(|i| i.mid());
     let mut pts = Vec::with_capacity(9);
     // The centroid of the projected triangle (at the box's centre in u, v, t) clipped to
     // the box's (x, y) rectangle, when that is not empty: near an extreme the triangle
     // only grazes the tile and scattered points miss it.
-    if let Some((cx, cy)) = clipped_centroid(tri, centre, b).or_else(|| clipped_point(tri, centre, b)) {
+    if let Some((cx, cy)) = clip(centre) {
         let mut p = centre;
         (p[0], p[1]) = (cx, cy);
         if let Objective::Coord { index, max } = obj {
             let mut near = p;
             near[index] = if max { b[index].hi } else { b[index].lo };
-            if let Some((nx, ny)) = clipped_centroid(tri, near, b).or_else(|| clipped_point(tri, near, b)) {
+            if let Some((nx, ny)) = clip(near) {
                 (near[0], near[1]) = (nx, ny);
                 pts.push(near);
             }
@@ -167,7 +171,7 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5) -> Vec<[f64;
     } else {
         pts.push(centre);
     }
-    if behind_at(tri, centre[4]) {
+    if eliminate && behind_at(tri, centre[4]) {
         pts.extend(corner_points(tri, b));
     }
     let mut seed = b

@@ -188,6 +188,7 @@ pub(super) fn box_values_with(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValue
         in_front,
         separated,
         eliminated: false,
+        elim_smear: [0.0; 3],
     }
 }
 
