@@ -203,7 +203,10 @@ pub(super) fn clipped_point(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f6
 
 /// True when some vertex is on or behind the lens plane (`w_i <= 0`) at time `t`.
 pub(super) fn behind_at(tri: &Tri, t: f64) -> bool {
-    (0..3).any(|i| !((1.0 - t) * tri.q[i][3] + t * tri.r[i][3] > 0.0))
+    (0..3).any(|i| {
+        let w = (1.0 - t) * tri.q[i][3] + t * tri.r[i][3];
+        w.is_nan() || w <= 0.0
+    })
 }
 
 /// Witness proposals at the corners of the box's (u, v, t) (each with the point of

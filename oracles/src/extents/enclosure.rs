@@ -53,7 +53,7 @@ pub struct BoxValues {
     pub separated: bool,
     /// For every (u, v, t) of the box, the covered pixels (a convex polygon) miss the
     /// box's (x, y) rectangle, certified by a combination of the edge values (see
-    /// [`super::elimination`]); only from [`box_values_eliminating`], else false.
+    /// the module `elimination`); only from [`box_values_eliminating`], else false.
     pub eliminated: bool,
     /// When the elimination ran and did not certify the box: how much u, v and t each
     /// move the combination it tried (zero otherwise). Guides splitting.
