@@ -94,15 +94,17 @@ fn certified(ev: &[LPoly<3, 16>; 3], h: f64, sg: f64) -> Elimination {
 /// possible at the rectangle's four corners at the box's middle (u, v) (the mean of
 /// the four lens corners: exact for a function affine in u and in v), scored by the
 /// largest value over all 16 corner lanes. None when no candidate is negative there.
-fn multipliers(a: &[[f64; 16]; 3]) -> Option<[f64; 3]> {
+/// The candidates are the vertices of that small linear programme: one function alone,
+/// two where two corners tie, three where three corners tie.
+fn multipliers<const F: usize>(a: &[[f64; 16]; F]) -> Option<[f64; F]> {
     // Values at the (x, y) corners c = 2 ix + iy, at the middle of the lens box.
-    let m: [[f64; 4]; 3] =
+    let m: [[f64; 4]; F] =
         std::array::from_fn(|k| std::array::from_fn(|c| 0.25 * (a[k][c] + a[k][4 + c] + a[k][8 + c] + a[k][12 + c])));
-    let score = |l: &[f64; 3]| -> f64 {
-        (0..16).map(|n| l[0] * a[0][n] + l[1] * a[1][n] + l[2] * a[2][n]).fold(f64::NEG_INFINITY, f64::max)
+    let score = |l: &[f64; F]| -> f64 {
+        (0..16).map(|n| (0..F).map(|k| l[k] * a[k][n]).sum::<f64>()).fold(f64::NEG_INFINITY, f64::max)
     };
-    let mut best: Option<([f64; 3], f64)> = None;
-    let mut consider = |l: [f64; 3]| {
+    let mut best: Option<([f64; F], f64)> = None;
+    let mut consider = |l: [f64; F]| {
         if l.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
             return;
         }
@@ -111,41 +113,105 @@ fn multipliers(a: &[[f64; 16]; 3]) -> Option<[f64; 3]> {
             best = Some((l, s));
         }
     };
-    // Vertices of the simplex: one edge value alone.
-    for k in 0..3 {
-        let mut l = [0.0; 3];
+    for k in 0..F {
+        let mut l = [0.0; F];
         l[k] = 1.0;
         consider(l);
     }
-    // On an edge of the simplex: where two corners' values tie.
-    for (k, j) in [(0, 1), (1, 2), (0, 2)] {
-        for c in 0..4 {
-            for c2 in c + 1..4 {
-                let (dk, dj) = (m[k][c] - m[k][c2], m[j][c] - m[j][c2]);
-                let den = dk - dj;
-                if den != 0.0 {
-                    let s = dk / den;
-                    if s > 0.0 && s < 1.0 {
-                        let mut l = [0.0; 3];
-                        (l[k], l[j]) = (1.0 - s, s);
+    for k in 0..F {
+        for j in k + 1..F {
+            for c in 0..4 {
+                for c2 in c + 1..4 {
+                    let (dk, dj) = (m[k][c] - m[k][c2], m[j][c] - m[j][c2]);
+                    let den = dk - dj;
+                    if den != 0.0 {
+                        let s = dk / den;
+                        if s > 0.0 && s < 1.0 {
+                            let mut l = [0.0; F];
+                            (l[k], l[j]) = (1.0 - s, s);
+                            consider(l);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for k in 0..F {
+        for j in k + 1..F {
+            for i in j + 1..F {
+                let f = [k, j, i];
+                for skip in 0..4 {
+                    let cs: Vec<usize> = (0..4).filter(|&c| c != skip).collect();
+                    let p: [f64; 3] = std::array::from_fn(|q| m[f[q]][cs[0]] - m[f[q]][cs[1]]);
+                    let r: [f64; 3] = std::array::from_fn(|q| m[f[q]][cs[0]] - m[f[q]][cs[2]]);
+                    let n = [p[1] * r[2] - p[2] * r[1], p[2] * r[0] - p[0] * r[2], p[0] * r[1] - p[1] * r[0]];
+                    let sum = n[0] + n[1] + n[2];
+                    if sum != 0.0 {
+                        let mut l = [0.0; F];
+                        for q in 0..3 {
+                            l[f[q]] = n[q] / sum;
+                        }
                         consider(l);
                     }
                 }
             }
         }
     }
-    // Inside: where three corners' values tie.
-    for skip in 0..4 {
-        let cs: Vec<usize> = (0..4).filter(|&c| c != skip).collect();
-        let p: [f64; 3] = std::array::from_fn(|k| m[k][cs[0]] - m[k][cs[1]]);
-        let q: [f64; 3] = std::array::from_fn(|k| m[k][cs[0]] - m[k][cs[2]]);
-        let n = [p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]];
-        let sum = n[0] + n[1] + n[2];
-        if sum != 0.0 {
-            consider(n.map(|v| v / sum));
+    best.map(|(l, _)| l)
+}
+
+/// Certify that no interior sample of the box has a hit depth beyond `z` (below it when
+/// `!max`, above it when `max`), where `D` has the sign `sg` over the box: such a
+/// sample has every `sg E_k > 0` and `g = sg (z D - N) > 0` (`sg (N - z D)` for a
+/// maximum), four half-planes in (x, y) for a fixed (u, v, t), so one non-negative
+/// combination of the four that is `<= 0` over the box rules it out, as for
+/// [`no_covered_xy`]. `n` and `d` are N and D in the lanes of the edge values.
+pub(super) fn no_depth_beyond(
+    ev: &[LPoly<3, 16>; 3],
+    n: &LPoly<4, 16>,
+    d: &LPoly<4, 16>,
+    h: f64,
+    sg: f64,
+    z: f64,
+    max: bool,
+) -> bool {
+    if !z.is_finite() {
+        return false;
+    }
+    let zd = lconst(&[z; 16]).mul::<4, 4>(d);
+    let gz = if max { n.sub(&zd) } else { zd.sub(n) };
+    // The four functions in the lanes, signed; E_k widened to four coefficients (an
+    // exact zero cubic term).
+    let mut f = [LPoly::<4, 16>::zero(); 4];
+    for k in 0..3 {
+        for q in 0..3 {
+            f[k].0[q] = ev[k].0[q];
         }
     }
-    best.map(|(l, _)| l)
+    f[3] = gz;
+    let sgn = lconst(&[sg; 16]);
+    let f: [LPoly<4, 16>; 4] = std::array::from_fn(|k| sgn.mul::<4, 4>(&f[k]));
+    let mid: [[f64; 16]; 4] = std::array::from_fn(|k| f[k].0[0].v);
+    let Some(lam) = multipliers(&mid) else { return false };
+    let mut g = LPoly::<4, 16>::zero();
+    for (k, &l) in lam.iter().enumerate() {
+        if l != 0.0 {
+            g = g.add(&lconst(&[l; 16]).mul::<4, 4>(&f[k]));
+        }
+    }
+    let (_, hi) = g.range(h);
+    hi.iter().all(|&v| v <= 0.0)
+}
+
+/// The least and greatest hit depth over the covered polygon at (u, v, t) = `s[2..5]`
+/// within the box's rectangle (at its vertices: the depth is linear-fractional in
+/// (x, y) with a denominator of one sign), plain f64; None when the polygon is empty.
+pub(super) fn polygon_depths(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
+    let (poly, lines, d, zs) = clipped_polygon(tri, s, b)?;
+    let depth =
+        |p: &(f64, f64)| (0..3).map(|k| zs[k] * (lines[k][2] + lines[k][0] * p.0 + lines[k][1] * p.1)).sum::<f64>() / d;
+    let (lo, hi) = poly.iter().map(depth).fold((f64::INFINITY, f64::NEG_INFINITY), |a, z| (a.0.min(z), a.1.max(z)));
+    (lo.is_finite() && hi.is_finite()).then_some((lo, hi))
 }
 
 /// The centroid of the box's (x, y) rectangle clipped by the half-planes where every
@@ -153,15 +219,31 @@ fn multipliers(a: &[[f64; 16]; 3]) -> Option<[f64; 3]> {
 /// rectangle; None when the clipped polygon is empty or D is 0 there. Plain f64: it only
 /// proposes a point.
 pub(super) fn clipped_point(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
+    let (poly, ..) = clipped_polygon(tri, s, b)?;
+    let n = poly.len() as f64;
+    let (sx, sy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+    let (cx, cy) = (sx / n, sy / n);
+    (cx.is_finite() && cy.is_finite()).then_some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
+}
+
+/// A covered polygon, its edge lines `E_k = C_k + A_k x + B_k y` as `[A, B, C]`, D and
+/// the vertex depth rows `z_k`.
+type Clipped = (Vec<(f64, f64)>, [[f64; 3]; 3], f64, [f64; 3]);
+
+/// The box's rectangle clipped by the half-planes `sigma E_k > 0` at (u, v, t) =
+/// `s[2..5]` (plain f64); None when empty or D is 0 there.
+fn clipped_polygon(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<Clipped> {
     let (u, v, t) = (s[2], s[3], s[4]);
     let mut xs = [0.0; 3];
     let mut ys = [0.0; 3];
     let mut ws = [0.0; 3];
+    let mut zs = [0.0; 3];
     for i in 0..3 {
         let at = |j: usize| (1.0 - t) * tri.q[i][j] + t * tri.r[i][j];
         let c = (1.0 - t) * tri.c0[i] + t * tri.c1[i];
         xs[i] = at(0) + u * c;
         ys[i] = at(1) + tri.k * v * c;
+        zs[i] = at(2);
         ws[i] = at(3);
     }
     // E_k = C_k + A_k x + B_k y for (k, i, j) = (0, 1, 2), (1, 2, 0), (2, 0, 1).
@@ -195,10 +277,7 @@ pub(super) fn clipped_point(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f6
             return None;
         }
     }
-    let n = poly.len() as f64;
-    let (sx, sy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
-    let (cx, cy) = (sx / n, sy / n);
-    (cx.is_finite() && cy.is_finite()).then_some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
+    Some((poly, lines, d, zs))
 }
 
 /// True when some vertex is on or behind the lens plane (`w_i <= 0`) at time `t`.
@@ -306,6 +385,31 @@ mod tests {
         assert!(kept > 1000 && crossing > 50, "{kept} covered boxes, {crossing} with w crossing 0");
         // (boxes wide in (u, v, t) need splitting before one combination serves them)
         assert!(eliminated * 20 > undecided, "eliminated {eliminated} of {undecided} undecided boxes");
+    }
+
+    /// The depth bounds the elimination certifies hold the exact hit depth of every
+    /// covered sample of the box: boxes of every size around interior samples (w of
+    /// every sign, crossing 0 too), and the bounds are finite on a fair share of them.
+    #[test]
+    fn covered_depth_holds_the_depth_of_covered_samples() {
+        let mut next = unit_stream(0x6A09_E667_F3BC_C908);
+        let (mut checked, mut bounded) = (0, 0);
+        for _ in 0..600 {
+            let tri = random_tri(&mut next);
+            for _ in 0..40 {
+                let s = [next() * 8.0 - 4.0, next() * 8.0 - 4.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0, next()];
+                if classify(&tri, s) != Coverage::Interior {
+                    continue;
+                }
+                let b = box_around(s, &mut next);
+                let cd = box_values_eliminating(&tri, &b, true).covered_depth;
+                let z = crate::coverage::depth_enclosure(&tri, s).expect("interior: D != 0");
+                assert!(cd.lo <= z.lo && z.hi <= cd.hi, "depth {z:?} outside {cd:?} at {s:?} in {b:?} of {tri:?}");
+                checked += 1;
+                bounded += (cd.lo.is_finite() || cd.hi.is_finite()) as usize;
+            }
+        }
+        assert!(checked > 1000 && bounded * 10 > checked, "{bounded} of {checked} boxes bounded");
     }
 
     /// An eliminated box holds no interior sample: random points of every eliminated box

@@ -1,7 +1,7 @@
 //! Box enclosures: the coverage values E_0, E_1, E_2, D (and the depth numerator) over
 //! a box of samples, and the judgement empty / full / undecided they imply.
 
-use super::elimination::{no_covered_xy, Elimination};
+use super::elimination::{no_covered_xy, no_depth_beyond, polygon_depths, Elimination};
 use super::lanes::{lconst, LPoly};
 use super::tpoly::TPoly;
 use crate::coverage::interval_div;
@@ -58,6 +58,10 @@ pub struct BoxValues {
     /// When the elimination ran and did not certify the box: how much u, v and t each
     /// move the combination it tried (zero otherwise). Guides splitting.
     pub elim_smear: [f64; 3],
+    /// Bounds on the hit depth of every covered sample of the box certified by the
+    /// elimination (the whole line where it certified nothing; only from
+    /// [`box_values_eliminating`] with depth).
+    pub covered_depth: Interval,
 }
 
 impl BoxValues {
@@ -227,6 +231,8 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
         smear[k][3] = sv;
     }
     let mut nz: Option<Interval> = None;
+    // N and D in the 16 lanes, kept for the depth certificate of the elimination.
+    let mut depth_lanes: Option<(LPoly<4, 16>, LPoly<4, 16>)> = None;
     let mut depth: Option<Interval> = None;
     if with_depth {
         let nk = |k: usize| -> LPoly<4, 16> { ev[k].mul(&LPoly::<2, 16>::splat(&zb[k])) };
@@ -250,6 +256,9 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
             }
         }
         let m = n.sub(&lconst(&zc).mul(&dp16));
+        if eliminate {
+            depth_lanes = Some((n, dp16));
+        }
         let (m_lo, m_hi) = m.range(h);
         let m_var = m.variation(h);
         let mut ok = true;
@@ -336,6 +345,7 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
         separated,
         eliminated: false,
         elim_smear: [0.0; 3],
+        covered_depth: Interval::new(f64::NEG_INFINITY, f64::INFINITY),
     };
     if eliminate && classify_values(&bv) == BoxClass::Undecided {
         match no_covered_xy(&ev, h, d) {
@@ -344,7 +354,50 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
             Elimination::Unknown => {}
         }
     }
+    if let Some((n, dl)) = depth_lanes.filter(|_| !bv.eliminated && (d.lo > 0.0 || d.hi < 0.0)) {
+        bv.covered_depth = covered_depth(tri, b, &bv, &ev, &n, &dl, h, if d.lo > 0.0 { 1.0 } else { -1.0 });
+    }
     bv
+}
+
+/// Bounds on the hit depth of the covered samples of a box from the elimination
+/// ([`BoxValues::covered_depth`]): the least and greatest depth over the covered polygon
+/// at the box's middle (u, v, t) propose a bound a little beyond each (a tenth, then a
+/// half of the way to the enclosure already known), which a combination of the edge
+/// values and the depth condition must certify; an end stays infinite otherwise.
+#[allow(clippy::too_many_arguments)]
+fn covered_depth(
+    tri: &Tri,
+    b: &Box5,
+    bv: &BoxValues,
+    ev: &[LPoly<3, 16>; 3],
+    n: &LPoly<4, 16>,
+    dl: &LPoly<4, 16>,
+    h: f64,
+    sg: f64,
+) -> Interval {
+    let mut out = Interval::new(f64::NEG_INFINITY, f64::INFINITY);
+    let Some((zlo, zhi)) = polygon_depths(tri, b.map(|i| i.mid()), b) else { return out };
+    let known = match (bv.depth, bv.vertex_depth) {
+        (Some(a), Some(v)) => Interval::new(a.lo.max(v.lo), a.hi.min(v.hi)),
+        (Some(a), None) | (None, Some(a)) => a,
+        (None, None) => return out,
+    };
+    for f in [0.1, 0.5] {
+        let z = zlo - f * (zlo - known.lo);
+        if z > known.lo && no_depth_beyond(ev, n, dl, h, sg, z, false) {
+            out.lo = z;
+            break;
+        }
+    }
+    for f in [0.1, 0.5] {
+        let z = zhi + f * (known.hi - zhi);
+        if z < known.hi && no_depth_beyond(ev, n, dl, h, sg, z, true) {
+            out.hi = z;
+            break;
+        }
+    }
+    out
 }
 
 /// The hull of the vertex depths `z_k(t) / w_k(t)` over the times `t` (see

@@ -110,8 +110,10 @@ pub(super) fn key_of(obj: Objective, b: &Box5, bv: &BoxValues) -> f64 {
             let (lo, hi) = match (bv.depth, bv.vertex_depth) {
                 (Some(a), Some(v)) => (a.lo.max(v.lo), a.hi.min(v.hi)),
                 (Some(a), None) | (None, Some(a)) => (a.lo, a.hi),
-                (None, None) => return f64::NEG_INFINITY,
+                (None, None) => (f64::NEG_INFINITY, f64::INFINITY),
             };
+            // (and the bounds the elimination certified)
+            let (lo, hi) = (lo.max(bv.covered_depth.lo), hi.min(bv.covered_depth.hi));
             if max {
                 -hi
             } else {
