@@ -46,6 +46,8 @@
 //! - `lanes`: the same polynomials for all corners of a box side by side;
 //! - [`enclosure`]: the enclosures of the coverage values over a box and the judgement
 //!   empty / full / undecided;
+//! - `elimination`: (x, y) decided exactly for a box of (u, v, t) (the covered pixels at
+//!   a fixed lens position and time are a convex polygon), and witnesses from it;
 //! - [`bnb`]: the best-first branch-and-bound engine (also used by the constraint
 //!   search of the code that uses this crate);
 //! - [`objective`]: the eight named extents and what a search needs to know of each;
@@ -53,6 +55,7 @@
 //! - [`solver`]: the tile solver that runs the searches on demand and keeps them.
 
 pub mod bnb;
+mod elimination;
 pub mod enclosure;
 mod lanes;
 pub mod objective;
@@ -62,7 +65,7 @@ pub mod search;
 pub mod solver;
 pub mod tpoly;
 
-pub use enclosure::{box_values, box_values_with, classify_values, Box5, BoxClass, BoxValues};
+pub use enclosure::{box_values, box_values_eliminating, box_values_with, classify_values, Box5, BoxClass, BoxValues};
 pub use objective::Extent;
 pub use search::{search, solve_objective, ExtentsConfig, Extreme, ObjectiveResult, Search};
 pub use solver::{tile_extents, Occupancy, Side, TileExtents, TileSolver};

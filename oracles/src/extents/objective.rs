@@ -2,6 +2,7 @@
 //! about each: the key of a box, the value at a witness, and where to look for
 //! witnesses.
 
+use super::elimination::{behind_at, clipped_point, corner_points};
 use super::enclosure::{Box5, BoxValues};
 use crate::coverage::certainly_interior;
 use crate::interval::Interval;
@@ -109,8 +110,10 @@ pub(super) fn key_of(obj: Objective, b: &Box5, bv: &BoxValues) -> f64 {
             let (lo, hi) = match (bv.depth, bv.vertex_depth) {
                 (Some(a), Some(v)) => (a.lo.max(v.lo), a.hi.min(v.hi)),
                 (Some(a), None) | (None, Some(a)) => (a.lo, a.hi),
-                (None, None) => return f64::NEG_INFINITY,
+                (None, None) => (f64::NEG_INFINITY, f64::INFINITY),
             };
+            // (and the bounds the elimination certified)
+            let (lo, hi) = (lo.max(bv.covered_depth.lo), hi.min(bv.covered_depth.hi));
             if max {
                 -hi
             } else {
@@ -136,19 +139,23 @@ pub(super) fn value_at(tri: &Tri, obj: Objective, s: [f64; 5]) -> Interval {
 /// from a generator seeded by the box itself (so runs are reproducible). Near an
 /// extreme the covered set is often a thin wedge through a box corner that its centre
 /// misses; scattered points find it.
-pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5) -> Vec<[f64; 5]> {
+pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: bool) -> Vec<[f64; 5]> {
+    // Behind the lens, with elimination: the clipped point at a (u, v, t) (any signs of
+    // w) and at the corners of the box's (u, v, t).
+    let clip =
+        |p: [f64; 5]| clipped_centroid(tri, p, b).or_else(|| if eliminate { clipped_point(tri, p, b) } else { None });
     let centre = b.map(|i| i.mid());
     let mut pts = Vec::with_capacity(9);
     // The centroid of the projected triangle (at the box's centre in u, v, t) clipped to
     // the box's (x, y) rectangle, when that is not empty: near an extreme the triangle
     // only grazes the tile and scattered points miss it.
-    if let Some((cx, cy)) = clipped_centroid(tri, centre, b) {
+    if let Some((cx, cy)) = clip(centre) {
         let mut p = centre;
         (p[0], p[1]) = (cx, cy);
         if let Objective::Coord { index, max } = obj {
             let mut near = p;
             near[index] = if max { b[index].hi } else { b[index].lo };
-            if let Some((nx, ny)) = clipped_centroid(tri, near, b) {
+            if let Some((nx, ny)) = clip(near) {
                 (near[0], near[1]) = (nx, ny);
                 pts.push(near);
             }
@@ -165,6 +172,9 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5) -> Vec<[f64;
         pts.push(far);
     } else {
         pts.push(centre);
+    }
+    if eliminate && behind_at(tri, centre[4]) {
+        pts.extend(corner_points(tri, b));
     }
     let mut seed = b
         .iter()

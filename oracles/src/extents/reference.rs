@@ -177,7 +177,20 @@ pub(super) fn box_values_with(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValue
         depth_smear = [0.0; 5];
     }
     let nz = nz.unwrap_or(Interval::new(f64::NEG_INFINITY, f64::INFINITY));
-    BoxValues { e: e.map(|v| v.unwrap()), d, nz, depth, vertex_depth: None, smear, depth_smear, in_front, separated }
+    BoxValues {
+        e: e.map(|v| v.unwrap()),
+        d,
+        nz,
+        depth,
+        vertex_depth: None,
+        smear,
+        depth_smear,
+        in_front,
+        separated,
+        eliminated: false,
+        elim_smear: [0.0; 3],
+        covered_depth: Interval::new(f64::NEG_INFINITY, f64::INFINITY),
+    }
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! [`super::bnb`].
 
 use super::bnb::{self, Flow, Frontier, Open, Problem, Ties};
-use super::enclosure::{box_values_with, classify_values, Box5, BoxClass, BoxValues};
+use super::enclosure::{box_values_eliminating, box_values_with, classify_values, Box5, BoxClass, BoxValues};
 use super::objective::{candidate_points, key_of, push_towards_bound, value_at, Extent, Objective};
 use crate::coverage::{classify, Coverage};
 use crate::interval::Interval;
@@ -71,7 +71,7 @@ pub(super) fn active_dims(tri: &Tri) -> [bool; 5] {
 
 /// Run one extent over the initial box.
 pub fn solve_objective(tri: &Tri, init: Box5, ext: Extent, cfg: &ExtentsConfig) -> ObjectiveResult {
-    search(tri, init, ext, cfg, Search::default())
+    search(tri, init, ext, cfg, Search { eliminate: true, ..Search::default() })
 }
 
 /// What a search may skip.
@@ -97,6 +97,12 @@ pub struct Search {
     /// to a bound that is tight to a rounding, most of a budget goes to boxes that can
     /// neither be ruled out nor hold a witness; this spends it on more cases instead.
     pub stall: Option<usize>,
+    /// Decide (x, y) by elimination ([`super::box_values_eliminating`]: the covered
+    /// pixels at a fixed (u, v, t) are a convex polygon) and split only (u, v, t) for a
+    /// coordinate extent; behind the lens, propose witnesses at the (u, v, t) corners
+    /// of a box too. Otherwise the boxes are judged by the enclosures alone and (x, y)
+    /// is split like the rest behind the lens.
+    pub eliminate: bool,
 }
 
 /// True while some active lens or time coordinate of the box can still be split.
@@ -187,7 +193,7 @@ impl Problem for ExtentSearch<'_> {
         let tri = self.tri;
         // Witnesses, while one could still improve on the best.
         if self.best.is_none_or(|(w, _)| w - key > cfg.resolution) {
-            for p in candidate_points(tri, obj, &b) {
+            for p in candidate_points(tri, obj, &b, opts.eliminate) {
                 if classify(tri, p) == Coverage::Interior {
                     let p = push_towards_bound(tri, obj, p, &b);
                     let val = value_at(tri, obj, p);
@@ -211,7 +217,12 @@ impl Problem for ExtentSearch<'_> {
         // every other time until it is finer than half the resolution, and after that
         // like any other coordinate (for deciding boxes, not for the bound).
         let (init, active, min_w) = (&self.init, &self.active, &self.min_w);
-        let smear = bv.open_smear();
+        let mut smear = bv.open_smear();
+        if matches!(obj, Objective::Coord { .. }) && !bv.in_front && bv.elim_smear.iter().any(|&v| v > 0.0) {
+            // While (x, y) is eliminated, (u, v, t) are split where the combination
+            // that nearly certified the box moves most.
+            smear[2..5].copy_from_slice(&bv.elim_smear);
+        }
         let max_smear = smear.iter().cloned().fold(0.0, f64::max);
         let mut dim = None;
         let mut best_score = 0.0; // a coordinate that moves no open value is never split
@@ -233,9 +244,13 @@ impl Problem for ExtentSearch<'_> {
                     score = b[i].width() / init[i].width();
                 }
             }
-            if i < 2 && bv.in_front && matches!(obj, Objective::Coord { .. }) && uvt_open(&b, init, min_w, active) {
-                // In front of the lens the side test decides (x, y) for a point of
-                // (u, v, t): refine (u, v, t) first.
+            if i < 2
+                && (bv.in_front || opts.eliminate)
+                && matches!(obj, Objective::Coord { .. })
+                && uvt_open(&b, init, min_w, active)
+            {
+                // The elimination (and in front of the lens the side test) decides
+                // (x, y) for a small enough box of (u, v, t): refine (u, v, t) first.
                 continue;
             }
             if matches!(obj, Objective::Coord { index, .. } if i == index) && b[i].width() > cfg.resolution * 0.5 {
@@ -261,7 +276,7 @@ impl Problem for ExtentSearch<'_> {
         for half in [Interval::new(b[dim].lo, m), Interval::new(m, b[dim].hi)] {
             let mut c = b;
             c[dim] = half;
-            let cv = box_values_with(tri, &c, self.with_depth);
+            let cv = values(tri, &c, self.with_depth, opts.eliminate);
             if classify_values(&cv) == BoxClass::Empty {
                 continue;
             }
@@ -269,6 +284,15 @@ impl Problem for ExtentSearch<'_> {
             frontier.push(k, depth + 1, Cell { b: c, bv: cv });
         }
         Flow::Continue
+    }
+}
+
+/// The box values the search judges by (see [`Search::eliminate`]).
+fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
+    if eliminate {
+        box_values_eliminating(tri, b, with_depth)
+    } else {
+        box_values_with(tri, b, with_depth)
     }
 }
 
@@ -305,7 +329,7 @@ pub fn search(tri: &Tri, init: Box5, ext: Extent, cfg: &ExtentsConfig, opts: Sea
         moved_at: 0,
     };
     let mut frontier = Frontier::new(Ties::Deepest);
-    let bv = box_values_with(tri, &init, with_depth);
+    let bv = values(tri, &init, with_depth, opts.eliminate);
     frontier.push(key_of(obj, &init, &bv), 0, Cell { b: init, bv });
     bnb::run(&mut s, &mut frontier);
     let mut final_lo = s.final_lo;
