@@ -103,6 +103,12 @@ enum Cmd {
         /// rounding-size witnesses per case, fewer cases per minute.
         #[arg(long, default_value_t = 250)]
         side_stall: usize,
+        /// When a side search on the exact enclosures leaves a gap, search again with
+        /// (x, y) eliminated for each box of lens and time: decides more cases (most
+        /// behind the lens: new violations of published methods, more proofs), with
+        /// more solver boxes. Off by default until the expectations are reviewed with it.
+        #[arg(long)]
+        second_chance: bool,
         /// Boxes per certified per-sample constraint search (more: fewer undecided
         /// cases for the per-sample methods, slower).
         #[arg(long, default_value_t = 2000)]
@@ -454,6 +460,7 @@ fn run() -> Result<()> {
             expectations,
             side_budget,
             side_stall,
+            second_chance,
             constraint_budget,
             limit_every,
             baseline,
@@ -495,6 +502,7 @@ fn run() -> Result<()> {
             anyhow::ensure!(constraint_budget > 0, "--constraint-budget 0: a search needs at least one box");
             cfg.side_budget = side_budget;
             cfg.side_stall = side_stall;
+            cfg.extents.second_chance = second_chance;
             cfg.constraint_budget = constraint_budget;
             let ex = cullproof::check::Expectations::load(&expectations)?;
             cfg.limit_every = limit_every;

@@ -54,6 +54,9 @@ pub struct Settings {
     /// 1920x1080+64`, ...); absent for the defaults, so older entries still match.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sample_set: Option<String>,
+    /// The judge's second chance (`--second-chance`); absent when off.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub second_chance: bool,
 }
 
 impl Settings {
@@ -77,6 +80,7 @@ impl Settings {
             limit_every: cfg.limit_every,
             limit_budget: cfg.limit_budget,
             sample_set: super::samples::SetNote::of(cfg, 0).map(|n| n.key()),
+            second_chance: cfg.extents.second_chance,
         }
     }
 }

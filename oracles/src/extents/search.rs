@@ -18,11 +18,16 @@ pub struct ExtentsConfig {
     /// A box narrower than this fraction of the initial box in every searched
     /// dimension is not split further.
     pub min_fraction: f64,
+    /// When a side or occupancy search on the enclosures alone leaves a gap, search
+    /// again with (x, y) eliminated per (u, v, t) box ([`super::elimination`]); both
+    /// are certified, so the better stands. It decides more cases (behind the lens
+    /// above all) at the price of more boxes. Objective searches always eliminate.
+    pub second_chance: bool,
 }
 
 impl Default for ExtentsConfig {
     fn default() -> Self {
-        ExtentsConfig { resolution: 1e-4, max_boxes: 20_000, min_fraction: 1e-7 }
+        ExtentsConfig { resolution: 1e-4, max_boxes: 20_000, min_fraction: 1e-7, second_chance: false }
     }
 }
 

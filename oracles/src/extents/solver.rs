@@ -126,6 +126,9 @@ impl<'a> TileSolver<'a> {
         // eliminated.
         let mut r = ObjectiveResult::nothing(false);
         for eliminate in [false, true] {
+            if eliminate && !self.cfg.second_chance {
+                break;
+            }
             let opts = Search { bound: None, first_witness: true, refine_boxes: None, stall: None, eliminate };
             r = search(self.tri, self.init, Extent::UMin, &self.cfg, opts);
             self.boxes += r.boxes;
@@ -165,10 +168,12 @@ impl<'a> TileSolver<'a> {
     fn side_uncached(&mut self, ext: Extent, bound: f64, band: f64, budget: usize, stall: Option<usize>) -> Side {
         let first = self.side_once(ext, bound, band, budget, stall, false);
         match first {
-            Side::Within { gap, boxes } if gap > 0.0 => match self.side_once(ext, bound, band, budget, stall, true) {
-                Side::Within { gap: g2, boxes: b2 } => Side::Within { gap: gap.min(g2), boxes: boxes + b2 },
-                beyond => beyond,
-            },
+            Side::Within { gap, boxes } if gap > 0.0 && self.cfg.second_chance => {
+                match self.side_once(ext, bound, band, budget, stall, true) {
+                    Side::Within { gap: g2, boxes: b2 } => Side::Within { gap: gap.min(g2), boxes: boxes + b2 },
+                    beyond => beyond,
+                }
+            }
             decided => decided,
         }
     }
