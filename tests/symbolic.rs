@@ -187,3 +187,84 @@ fn the_symbolic_search_finds_bbox_f32_tile_cull() {
     // bbox-safe does not cull it.
     assert!(!matches!(by_id("bbox-safe").unwrap().setup(&tri).tile(&tile), TileResult::Empty));
 }
+
+/// The f32 answer bits of a method's tile test: None for Empty, else t, u, v.
+fn answer_bits(r: &TileResult) -> Option<[f32; 6]> {
+    match r {
+        TileResult::Empty => None,
+        TileResult::Bounds(b) => Some([b.t[0], b.t[1], b.u[0], b.u[1], b.v[0], b.v[1]]),
+    }
+}
+
+/// Cases for an encoded tile test: from [`random_case`], until `each` culled and `each`
+/// kept tiles are found for every method id (with a few tiles moved onto the box).
+fn culled_and_kept(ids: &[&str], each: usize, seed: u64) -> Vec<(Triangle, Tile)> {
+    let mut r = rng(seed);
+    let mut out = vec![];
+    let mut count = vec![[0usize; 2]; ids.len()];
+    for n in 0..20_000 {
+        let (tri, mut tile) = random_case(&mut r, n);
+        if n % 3 == 0 {
+            // a tile just beside vertex 0's projection: the reject's limit
+            let (x, y) = (tri.q[0][0] / tri.q[0][3], tri.q[0][1] / tri.q[0][3]);
+            let s = tile.x1 - tile.x0;
+            tile = Tile { x0: x + s * 0.01, y0: y, x1: x + s, y1: y + s };
+        }
+        let mut useful = false;
+        for (k, id) in ids.iter().enumerate() {
+            let culled = matches!(by_id(id).unwrap().setup(&tri).tile(&tile), TileResult::Empty) as usize;
+            if count[k][culled] < each {
+                count[k][culled] += 1;
+                useful = true;
+            }
+        }
+        if useful {
+            out.push((tri, tile));
+        }
+        if count.iter().all(|c| c[0] >= each && c[1] >= each) {
+            return out;
+        }
+    }
+    panic!("not enough culled and kept tiles among the inputs: {count:?}");
+}
+
+/// The anti-drift test for la2011 and la2011-safe: their setup and tile answer (the
+/// reject and the t, u, v ranges), emitted as SMT-LIB2 and evaluated by z3, give the
+/// bits of the methods the gate runs.
+#[test]
+fn the_emitted_la2011_evaluates_to_the_f32_bits() {
+    use cullproof::bounds::la2011::{setup_of, tile_answer, Nearest, Outward, Round};
+    fn both<R: Round>(smt: &Smt, tri: &Triangle, tile: &Tile) -> ((bool, [f32; 6]), (String, Vec<String>)) {
+        let tv = [tile.x0, tile.y0, tile.x1, tile.y1];
+        let (ok, t, u, v) = tile_answer::<R, Plain>(&Plain, &setup_of::<R, Plain>(&Plain, &TriOf::of(tri)), &tv);
+        let st = TriOf::of(tri).map(|x| smt.lit(*x));
+        let (sok, st_, su, sv) = tile_answer::<R, Smt>(smt, &setup_of::<R, Smt>(smt, &st), &tv.map(|x| smt.lit(x)));
+        let terms = [st_, su, sv].concat();
+        ((ok, [t[0], t[1], u[0], u[1], v[0], v[1]]), (sok, terms))
+    }
+    let ids = ["la2011", "la2011-safe"];
+    let cases = culled_and_kept(&ids, 2, 0x1a2011);
+    let smt = Smt::new();
+    let (mut floats, mut bools, mut want_f, mut want_b) = (vec![], vec![], vec![], vec![]);
+    for (tri, tile) in &cases {
+        for id in ids {
+            let gate = answer_bits(&by_id(id).unwrap().setup(tri).tile(tile));
+            let ((ok, vals), (sok, terms)) =
+                if id == "la2011" { both::<Nearest>(&smt, tri, tile) } else { both::<Outward>(&smt, tri, tile) };
+            // The f32 instance is the method the gate runs.
+            assert_eq!(ok, gate.is_some(), "{id} {tri:?} {tile:?}");
+            if let Some(g) = gate {
+                assert!(g.iter().zip(&vals).all(|(a, b)| same_bits(*a, *b)), "{id}: {g:?} {vals:?}");
+                floats.extend(terms);
+                want_f.extend(vals);
+            }
+            bools.push(sok);
+            want_b.push(ok);
+        }
+    }
+    let (f, b) = eval(&smt, &floats, &bools);
+    for (k, (w, g)) in want_f.iter().zip(&f).enumerate() {
+        assert!(same_bits(*w, *g), "value {k}: f32 {w:e}, z3 {g:e}");
+    }
+    assert_eq!(want_b, b);
+}
