@@ -7,6 +7,8 @@
 mod cases;
 #[path = "encoded/la2011_old.rs"]
 mod la2011_old;
+#[path = "encoded/mam2012_old.rs"]
+mod mam2012_old;
 
 use cullproof::bounds::by_id;
 
@@ -39,6 +41,13 @@ fn la2011_is_its_old_code_bit_for_bit() {
 #[test]
 fn la2011_safe_is_its_old_code_bit_for_bit() {
     let (tiles, culled) = compare("la2011-safe", N, |tri, tile| la2011_old::answer(true, tri, tile));
+    assert_eq!(tiles, 2 * N);
+    assert!(culled > N / 20, "only {culled} of {tiles} tiles culled: the reject went untested");
+}
+
+#[test]
+fn mam2012_is_its_old_code_bit_for_bit() {
+    let (tiles, culled) = compare("mam2012", N, mam2012_old::answer);
     assert_eq!(tiles, 2 * N);
     assert!(culled > N / 20, "only {culled} of {tiles} tiles culled: the reject went untested");
 }
