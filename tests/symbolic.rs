@@ -268,3 +268,72 @@ fn the_emitted_la2011_evaluates_to_the_f32_bits() {
     }
     assert_eq!(want_b, b);
 }
+
+/// The anti-drift test for mam2012: its setup (the enabling conditions, the screen
+/// extent, the patches) and tile answer (the reject, u^, v^ and the four lines),
+/// emitted as SMT-LIB2 and evaluated by z3, give the bits of the method the gate runs.
+#[test]
+fn the_emitted_mam2012_evaluates_to_the_f32_bits() {
+    use cullproof::bounds::mam2012::{setup_of, tile_answer};
+    // mam2012 needs one CoC sign and every w > 0: make most random cases so.
+    let cases: Vec<(Triangle, Tile)> = culled_and_kept(&["mam2012"], 3, 0x3a32012)
+        .into_iter()
+        .chain((0..40).map(|n| {
+            let mut r = rng(n + 99);
+            let (mut tri, tile) = random_case(&mut r, n as usize);
+            for c in tri.c0.iter_mut().chain(tri.c1.iter_mut()) {
+                *c = c.abs() + 0.01;
+            }
+            (tri, tile)
+        }))
+        .collect();
+    let m = by_id("mam2012").unwrap();
+    let smt = Smt::new();
+    let (mut floats, mut bools, mut want_f, mut want_b) = (vec![], vec![], vec![], vec![]);
+    let (mut culled, mut enabled) = (0, 0);
+    for (tri, tile) in cases.iter().take(12) {
+        let tv = [tile.x0, tile.y0, tile.x1, tile.y1];
+        let (why, s) = setup_of(&Plain, &TriOf::of(tri), false);
+        let on = !why.iter().any(|&w| w);
+        let (sw, ss) = setup_of(&smt, &TriOf::of(tri).map(|x| smt.lit(*x)), false);
+        bools.extend(sw);
+        want_b.extend(why);
+        let gate = m.setup(tri).tile(tile);
+        if !on {
+            assert!(matches!(gate, TileResult::Bounds(_)), "a disabled mam2012 culled");
+            continue;
+        }
+        enabled += 1;
+        let (ok, u, v, lines) = tile_answer(&Plain, &s, &tv);
+        // The f32 instance is the method the gate runs.
+        assert_eq!(ok, answer_bits(&gate).is_some(), "{tri:?} {tile:?}");
+        culled += !ok as usize;
+        let (sok, su, sv, slines) = tile_answer(&smt, &ss, &tv.map(|x| smt.lit(x)));
+        bools.push(sok);
+        want_b.push(ok);
+        if let TileResult::Bounds(b) = &gate {
+            assert!(same_bits(b.u[0], u[0]) && same_bits(b.u[1], u[1]) && same_bits(b.v[0], v[0]));
+            let shown: Vec<String> = lines.iter().filter(|l| l.0).map(|l| format!("a: {:?}, b: {:?}", l.1, l.2)).collect();
+            assert_eq!(shown.len(), b.constraints.len());
+            for (s, c) in shown.iter().zip(&b.constraints) {
+                assert!(format!("{c:?}").contains(s.as_str()), "{c:?} vs {s}");
+            }
+            floats.extend([su, sv].concat());
+            want_f.extend([u, v].concat());
+            for ((on, a, b), (son, sa, sb)) in lines.iter().zip(slines) {
+                bools.push(son);
+                want_b.push(*on);
+                if *on {
+                    floats.extend([sa, sb]);
+                    want_f.extend([*a, *b]);
+                }
+            }
+        }
+    }
+    assert!(culled >= 2 && enabled >= culled + 2, "culled {culled}, enabled {enabled}");
+    let (f, b) = eval(&smt, &floats, &bools);
+    for (k, (w, g)) in want_f.iter().zip(&f).enumerate() {
+        assert!(same_bits(*w, *g), "value {k}: f32 {w:e}, z3 {g:e}");
+    }
+    assert_eq!(want_b, b);
+}
