@@ -313,7 +313,8 @@ fn the_emitted_mam2012_evaluates_to_the_f32_bits() {
         want_b.push(ok);
         if let TileResult::Bounds(b) = &gate {
             assert!(same_bits(b.u[0], u[0]) && same_bits(b.u[1], u[1]) && same_bits(b.v[0], v[0]));
-            let shown: Vec<String> = lines.iter().filter(|l| l.0).map(|l| format!("a: {:?}, b: {:?}", l.1, l.2)).collect();
+            let shown: Vec<String> =
+                lines.iter().filter(|l| l.0).map(|l| format!("a: {:?}, b: {:?}", l.1, l.2)).collect();
             assert_eq!(shown.len(), b.constraints.len());
             for (s, c) in shown.iter().zip(&b.constraints) {
                 assert!(format!("{c:?}").contains(s.as_str()), "{c:?} vs {s}");

@@ -244,8 +244,7 @@ impl Round for Outward {
 fn mul<R: Round, A: F32Arith>(ar: &A, a: &A::F, b: &A::F) -> [A::F; 2] {
     let p = ar.mul(a, b);
     let (zero, one) = (ar.lit(0.0), ar.lit(1.0));
-    let exact =
-        ar.any(&[ar.eq(a, &zero), ar.eq(b, &zero), ar.eq(&ar.abs(a), &one), ar.eq(&ar.abs(b), &one)]);
+    let exact = ar.any(&[ar.eq(a, &zero), ar.eq(b, &zero), ar.eq(&ar.abs(a), &one), ar.eq(&ar.abs(b), &one)]);
     [ar.select(&exact, &p, &R::dn(ar, &p)), ar.select(&exact, &p, &R::up(ar, &p))]
 }
 
@@ -298,7 +297,8 @@ pub fn axis_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>, axis: usize) ->
     let scale = if axis == 0 { ar.lit(1.0) } else { tri.k.clone() };
     let p = [tri.q.each_ref().map(|v| v[axis].clone()), tri.r.each_ref().map(|v| v[axis].clone())];
     let w = [tri.q.each_ref().map(|v| v[3].clone()), tri.r.each_ref().map(|v| v[3].clone())];
-    let s = [tri.c0.each_ref().map(|c| mul::<R, A>(ar, &scale, c)), tri.c1.each_ref().map(|c| mul::<R, A>(ar, &scale, c))];
+    let s =
+        [tri.c0.each_ref().map(|c| mul::<R, A>(ar, &scale, c)), tri.c1.each_ref().map(|c| mul::<R, A>(ar, &scale, c))];
     let class = [0, 1, 2].map(|i| Class::of(ar, &s[0][i], &s[1][i]));
     Axis { p, w, s, class }
 }
@@ -354,10 +354,8 @@ impl<F: Clone, B: Clone> Axis<F, B> {
                 hb = join(ar, &hb, &neg_hull::<R, A>(ar, &dn, &sn, &self.class[i].flip()));
             }
         }
-        let lens = [
-            ar.max(&ar.max(&ha.1[0], &hb.1[0]), &ar.lit(-1.0)),
-            ar.min(&ar.min(&ha.1[1], &hb.1[1]), &ar.lit(1.0)),
-        ];
+        let lens =
+            [ar.max(&ar.max(&ha.1[0], &hb.1[0]), &ar.lit(-1.0)), ar.min(&ar.min(&ha.1[1], &hb.1[1]), &ar.lit(1.0))];
         let ok = ar.all(&[ha.0, hb.0, ar.not(&ar.gt(&lens[0], &lens[1]))]);
         (ok, lens)
     }
@@ -465,7 +463,8 @@ pub struct Setup<F, B> {
 
 /// [`Setup`] of a triangle.
 pub fn setup_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> Setup<A::F, A::B> {
-    let inputs: Vec<&A::F> = tri.q.iter().chain(&tri.r).flatten().chain(&tri.c0).chain(&tri.c1).chain([&tri.k]).collect();
+    let inputs: Vec<&A::F> =
+        tri.q.iter().chain(&tri.r).flatten().chain(&tri.c0).chain(&tri.c1).chain([&tri.k]).collect();
     let finite: Vec<A::B> = inputs.into_iter().map(|v| ar.is_finite(v)).collect();
     let full = ar.and(&ar.truth(R::GUARD), &ar.not(&ar.all(&finite)));
     Setup { x: axis_of::<R, A>(ar, tri, 0), y: axis_of::<R, A>(ar, tri, 1), full }

@@ -503,7 +503,12 @@ pub type LineOf<F, B> = (B, F, F);
 /// One axis of the tile answer over any [`F32Arith`]: whether its lens range is
 /// non-empty, the range (`u^` or `v^`) and the lower and upper line, for the tile's
 /// centre `c` and half width `h` on that axis.
-pub fn axis_tile<A: F32Arith>(ar: &A, ax: &Axis<A::F, A::B>, c: &A::F, h: &A::F) -> (A::B, [A::F; 2], [LineOf<A::F, A::B>; 2]) {
+pub fn axis_tile<A: F32Arith>(
+    ar: &A,
+    ax: &Axis<A::F, A::B>,
+    c: &A::F,
+    h: &A::F,
+) -> (A::B, [A::F; 2], [LineOf<A::F, A::B>; 2]) {
     let (lo_ok, lo) = ax.lo.line(ar, c, h, -1.0);
     let (hi_ok, hi) = ax.hi.line(ar, c, h, 1.0);
     let (one, minus) = (ar.lit(1.0), ar.lit(-1.0));
