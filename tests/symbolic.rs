@@ -338,3 +338,50 @@ fn the_emitted_mam2012_evaluates_to_the_f32_bits() {
     }
     assert_eq!(want_b, b);
 }
+
+/// The anti-drift test for mam2012-hyperplane's tile path: from the f32 setup's edges,
+/// the planes, the reject and the refined u^, v^, t^, emitted as SMT-LIB2 and evaluated
+/// by z3, give the bits of the method the gate runs.
+#[test]
+fn the_emitted_mam2012_hyperplane_tile_path_evaluates_to_the_f32_bits() {
+    use cullproof::bounds::mam2012_hyperplane::{edges_of, tile_answer};
+    let m = by_id("mam2012-hyperplane-ps").unwrap();
+    let smt = Smt::new();
+    let (mut floats, mut bools, mut want_f, mut want_b) = (vec![], vec![], vec![], vec![]);
+    let mut culled = 0;
+    let cases = culled_and_kept(&["mam2012-hyperplane-ps"], 4, 0x4e9);
+    for (tri, tile) in &cases {
+        let Ok((edges, k)) = edges_of(tri) else { continue };
+        let tv = [tile.x0, tile.y0, tile.x1, tile.y1];
+        let (ok, ranges, planes) = tile_answer(&Plain, &edges, &k, &tv);
+        let gate = m.setup(tri).tile(tile);
+        // The f32 instance is the method the gate runs.
+        assert_eq!(ok, answer_bits(&gate).is_some(), "{tri:?} {tile:?}");
+        culled += !ok as usize;
+        let sedges = edges.each_ref().map(|e| e.map(|x| smt.lit(x)));
+        let (sok, sranges, splanes) = tile_answer(&smt, &sedges, &smt.lit(k), &tv.map(|x| smt.lit(x)));
+        bools.push(sok);
+        want_b.push(ok);
+        if let TileResult::Bounds(b) = &gate {
+            let flat: Vec<f32> = ranges.iter().flatten().copied().collect();
+            let g = [b.u, b.v, b.t].concat();
+            assert!(flat.iter().zip(&g).all(|(a, b)| same_bits(*a, *b)), "{flat:?} {g:?}");
+            floats.extend(sranges.into_iter().flatten());
+            want_f.extend(flat);
+            for ((on, a), (son, sa)) in planes.iter().zip(splanes) {
+                bools.push(son);
+                want_b.push(*on);
+                if *on {
+                    floats.extend(sa);
+                    want_f.extend(a);
+                }
+            }
+        }
+    }
+    assert!(culled >= 2, "culled {culled}");
+    let (f, b) = eval(&smt, &floats, &bools);
+    for (k, (w, g)) in want_f.iter().zip(&f).enumerate() {
+        assert!(same_bits(*w, *g), "value {k}: f32 {w:e}, z3 {g:e}");
+    }
+    assert_eq!(want_b, b);
+}
