@@ -385,3 +385,28 @@ fn the_emitted_mam2012_hyperplane_tile_path_evaluates_to_the_f32_bits() {
     }
     assert_eq!(want_b, b);
 }
+
+/// z3 finds inputs for which la2011's f32 answer rejects a tile that the exact footprint
+/// reaches (the bbox template, see `src/symbolic/la2011_query.rs`); the f32 method
+/// culls the model's tile and the exact edge lies inside it. Slow on a busy machine
+/// (z3 time in the README): `cargo test --release --test symbolic -- --ignored`.
+#[test]
+#[ignore]
+fn the_symbolic_search_finds_la2011_f32_tile_cull() {
+    use cullproof::symbolic::la2011_query::script;
+    let q = Query { side: Side::XMin, ranges: [[128.0, 256.0], [1.0, 2.0], [1.875, 2.0], [96.0, 128.0]] };
+    let s = script(false, &q);
+    if let Ok(p) = std::env::var("SYMB_DUMP") {
+        std::fs::write(p, &s).unwrap();
+    }
+    let limit = std::env::var("SYMB_LIMIT").ok().and_then(|v| v.parse().ok()).unwrap_or(600.0);
+    let run = z3::run(&s, limit).expect("z3 runs (install z3)");
+    eprintln!("la2011 x-min query: {:?} in {:.1} s wall, cpu {:?} s", run.answer, run.seconds, run.cpu_seconds);
+    assert_eq!(run.answer, Answer::Sat, "{}", run.output);
+    let v = ["a", "c", "w", "t"].map(|n| z3::value(&run.output, n).unwrap());
+    let (tri, tile) = instance(Side::XMin, v);
+    assert!(matches!(by_id("la2011").unwrap().setup(&tri).tile(&tile), TileResult::Empty), "{v:?}");
+    let (n, p) = (v[0] as f64 - v[1] as f64, tile.x1 as f64 * v[2] as f64);
+    assert!(n < p, "exact edge {n} / w not inside the tile ending at {}", tile.x1);
+    assert!(!matches!(by_id("la2011-safe").unwrap().setup(&tri).tile(&tile), TileResult::Empty));
+}

@@ -48,7 +48,7 @@ pub fn rule(id: &str) -> Result<Rule> {
         "bbox-safe" => Rule::Safe,
         "broken/planted-eq/bbox-safe" => Rule::Eq,
         "broken/planted-band/bbox-safe" => Rule::Band,
-        _ => bail!("--method {id}: no symbolic encoding (methods with one: {})", ENCODED.join(", ")),
+        _ => bail!("--method {id}: no symbolic encoding (methods with one: {}, la2011, la2011-safe)", ENCODED.join(", ")),
     })
 }
 
@@ -92,7 +92,8 @@ pub fn prove(
     emit: Option<&Path>,
     progress: bool,
 ) -> Result<ProveReport> {
-    let rule = rule(m.info().id)?;
+    let la = super::la2011_query::safe_of(m.info().id);
+    let rule = if la.is_some() { Rule::Plain } else { rule(m.info().id)? };
     let pb =
         if progress { indicatif::ProgressBar::new(queries.len() as u64) } else { indicatif::ProgressBar::hidden() };
     let cfg = CheckConfig::default_with(vec![m]);
@@ -100,7 +101,7 @@ pub fn prove(
     let mut reports = Vec::new();
     for (qi, q) in queries.iter().enumerate() {
         pb.set_message(format!("{} {}", q.side.name(), q.ranges_text()));
-        let script = bbox_query::script(&rule, q);
+        let script = la.map_or_else(|| bbox_query::script(&rule, q), |safe| super::la2011_query::script(safe, q));
         if let Some(dir) = emit {
             std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
             let p = dir.join(format!("{}-{qi}-{}.smt2", m.info().id.replace('/', "_"), q.side.name()));
