@@ -395,7 +395,7 @@ pub(crate) fn chord_nonpos(l0: f32, l1: f32) -> Option<[f32; 2]> {
     some.then_some(t)
 }
 
-/// [`chord_nonpos`] over any [`F32Arith`] (false: the chord is > 0 on all of [0, 1]),
+/// `chord_nonpos` over any [`F32Arith`] (false: the chord is > 0 on all of [0, 1]),
 /// with the crossing `t* = l0 / (l0 - l1)` rounded by `R` towards the kept side: down
 /// where it is the lower end (`l0 > 0 >= l1`), up where it is the upper end
 /// (`l0 <= 0 < l1`); the denominator is rounded up in both cases (see the module's
@@ -470,13 +470,12 @@ pub fn setup_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> Setup<A::F,
     Setup { x: axis_of::<R, A>(ar, tri, 0), y: axis_of::<R, A>(ar, tri, 1), full }
 }
 
+/// A tile answer `(nonempty, t, u, v)` as values of some [`F32Arith`].
+pub type Answer<F, B> = (B, [F; 2], [F; 2], [F; 2]);
+
 /// The answer for a tile `[x0, y0, x1, y1]` over any [`F32Arith`]: `(nonempty, t, u,
 /// v)`; the tile is Empty when `nonempty` is false (the tile reject).
-pub fn tile_answer<R: Round, A: F32Arith>(
-    ar: &A,
-    s: &Setup<A::F, A::B>,
-    tile: &[A::F; 4],
-) -> (A::B, [A::F; 2], [A::F; 2], [A::F; 2]) {
+pub fn tile_answer<R: Round, A: F32Arith>(ar: &A, s: &Setup<A::F, A::B>, tile: &[A::F; 4]) -> Answer<A::F, A::B> {
     let full = guard::<R, A>(ar, s, tile);
     let (okx, tx, u) = s.x.bounds::<R, A>(ar, &[tile[0].clone(), tile[2].clone()]);
     let (oky, ty, v) = s.y.bounds::<R, A>(ar, &[tile[1].clone(), tile[3].clone()]);

@@ -268,7 +268,7 @@ pub struct Setup<F, B> {
 struct Prep(Result<Setup<f32, bool>, &'static str>);
 
 /// The arithmetic of the formulas `mam2012` (any [`F32Arith`]: f32, or SMT-LIB2
-/// terms) and `mam2012-safe` (f32 intervals rounded outward, [`Iv`]) share: written
+/// terms) and `mam2012-safe` (f32 intervals rounded outward, `Iv`) share: written
 /// once, evaluated in either.
 pub trait Ops {
     type T: Clone;
@@ -345,11 +345,14 @@ fn fig5_corners(n: [f32; 2], c: [f32; 2], literal_fig5: bool) -> ([f32; 2], [f32
     fig5_corners_of(&Plain, &n, &c, literal_fig5)
 }
 
+/// Per vertex j, a value at t = 0 and t = 1.
+type Ends<F> = [[F; 2]; 3];
+
 /// The patches of one axis: `pos[j]`, `w[j]`, `den[j]` are vertex j's coordinate, w and
 /// CoC denominator (`c` or `k c`) at t = 0, 1; `[xa, xb]` the patch domain.
 fn axis<A: F32Arith>(
     ar: &A,
-    (pos, w, den): (&[[A::F; 2]; 3], &[[A::F; 2]; 3], &[[A::F; 2]; 3]),
+    [pos, w, den]: [&Ends<A::F>; 3],
     xa: &A::F,
     xb: &A::F,
     literal_fig5: bool,
@@ -427,9 +430,12 @@ const WHY: [&str; 4] = [
     "the screen extent of the triangle is not finite in f32",
 ];
 
+/// The disabling conditions and the setup, as values of some [`F32Arith`].
+pub type SetupOf<F, B> = ([B; 4], Setup<F, B>);
+
 /// The setup over any [`F32Arith`]: whether the test runs (false for each reason of
-/// [`WHY`], in order) and the patches of both axes.
-pub fn setup_of<A: F32Arith>(ar: &A, tri: &TriOf<A::F>, literal_fig5: bool) -> ([A::B; 4], Setup<A::F, A::B>) {
+/// `WHY`, in order) and the patches of both axes.
+pub fn setup_of<A: F32Arith>(ar: &A, tri: &TriOf<A::F>, literal_fig5: bool) -> SetupOf<A::F, A::B> {
     let [c, m, b] = why_disabled(ar, tri);
     let ((okx, xa, xb), (oky, ya, yb)) = (extent(ar, tri, 0), extent(ar, tri, 1));
     let ends = |f: &dyn Fn(&[A::F; 4]) -> A::F| [0, 1, 2].map(|j| [f(&tri.q[j]), f(&tri.r[j])]);
@@ -438,8 +444,8 @@ pub fn setup_of<A: F32Arith>(ar: &A, tri: &TriOf<A::F>, literal_fig5: bool) -> (
     let py = ends(&|p| p[1].clone());
     let cu = [0, 1, 2].map(|j| [tri.c0[j].clone(), tri.c1[j].clone()]);
     let cv = [0, 1, 2].map(|j| [ar.mul(&tri.k, &tri.c0[j]), ar.mul(&tri.k, &tri.c1[j])]);
-    let u = axis(ar, (&px, &w, &cu), &xa, &xb, literal_fig5);
-    let v = axis(ar, (&py, &w, &cv), &ya, &yb, literal_fig5);
+    let u = axis(ar, [&px, &w, &cu], &xa, &xb, literal_fig5);
+    let v = axis(ar, [&py, &w, &cv], &ya, &yb, literal_fig5);
     ([c, m, b, ar.not(&ar.and(&okx, &oky))], Setup { u, v })
 }
 
@@ -500,15 +506,13 @@ impl SampleConstraint for Line {
 /// A per-tile line `a t + b` of some [`F32Arith`], and whether it is emitted.
 pub type LineOf<F, B> = (B, F, F);
 
+/// One axis's tile answer: non-empty, the range, the lower and upper line.
+pub type AxisAnswer<F, B> = (B, [F; 2], [LineOf<F, B>; 2]);
+
 /// One axis of the tile answer over any [`F32Arith`]: whether its lens range is
 /// non-empty, the range (`u^` or `v^`) and the lower and upper line, for the tile's
 /// centre `c` and half width `h` on that axis.
-pub fn axis_tile<A: F32Arith>(
-    ar: &A,
-    ax: &Axis<A::F, A::B>,
-    c: &A::F,
-    h: &A::F,
-) -> (A::B, [A::F; 2], [LineOf<A::F, A::B>; 2]) {
+pub fn axis_tile<A: F32Arith>(ar: &A, ax: &Axis<A::F, A::B>, c: &A::F, h: &A::F) -> AxisAnswer<A::F, A::B> {
     let (lo_ok, lo) = ax.lo.line(ar, c, h, -1.0);
     let (hi_ok, hi) = ax.hi.line(ar, c, h, 1.0);
     let (one, minus) = (ar.lit(1.0), ar.lit(-1.0));

@@ -48,7 +48,9 @@ pub fn rule(id: &str) -> Result<Rule> {
         "bbox-safe" => Rule::Safe,
         "broken/planted-eq/bbox-safe" => Rule::Eq,
         "broken/planted-band/bbox-safe" => Rule::Band,
-        _ => bail!("--method {id}: no symbolic encoding (methods with one: {}, la2011, la2011-safe)", ENCODED.join(", ")),
+        _ => {
+            bail!("--method {id}: no symbolic encoding (methods with one: {}, la2011, la2011-safe)", ENCODED.join(", "))
+        }
     })
 }
 
