@@ -410,3 +410,21 @@ fn the_symbolic_search_finds_la2011_f32_tile_cull() {
     assert!(n < p, "exact edge {n} / w not inside the tile ending at {}", tile.x1);
     assert!(!matches!(by_id("la2011-safe").unwrap().setup(&tri).tile(&tile), TileResult::Empty));
 }
+
+/// The la2011 query pinned to a model z3 found (x-min, `prove --method la2011 --symbolic
+/// --ranges a=128:256,c=1:2,w=1.875:2,t=96:128`): z3 answers sat at once, the f32
+/// method culls the model's tile and the exact judge confirms the violation; the same
+/// pinned query against la2011-safe is unsat.
+#[test]
+fn the_la2011_query_holds_a_known_violation() {
+    let v = [236.125f32, 1.8749528, 1.9463676, 120.35242];
+    let pin = v.map(|x| [x, x.next_up()]);
+    let q = Query { side: Side::XMin, ranges: pin };
+    let r = prove(by_id("la2011").unwrap(), std::slice::from_ref(&q), 120.0, None, None, false).unwrap();
+    let rep = &r.queries[0];
+    assert_eq!(rep.answer, Answer::Sat, "{}", r.render());
+    assert!(rep.confirmed, "the judge did not confirm the model: {}", r.render());
+    assert_eq!(rep.inputs, Some(v));
+    let safe = prove(by_id("la2011-safe").unwrap(), std::slice::from_ref(&q), 120.0, None, None, false).unwrap();
+    assert_eq!(safe.queries[0].answer, Answer::Unsat, "{}", safe.render());
+}
