@@ -212,7 +212,8 @@ enum Cmd {
     /// src/symbolic/). Every model becomes a case judged exactly: a confirmed violation
     /// is shrunk and written to corpus/cases/<method>/<hash>.json (never overwriting);
     /// a model the judge does not confirm is reported as such. Methods with an
-    /// encoding: bbox, bbox-safe, broken/planted-eq/bbox-safe, broken/planted-band/bbox-safe.
+    /// encoding: bbox, bbox-safe, la2011, la2011-safe, broken/planted-eq/bbox-safe,
+    /// broken/planted-band/bbox-safe.
     #[command(allow_negative_numbers = true)]
     Prove {
         /// The method id.

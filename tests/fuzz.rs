@@ -625,6 +625,7 @@ fn oracles_take_any_numbers() {
                 first_witness: rng.gen(),
                 refine_boxes: Some(8),
                 stall,
+                eliminate: rng.gen(),
             };
             fz.note(&format!(", search {obj:?} {opts:?}"));
             fz.call("extents::search", || oracles::extents::search(&tri, init, obj, &small, opts));

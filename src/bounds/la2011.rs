@@ -186,293 +186,338 @@
 //! that is the precision f32 has at 1e6 px, not a choice).
 
 use super::*;
+use crate::symbolic::arith::{tile_of, F32Arith, Plain, TriOf};
 use std::marker::PhantomData;
 
 /// An f32 interval `[lo, hi]`; in `la2011` both ends are the one rounded value.
 type Iv = [f32; 2];
 
 /// How a value rounded to nearest becomes a bound: `la2011` keeps it as it is (the
-/// published arithmetic), `la2011-safe` steps it one f32 value outward.
-trait Round: 'static {
+/// published arithmetic), `la2011-safe` steps it one f32 value outward. Written over
+/// [`F32Arith`], so that the f32 method and its SMT-LIB2 encoding are the same code.
+pub trait Round: 'static {
     /// A value `<=` the exact result that `x` is the rounding (to nearest) of.
-    fn dn(x: f32) -> f32;
+    fn dn<A: F32Arith>(ar: &A, x: &A::F) -> A::F;
     /// A value `>=` it.
-    fn up(x: f32) -> f32;
+    fn up<A: F32Arith>(ar: &A, x: &A::F) -> A::F;
     /// A computed value that must not be used (the quantity falls back to its full range).
-    fn bad(x: f32) -> bool;
+    fn bad<A: F32Arith>(ar: &A, x: &A::F) -> A::B;
     /// Non-finite input (triangle or tile) gives the full domain before any arithmetic.
     const GUARD: bool;
 }
 
 /// `la2011`: round to nearest, no steps; only NaN falls back.
-struct Nearest;
+pub struct Nearest;
 
 impl Round for Nearest {
-    fn dn(x: f32) -> f32 {
-        x
+    fn dn<A: F32Arith>(_: &A, x: &A::F) -> A::F {
+        x.clone()
     }
-    fn up(x: f32) -> f32 {
-        x
+    fn up<A: F32Arith>(_: &A, x: &A::F) -> A::F {
+        x.clone()
     }
-    fn bad(x: f32) -> bool {
-        x.is_nan()
+    fn bad<A: F32Arith>(ar: &A, x: &A::F) -> A::B {
+        ar.is_nan(x)
     }
     const GUARD: bool = false;
 }
 
 /// `la2011-safe`: f32 interval arithmetic (one step outward after each rounded
 /// operation); any non-finite value falls back.
-struct Outward;
+pub struct Outward;
 
 impl Round for Outward {
-    fn dn(x: f32) -> f32 {
-        x.next_down()
+    fn dn<A: F32Arith>(ar: &A, x: &A::F) -> A::F {
+        ar.next_down(x)
     }
-    fn up(x: f32) -> f32 {
-        x.next_up()
+    fn up<A: F32Arith>(ar: &A, x: &A::F) -> A::F {
+        ar.next_up(x)
     }
-    fn bad(x: f32) -> bool {
-        !x.is_finite()
+    fn bad<A: F32Arith>(ar: &A, x: &A::F) -> A::B {
+        ar.not(&ar.is_finite(x))
     }
     const GUARD: bool = true;
 }
 
 /// Encloses the exact product `a b` of two f32 values: `fl(a b)` stepped outward, or
 /// `fl(a b)` itself when it is exact (a factor 0 or ±1).
-fn mul<R: Round>(a: f32, b: f32) -> Iv {
-    let p = a * b;
-    if a == 0.0 || b == 0.0 || a.abs() == 1.0 || b.abs() == 1.0 {
-        [p, p]
-    } else {
-        [R::dn(p), R::up(p)]
-    }
+fn mul<R: Round, A: F32Arith>(ar: &A, a: &A::F, b: &A::F) -> [A::F; 2] {
+    let p = ar.mul(a, b);
+    let (zero, one) = (ar.lit(0.0), ar.lit(1.0));
+    let exact = ar.any(&[ar.eq(a, &zero), ar.eq(b, &zero), ar.eq(&ar.abs(a), &one), ar.eq(&ar.abs(b), &one)]);
+    [ar.select(&exact, &p, &R::dn(ar, &p)), ar.select(&exact, &p, &R::up(ar, &p))]
 }
 
 /// `-[lo, hi] = [-hi, -lo]` (exact).
-fn neg(a: Iv) -> Iv {
-    [-a[1], -a[0]]
+fn neg<A: F32Arith>(ar: &A, a: &[A::F; 2]) -> [A::F; 2] {
+    [ar.neg(&a[1]), ar.neg(&a[0])]
 }
 
-/// Sign class of a per-vertex lens shear over the shutter.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Class {
-    /// > 0 at both ends (so on all of [0, 1]).
-    Pos,
-    /// < 0 at both ends.
-    Neg,
-    /// Exactly 0 at both ends.
-    Zero,
-    /// Changes sign, touches 0 at one end, or is NaN.
-    Cross,
+/// Sign class of a per-vertex lens shear over the shutter: `pos` (> 0 at both ends, so
+/// on all of [0, 1]), `neg` (< 0 at both ends), `zero` (exactly 0 at both ends), at
+/// most one of them true; none means it changes sign, touches 0 at one end, or is NaN.
+#[derive(Clone, Debug)]
+pub struct Class<B> {
+    pos: B,
+    neg: B,
+    zero: B,
 }
 
-impl Class {
+impl<B: Clone> Class<B> {
     /// The class of a shear whose end values lie in `s0`, `s1`: a strict sign only
-    /// when the whole enclosure has it, Zero only when it is exactly 0.
-    fn of(s0: Iv, s1: Iv) -> Class {
-        if s0[0] > 0.0 && s1[0] > 0.0 {
-            Class::Pos
-        } else if s0[1] < 0.0 && s1[1] < 0.0 {
-            Class::Neg
-        } else if s0[0] == 0.0 && s0[1] == 0.0 && s1[0] == 0.0 && s1[1] == 0.0 {
-            Class::Zero
-        } else {
-            Class::Cross
-        }
+    /// when the whole enclosure has it, zero only when it is exactly 0.
+    fn of<A: F32Arith<B = B>>(ar: &A, s0: &[A::F; 2], s1: &[A::F; 2]) -> Class<B> {
+        let z = ar.lit(0.0);
+        let pos = ar.and(&ar.gt(&s0[0], &z), &ar.gt(&s1[0], &z));
+        let neg = ar.and(&ar.not(&pos), &ar.and(&ar.lt(&s0[1], &z), &ar.lt(&s1[1], &z)));
+        let exact = ar.all(&[ar.eq(&s0[0], &z), ar.eq(&s0[1], &z), ar.eq(&s1[0], &z), ar.eq(&s1[1], &z)]);
+        let zero = ar.all(&[ar.not(&pos), ar.not(&neg), exact]);
+        Class { pos, neg, zero }
     }
-    fn flip(self) -> Class {
-        match self {
-            Class::Pos => Class::Neg,
-            Class::Neg => Class::Pos,
-            c => c,
-        }
+    fn flip(&self) -> Class<B> {
+        Class { pos: self.neg.clone(), neg: self.pos.clone(), zero: self.zero.clone() }
     }
 }
 
-/// One screen axis at the two shutter ends (index e = 0 at t = 0, 1 at t = 1).
-#[derive(Clone, Copy, Debug)]
-struct Axis {
+/// One screen axis at the two shutter ends (index e = 0 at t = 0, 1 at t = 1), its
+/// numbers values of some [`F32Arith`].
+#[derive(Clone, Debug)]
+pub struct Axis<F, B> {
     /// Vertex position on this axis (x or y), clip space.
-    p: [[f32; 3]; 2],
+    p: [[F; 3]; 2],
     /// w.
-    w: [[f32; 3]; 2],
+    w: [[F; 3]; 2],
     /// Lens shear per unit lens coordinate: `c` for x, `k c` for y (an enclosure).
-    s: [[Iv; 3]; 2],
-    class: [Class; 3],
+    s: [[[F; 2]; 3]; 2],
+    class: [Class<B>; 3],
 }
 
-impl Axis {
-    fn new<R: Round>(tri: &Triangle, axis: usize, scale: f32) -> Axis {
-        let p = [tri.q.map(|v| v[axis]), tri.r.map(|v| v[axis])];
-        let w = [tri.q.map(|v| v[3]), tri.r.map(|v| v[3])];
-        let s = [tri.c0.map(|c| mul::<R>(scale, c)), tri.c1.map(|c| mul::<R>(scale, c))];
-        let class = [0, 1, 2].map(|i| Class::of(s[0][i], s[1][i]));
-        Axis { p, w, s, class }
-    }
+/// The setup of one axis (0: x with scale 1, 1: y with scale `k`).
+pub fn axis_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>, axis: usize) -> Axis<A::F, A::B> {
+    let scale = if axis == 0 { ar.lit(1.0) } else { tri.k.clone() };
+    let p = [tri.q.each_ref().map(|v| v[axis].clone()), tri.r.each_ref().map(|v| v[axis].clone())];
+    let w = [tri.q.each_ref().map(|v| v[3].clone()), tri.r.each_ref().map(|v| v[3].clone())];
+    let s =
+        [tri.c0.each_ref().map(|c| mul::<R, A>(ar, &scale, c)), tri.c1.each_ref().map(|c| mul::<R, A>(ar, &scale, c))];
+    let class = [0, 1, 2].map(|i| Class::of(ar, &s[0][i], &s[1][i]));
+    Axis { p, w, s, class }
+}
 
+impl<F: Clone, B: Clone> Axis<F, B> {
     /// Encloses `d = p - X w` for end e, vertex i.
-    fn d<R: Round>(&self, e: usize, i: usize, x: f32) -> Iv {
-        let p = self.p[e][i];
-        let xw = mul::<R>(x, self.w[e][i]);
-        [R::dn(p - xw[1]), R::up(p - xw[0])]
+    fn d<R: Round, A: F32Arith<F = F, B = B>>(&self, ar: &A, e: usize, i: usize, x: &F) -> [F; 2] {
+        let p = &self.p[e][i];
+        let xw = mul::<R, A>(ar, x, &self.w[e][i]);
+        [R::dn(ar, &ar.sub(p, &xw[1])), R::up(ar, &ar.sub(p, &xw[0]))]
     }
 
-    /// Time range and lens range for the tile columns `[lo, hi]` of this axis, or
-    /// None when the axis proves the tile empty.
-    fn bounds<R: Round>(&self, lo: f32, hi: f32) -> Option<(Iv, Iv)> {
-        let cols = [lo, hi];
-        // --- time: F(e) = min (d - |s|), G(e) = max (d + |s|) over i and both columns
-        // (a lower bound of F, an upper bound of G).
-        let mut f = [f32::INFINITY; 2];
-        let mut g = [f32::NEG_INFINITY; 2];
-        let mut nan = false;
+    /// Time range for the tile columns `cols` of this axis, and false when it proves
+    /// the tile empty: F(e) = min (d - |s|), G(e) = max (d + |s|) over i and both
+    /// columns (a lower bound of F, an upper bound of G), cut by their chords.
+    pub fn time<R: Round, A: F32Arith<F = F, B = B>>(&self, ar: &A, cols: &[F; 2]) -> (B, [F; 2]) {
+        let mut f = [ar.lit(f32::INFINITY), ar.lit(f32::INFINITY)];
+        let mut g = [ar.lit(f32::NEG_INFINITY), ar.lit(f32::NEG_INFINITY)];
+        let mut nan = ar.truth(false);
         for e in 0..2 {
             for i in 0..3 {
-                let s = self.s[e][i];
-                let a = s[0].abs().max(s[1].abs());
-                for &x in &cols {
-                    let d = self.d::<R>(e, i, x);
-                    let (m, mm) = (R::dn(d[0] - a), R::up(d[1] + a));
-                    nan |= R::bad(m) || R::bad(mm);
-                    f[e] = f[e].min(m);
-                    g[e] = g[e].max(mm);
+                let s = &self.s[e][i];
+                let a = ar.max(&ar.abs(&s[0]), &ar.abs(&s[1]));
+                for x in cols {
+                    let d = self.d::<R, A>(ar, e, i, x);
+                    let (m, mm) = (R::dn(ar, &ar.sub(&d[0], &a)), R::up(ar, &ar.add(&d[1], &a)));
+                    nan = ar.or(&nan, &ar.or(&R::bad(ar, &m), &R::bad(ar, &mm)));
+                    f[e] = ar.min(&f[e], &m);
+                    g[e] = ar.max(&g[e], &mm);
                 }
             }
         }
-        let t = if nan {
-            [0.0, 1.0]
-        } else {
-            let tf = chord::<R>(f[0], f[1])?;
-            let tg = chord::<R>(-g[0], -g[1])?;
-            [tf[0].max(tg[0]), tf[1].min(tg[1])]
-        };
-        if t[0] > t[1] {
-            return None;
-        }
-        // --- lens: hull of condition (a) "some d + u s < 0", and (b) "some d + u s > 0".
-        let mut ha: Option<Iv> = None;
-        let mut hb: Option<Iv> = None;
-        let join = |h: &mut Option<Iv>, r: Option<Iv>| {
-            if let Some(r) = r {
-                *h = Some(match *h {
-                    None => r,
-                    Some(h) => [h[0].min(r[0]), h[1].max(r[1])],
-                });
-            }
-        };
-        for i in 0..3 {
-            let s = [self.s[0][i], self.s[1][i]];
-            for &x in &cols {
-                let d = [self.d::<R>(0, i, x), self.d::<R>(1, i, x)];
-                join(&mut ha, neg_hull::<R>(d, s, self.class[i]));
-                join(&mut hb, neg_hull::<R>(d.map(neg), s.map(neg), self.class[i].flip()));
-            }
-        }
-        let (ha, hb) = (ha?, hb?);
-        let lens = [ha[0].max(hb[0]).max(-1.0), ha[1].min(hb[1]).min(1.0)];
-        if lens[0] > lens[1] {
-            return None;
-        }
-        Some((t, lens))
+        let (okf, tf) = chord::<R, A>(ar, &f[0], &f[1]);
+        let (okg, tg) = chord::<R, A>(ar, &ar.neg(&g[0]), &ar.neg(&g[1]));
+        let cut = [ar.max(&tf[0], &tg[0]), ar.min(&tf[1], &tg[1])];
+        let t = [ar.select(&nan, &ar.lit(0.0), &cut[0]), ar.select(&nan, &ar.lit(1.0), &cut[1])];
+        let ok = ar.and(&ar.or(&nan, &ar.and(&okf, &okg)), &ar.not(&ar.gt(&t[0], &t[1])));
+        (ok, t)
     }
+
+    /// Lens range for the tile columns `cols`: the hull of condition (a) "some
+    /// d + u s < 0" met with that of (b) "some d + u s > 0" and [-1, 1]; false when it
+    /// is empty.
+    pub fn lens<R: Round, A: F32Arith<F = F, B = B>>(&self, ar: &A, cols: &[F; 2]) -> (B, [F; 2]) {
+        let none = || (ar.truth(false), [ar.lit(f32::NEG_INFINITY), ar.lit(f32::INFINITY)]);
+        let (mut ha, mut hb) = (none(), none());
+        for i in 0..3 {
+            let s = [self.s[0][i].clone(), self.s[1][i].clone()];
+            for x in cols {
+                let d = [self.d::<R, A>(ar, 0, i, x), self.d::<R, A>(ar, 1, i, x)];
+                ha = join(ar, &ha, &neg_hull::<R, A>(ar, &d, &s, &self.class[i]));
+                let (dn, sn) = (d.each_ref().map(|v| neg(ar, v)), s.each_ref().map(|v| neg(ar, v)));
+                hb = join(ar, &hb, &neg_hull::<R, A>(ar, &dn, &sn, &self.class[i].flip()));
+            }
+        }
+        let lens =
+            [ar.max(&ar.max(&ha.1[0], &hb.1[0]), &ar.lit(-1.0)), ar.min(&ar.min(&ha.1[1], &hb.1[1]), &ar.lit(1.0))];
+        let ok = ar.all(&[ha.0, hb.0, ar.not(&ar.gt(&lens[0], &lens[1]))]);
+        (ok, lens)
+    }
+
+    /// Time range and lens range for the tile columns `cols`, and false when the axis
+    /// proves the tile empty.
+    pub fn bounds<R: Round, A: F32Arith<F = F, B = B>>(&self, ar: &A, cols: &[F; 2]) -> (B, [F; 2], [F; 2]) {
+        let (okt, t) = self.time::<R, A>(ar, cols);
+        let (okl, lens) = self.lens::<R, A>(ar, cols);
+        (ar.and(&okt, &okl), t, lens)
+    }
+}
+
+/// The f32 time and lens ranges of one axis, or None when it proves the tile empty:
+/// [`Axis::bounds`] with the lens part skipped when the time part already said empty
+/// (its answer cannot change the result).
+fn bounds_f32<R: Round>(ax: &Axis<f32, bool>, cols: &Iv) -> Option<(Iv, Iv)> {
+    let (ok, t) = ax.time::<R, Plain>(&Plain, cols);
+    if !ok {
+        return None;
+    }
+    let (ok, lens) = ax.lens::<R, Plain>(&Plain, cols);
+    ok.then_some((t, lens))
+}
+
+/// The union of two lens hulls `(nonempty, [lo, hi])`.
+fn join<A: F32Arith>(ar: &A, h: &(A::B, [A::F; 2]), r: &(A::B, [A::F; 2])) -> (A::B, [A::F; 2]) {
+    let lo = ar.select(&r.0, &ar.select(&h.0, &ar.min(&h.1[0], &r.1[0]), &r.1[0]), &h.1[0]);
+    let hi = ar.select(&r.0, &ar.select(&h.0, &ar.max(&h.1[1], &r.1[1]), &r.1[1]), &h.1[1]);
+    (ar.or(&h.0, &r.0), [lo, hi])
 }
 
 /// The t in [0, 1] where the chord `(1-t) l0 + t l1` is <= 0 (the rest is culled);
 /// None when the chord is > 0 on all of [0, 1].
 pub(crate) fn chord_nonpos(l0: f32, l1: f32) -> Option<[f32; 2]> {
-    chord::<Nearest>(l0, l1)
+    let (some, t) = chord::<Nearest, Plain>(&Plain, &l0, &l1);
+    some.then_some(t)
 }
 
-/// [`chord_nonpos`] with the crossing `t* = l0 / (l0 - l1)` rounded by `R` towards the
-/// kept side: down where it is the lower end (`l0 > 0 >= l1`), up where it is the upper
-/// end (`l0 <= 0 < l1`); the denominator is rounded up in both cases (see the module's
-/// `la2011-safe` analysis).
-fn chord<R: Round>(l0: f32, l1: f32) -> Option<[f32; 2]> {
-    let cross = |step: fn(f32) -> f32| {
-        let t = step(l0 / R::up(l0 - l1));
-        if t.is_nan() {
-            None
-        } else {
-            Some(t.clamp(0.0, 1.0))
-        }
+/// `chord_nonpos` over any [`F32Arith`] (false: the chord is > 0 on all of [0, 1]),
+/// with the crossing `t* = l0 / (l0 - l1)` rounded by `R` towards the kept side: down
+/// where it is the lower end (`l0 > 0 >= l1`), up where it is the upper end
+/// (`l0 <= 0 < l1`); the denominator is rounded up in both cases (see the module's
+/// `la2011-safe` analysis). A NaN crossing leaves that end at 0 (lower) or 1 (upper).
+pub fn chord<R: Round, A: F32Arith>(ar: &A, l0: &A::F, l1: &A::F) -> (A::B, [A::F; 2]) {
+    let (zero, one) = (ar.lit(0.0), ar.lit(1.0));
+    let q = ar.div(l0, &R::up(ar, &ar.sub(l0, l1)));
+    // `t.clamp(0, 1)`: `if t < 0 { 0 }`, then `if t > 1 { 1 }`.
+    let clamp = |t: &A::F| {
+        let t = ar.select(&ar.lt(t, &zero), &zero, t);
+        ar.select(&ar.gt(&t, &one), &one, &t)
     };
-    if l0 > 0.0 && l1 > 0.0 {
-        None
-    } else if l0 > 0.0 {
-        Some([cross(R::dn).unwrap_or(0.0), 1.0])
-    } else if l1 > 0.0 {
-        Some([0.0, cross(R::up).unwrap_or(1.0)])
-    } else {
-        Some([0.0, 1.0])
-    }
+    let (lo, hi) = (R::dn(ar, &q), R::up(ar, &q));
+    let lower = ar.select(&ar.is_nan(&lo), &zero, &clamp(&lo));
+    let upper = ar.select(&ar.is_nan(&hi), &one, &clamp(&hi));
+    let (p0, p1) = (ar.gt(l0, &zero), ar.gt(l1, &zero));
+    let t = [ar.select(&p0, &lower, &zero), ar.select(&p0, &one, &ar.select(&p1, &upper, &one))];
+    (ar.not(&ar.and(&p0, &p1)), t)
 }
 
 /// Hull over t in [0, 1] of `{u real : d(t) + u s(t) < 0}`, for `d`, `s` affine in t
-/// with end values in `d[e]`, `s[e]` and sign class `class` of `s`; None when empty.
+/// with end values in `d[e]`, `s[e]` and sign class `class` of `s`; false when empty.
 /// Bounds may be infinite.
-fn neg_hull<R: Round>(d: [Iv; 2], s: [Iv; 2], class: Class) -> Option<Iv> {
-    const FULL: Iv = [f32::NEG_INFINITY, f32::INFINITY];
+fn neg_hull<R: Round, A: F32Arith>(
+    ar: &A,
+    d: &[[A::F; 2]; 2],
+    s: &[[A::F; 2]; 2],
+    class: &Class<A::B>,
+) -> (A::B, [A::F; 2]) {
+    let zero = ar.lit(0.0);
     // The threshold `theta = -d / s` takes its largest value over the enclosures at the
     // largest numerator `n = -d_lo`, over the smallest |s| if n >= 0 (the largest if
     // n < 0) when s > 0; its smallest value at the same n, over the smallest |s| if
     // n >= 0 (the largest if n < 0) when s < 0.
     let top = |e: usize| {
-        let n = -d[e][0];
-        R::up(if n >= 0.0 { n / s[e][0] } else { n / s[e][1] })
+        let n = ar.neg(&d[e][0]);
+        R::up(ar, &ar.select(&ar.le(&zero, &n), &ar.div(&n, &s[e][0]), &ar.div(&n, &s[e][1])))
     };
     let bottom = |e: usize| {
-        let n = -d[e][0];
-        R::dn(if n >= 0.0 { n / s[e][1] } else { n / s[e][0] })
+        let n = ar.neg(&d[e][0]);
+        R::dn(ar, &ar.select(&ar.le(&zero, &n), &ar.div(&n, &s[e][1]), &ar.div(&n, &s[e][0])))
     };
-    match class {
-        Class::Pos => {
-            let (a, b) = (top(0), top(1));
-            if R::bad(a) || R::bad(b) {
-                Some(FULL)
-            } else {
-                Some([f32::NEG_INFINITY, a.max(b)])
-            }
-        }
-        Class::Neg => {
-            let (a, b) = (bottom(0), bottom(1));
-            if R::bad(a) || R::bad(b) {
-                Some(FULL)
-            } else {
-                Some([a.min(b), f32::INFINITY])
-            }
-        }
-        Class::Zero => {
-            if d[0][0] < 0.0 || d[1][0] < 0.0 || d.iter().flatten().any(|&x| R::bad(x)) {
-                Some(FULL)
-            } else {
-                None
-            }
-        }
-        Class::Cross => Some(FULL),
-    }
+    let (ta, tb) = (top(0), top(1));
+    let (ba, bb) = (bottom(0), bottom(1));
+    let pos_ok = ar.and(&class.pos, &ar.not(&ar.or(&R::bad(ar, &ta), &R::bad(ar, &tb))));
+    let neg_ok = ar.and(&class.neg, &ar.not(&ar.or(&R::bad(ar, &ba), &R::bad(ar, &bb))));
+    let bad_d: Vec<A::B> = d.iter().flatten().map(|x| R::bad(ar, x)).collect();
+    let zero_some = ar.any(&[ar.lt(&d[0][0], &zero), ar.lt(&d[1][0], &zero), ar.any(&bad_d)]);
+    let cross = ar.not(&ar.any(&[class.pos.clone(), class.neg.clone(), class.zero.clone()]));
+    let some = ar.any(&[class.pos.clone(), class.neg.clone(), cross, ar.and(&class.zero, &zero_some)]);
+    let lo = ar.select(&neg_ok, &ar.min(&ba, &bb), &ar.lit(f32::NEG_INFINITY));
+    let hi = ar.select(&pos_ok, &ar.max(&ta, &tb), &ar.lit(f32::INFINITY));
+    (some, [lo, hi])
+}
+
+/// The setup of `la2011` (`R = Nearest`) or `la2011-safe` (`R = Outward`) over any
+/// [`F32Arith`]: both axes, and whether some input is not finite (only `la2011-safe`
+/// looks: then every tile gets the full domain).
+#[derive(Clone, Debug)]
+pub struct Setup<F, B> {
+    pub x: Axis<F, B>,
+    pub y: Axis<F, B>,
+    pub full: B,
+}
+
+/// [`Setup`] of a triangle.
+pub fn setup_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> Setup<A::F, A::B> {
+    let inputs: Vec<&A::F> =
+        tri.q.iter().chain(&tri.r).flatten().chain(&tri.c0).chain(&tri.c1).chain([&tri.k]).collect();
+    let finite: Vec<A::B> = inputs.into_iter().map(|v| ar.is_finite(v)).collect();
+    let full = ar.and(&ar.truth(R::GUARD), &ar.not(&ar.all(&finite)));
+    Setup { x: axis_of::<R, A>(ar, tri, 0), y: axis_of::<R, A>(ar, tri, 1), full }
+}
+
+/// A tile answer `(nonempty, t, u, v)` as values of some [`F32Arith`].
+pub type Answer<F, B> = (B, [F; 2], [F; 2], [F; 2]);
+
+/// The answer for a tile `[x0, y0, x1, y1]` over any [`F32Arith`]: `(nonempty, t, u,
+/// v)`; the tile is Empty when `nonempty` is false (the tile reject).
+pub fn tile_answer<R: Round, A: F32Arith>(ar: &A, s: &Setup<A::F, A::B>, tile: &[A::F; 4]) -> Answer<A::F, A::B> {
+    let full = guard::<R, A>(ar, s, tile);
+    let (okx, tx, u) = s.x.bounds::<R, A>(ar, &[tile[0].clone(), tile[2].clone()]);
+    let (oky, ty, v) = s.y.bounds::<R, A>(ar, &[tile[1].clone(), tile[3].clone()]);
+    let (okt, t) = meet(ar, &tx, &ty);
+    let nonempty = ar.or(&full, &ar.all(&[okx, oky, okt]));
+    let pick = |f: [f32; 2], v: &[A::F; 2]| [0, 1].map(|k| ar.select(&full, &ar.lit(f[k]), &v[k]));
+    let b = TileBounds::full();
+    (nonempty, pick(b.t, &t), pick(b.u, &u), pick(b.v, &v))
+}
+
+/// Whether the tile gets the full domain before any arithmetic (`la2011-safe` on a
+/// non-finite triangle or tile).
+fn guard<R: Round, A: F32Arith>(ar: &A, s: &Setup<A::F, A::B>, tile: &[A::F; 4]) -> A::B {
+    let finite: Vec<A::B> = tile.iter().map(|v| ar.is_finite(v)).collect();
+    ar.and(&ar.truth(R::GUARD), &ar.or(&s.full, &ar.not(&ar.all(&finite))))
+}
+
+/// The time ranges of both axes met; false when the meet is empty.
+fn meet<A: F32Arith>(ar: &A, tx: &[A::F; 2], ty: &[A::F; 2]) -> (A::B, [A::F; 2]) {
+    let t = [ar.max(&tx[0], &ty[0]), ar.min(&tx[1], &ty[1])];
+    (ar.not(&ar.gt(&t[0], &t[1])), t)
 }
 
 struct Prep<R> {
-    x: Axis,
-    y: Axis,
-    /// Some input is not finite (only `la2011-safe` looks): every tile gets the full domain.
-    full: bool,
+    s: Setup<f32, bool>,
     round: PhantomData<fn() -> R>,
 }
 
 impl<R: Round> Prepared for Prep<R> {
     fn tile(&self, tile: &Tile) -> TileResult {
-        if R::GUARD && (self.full || ![tile.x0, tile.x1, tile.y0, tile.y1].iter().all(|v| v.is_finite())) {
+        let tv = tile_of(tile);
+        if guard::<R, Plain>(&Plain, &self.s, &tv) {
             return TileResult::Bounds(TileBounds::full());
         }
-        let Some((tx, u)) = self.x.bounds::<R>(tile.x0, tile.x1) else {
+        let Some((tx, u)) = bounds_f32::<R>(&self.s.x, &[tv[0], tv[2]]) else {
             return TileResult::Empty;
         };
-        let Some((ty, v)) = self.y.bounds::<R>(tile.y0, tile.y1) else {
+        let Some((ty, v)) = bounds_f32::<R>(&self.s.y, &[tv[1], tv[3]]) else {
             return TileResult::Empty;
         };
-        let t = [tx[0].max(ty[0]), tx[1].min(ty[1])];
-        if t[0] > t[1] {
+        let (ok, t) = meet(&Plain, &tx, &ty);
+        if !ok {
             return TileResult::Empty;
         }
         TileResult::Bounds(TileBounds { u, v, t, z: None, constraints: Vec::new() })
@@ -501,14 +546,7 @@ impl<R: Round> Method for La2011<R> {
         self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        let finite =
-            tri.q.iter().chain(&tri.r).flatten().chain(&tri.c0).chain(&tri.c1).chain([&tri.k]).all(|v| v.is_finite());
-        Box::new(Prep::<R> {
-            x: Axis::new::<R>(tri, 0, 1.0),
-            y: Axis::new::<R>(tri, 1, tri.k),
-            full: R::GUARD && !finite,
-            round: PhantomData,
-        })
+        Box::new(Prep::<R> { s: setup_of::<R, Plain>(&Plain, &TriOf::of(tri)), round: PhantomData })
     }
 }
 
@@ -793,7 +831,7 @@ mod tests {
     /// `s[e][i]` (a product of two f32 values is exact in f64; every other f64 operation
     /// is correctly rounded, 2^-29 of an f32 step, so the reference sits far inside the
     /// one-step margins of la2011-safe unless it is exact).
-    fn reference(ax: &Axis, s: [[f64; 3]; 2], lo: f32, hi: f32) -> Option<([f64; 2], [f64; 2])> {
+    fn reference(ax: &Axis<f32, bool>, s: [[f64; 3]; 2], lo: f32, hi: f32) -> Option<([f64; 2], [f64; 2])> {
         let d = |e: usize, i: usize, x: f32| ax.p[e][i] as f64 - x as f64 * ax.w[e][i] as f64;
         let (mut f, mut g) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for (e, se) in s.iter().enumerate() {
@@ -889,9 +927,9 @@ mod tests {
             let size = [1e-3f32, 1.0, 4.0, 16.0][n % 4];
             let (lo, hi) = (at, at + size);
             for (axis, k) in [(0usize, 1.0f32), (1, tri.k)] {
-                let ax = Axis::new::<Outward>(&tri, axis, k);
+                let ax = axis_of::<Outward, Plain>(&Plain, &TriOf::of(&tri), axis);
                 let s = [tri.c0.map(|c| k as f64 * c as f64), tri.c1.map(|c| k as f64 * c as f64)];
-                let got = ax.bounds::<Outward>(lo, hi);
+                let got = bounds_f32::<Outward>(&ax, &[lo, hi]);
                 let want = reference(&ax, s, lo, hi);
                 match (got, want) {
                     (None, Some(w)) => panic!("axis {axis} [{lo}, {hi}] culled, exact {w:?}: {tri:?}"),

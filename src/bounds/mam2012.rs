@@ -200,6 +200,7 @@
 //! one multiply-add; per sample: two steps more per line.
 
 use super::*;
+use crate::symbolic::arith::{tile_of, F32Arith, Plain, TriOf};
 use std::ops::{Add, Div, Mul, Sub};
 
 /// The bilinear ut / vt test of Munkberg and Akenine-Möller 2012, §2.1.
@@ -225,64 +226,99 @@ impl Method for Mam2012 {
 }
 
 /// A bilinear patch over `[xa, xb] x [0, 1]`: its values at `x = xa` for t = 0, 1 and
-/// its x-slopes at t = 0, 1.
-#[derive(Clone, Copy, Debug)]
-struct Patch {
-    xa: f32,
-    at_xa: [f32; 2],
-    slope: [f32; 2],
+/// its x-slopes at t = 0, 1, numbers of some [`F32Arith`]; `ok` false when the patch is
+/// dropped (a non-finite corner value or slope: no line on that side).
+#[derive(Clone, Debug)]
+pub struct Patch<F, B> {
+    ok: B,
+    xa: F,
+    at_xa: [F; 2],
+    slope: [F; 2],
 }
 
-impl Patch {
+impl<F: Clone, B: Clone> Patch<F, B> {
     /// The tile line (values at t = 0 and t = 1) for the tile `[xc - h, xc + h]`:
-    /// lowered by `h |S_k|` (`dir = -1`, lower patch) or raised (`dir = 1`).
-    fn line(&self, xc: f32, h: f32, dir: f32) -> Option<[f32; 2]> {
-        let e = |k: usize| self.at_xa[k] + (xc - self.xa) * self.slope[k] + dir * (h * self.slope[k].abs());
+    /// lowered by `h |S_k|` (`dir = -1`, lower patch) or raised (`dir = 1`); the flag is
+    /// false when there is none (no patch, or a non-finite value).
+    fn line<A: F32Arith<F = F, B = B>>(&self, ar: &A, xc: &F, h: &F, dir: f32) -> (B, [F; 2]) {
+        let dir = ar.lit(dir);
+        let e = |k: usize| {
+            let at = ar.add(&self.at_xa[k], &ar.mul(&ar.sub(xc, &self.xa), &self.slope[k]));
+            ar.add(&at, &ar.mul(&dir, &ar.mul(h, &ar.abs(&self.slope[k]))))
+        };
         let l = [e(0), e(1)];
-        (l[0].is_finite() && l[1].is_finite()).then_some(l)
+        (ar.all(&[self.ok.clone(), ar.is_finite(&l[0]), ar.is_finite(&l[1])]), l)
     }
 }
 
 /// The lower and upper patch of one lens axis (u with x, or v with y).
-#[derive(Clone, Copy, Debug)]
-struct Axis {
-    lo: Option<Patch>,
-    hi: Option<Patch>,
+#[derive(Clone, Debug)]
+pub struct Axis<F, B> {
+    lo: Patch<F, B>,
+    hi: Patch<F, B>,
 }
 
-#[derive(Clone, Copy, Debug)]
-struct Setup {
-    u: Axis,
-    v: Axis,
+/// Both axes' patches.
+#[derive(Clone, Debug)]
+pub struct Setup<F, B> {
+    u: Axis<F, B>,
+    v: Axis<F, B>,
 }
 
-struct Prep(Result<Setup, &'static str>);
+struct Prep(Result<Setup<f32, bool>, &'static str>);
 
-/// The arithmetic of the formulas `mam2012` (plain f32) and `mam2012-safe` (f32
-/// intervals rounded outward, [`Iv`]) share: written once, evaluated in either.
-trait Arith: Copy + From<f32> + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> {}
-impl<T: Copy + From<f32> + Add<Output = T> + Sub<Output = T> + Mul<Output = T> + Div<Output = T>> Arith for T {}
+/// The arithmetic of the formulas `mam2012` (any [`F32Arith`]: f32, or SMT-LIB2
+/// terms) and `mam2012-safe` (f32 intervals rounded outward, `Iv`) share: written
+/// once, evaluated in either.
+pub trait Ops {
+    type T: Clone;
+    fn lit(&self, v: f32) -> Self::T;
+    fn add(&self, a: &Self::T, b: &Self::T) -> Self::T;
+    fn sub(&self, a: &Self::T, b: &Self::T) -> Self::T;
+    fn mul(&self, a: &Self::T, b: &Self::T) -> Self::T;
+    fn div(&self, a: &Self::T, b: &Self::T) -> Self::T;
+}
+
+impl<A: F32Arith> Ops for A {
+    type T = A::F;
+    fn lit(&self, v: f32) -> A::F {
+        F32Arith::lit(self, v)
+    }
+    fn add(&self, a: &A::F, b: &A::F) -> A::F {
+        F32Arith::add(self, a, b)
+    }
+    fn sub(&self, a: &A::F, b: &A::F) -> A::F {
+        F32Arith::sub(self, a, b)
+    }
+    fn mul(&self, a: &A::F, b: &A::F) -> A::F {
+        F32Arith::mul(self, a, b)
+    }
+    fn div(&self, a: &A::F, b: &A::F) -> A::F {
+        F32Arith::div(self, a, b)
+    }
+}
 
 /// The values at t = 0 and t = 1 of the chord and of the tangent at 1/2 (or, with
 /// `literal_fig5`, of Figure 5's printed line) of `f(t) = N(t) / C(t)`.
-fn fig5_lines<T: Arith>(n: [T; 2], c: [T; 2], literal_fig5: bool) -> ([T; 2], [T; 2]) {
-    let half = T::from(0.5);
-    let chord = [n[0] / c[0], n[1] / c[1]];
-    let ch = half * (c[0] + c[1]);
-    let fh = (half * (n[0] + n[1])) / ch;
-    let d = (n[1] * c[0] - n[0] * c[1]) / (ch * ch);
-    let tan = if literal_fig5 { [fh - half * d, fh] } else { [fh - half * d, fh + half * d] };
+fn fig5_lines<O: Ops>(o: &O, n: &[O::T; 2], c: &[O::T; 2], literal_fig5: bool) -> ([O::T; 2], [O::T; 2]) {
+    let half = o.lit(0.5);
+    let chord = [o.div(&n[0], &c[0]), o.div(&n[1], &c[1])];
+    let ch = o.mul(&half, &o.add(&c[0], &c[1]));
+    let fh = o.div(&o.mul(&half, &o.add(&n[0], &n[1])), &ch);
+    let d = o.div(&o.sub(&o.mul(&n[1], &c[0]), &o.mul(&n[0], &c[1])), &o.mul(&ch, &ch));
+    let lo = o.sub(&fh, &o.mul(&half, &d));
+    let tan = if literal_fig5 { [lo, fh] } else { [lo, o.add(&fh, &o.mul(&half, &d))] };
     (chord, tan)
 }
 
 /// `N(t) = X w_j(t) - x_j(t)` at t = 0, 1 for the column `x`.
-fn numerators<T: Arith>(x: T, w: [T; 2], pos: [T; 2]) -> [T; 2] {
-    [x * w[0] - pos[0], x * w[1] - pos[1]]
+fn numerators<O: Ops>(o: &O, x: &O::T, w: &[O::T; 2], pos: &[O::T; 2]) -> [O::T; 2] {
+    [o.sub(&o.mul(x, &w[0]), &pos[0]), o.sub(&o.mul(x, &w[1]), &pos[1])]
 }
 
 /// Vertex j's screen position seen from the lens edge `s = +-1`: `(p + s (kf c)) / w`.
-fn projected<T: Arith>(p: T, s: f32, kf: T, c: T, w: T) -> T {
-    (p + T::from(s) * (kf * c)) / w
+fn projected<O: Ops>(o: &O, p: &O::T, s: f32, kf: &O::T, c: &O::T, w: &O::T) -> O::T {
+    o.div(&o.add(p, &o.mul(&o.lit(s), &o.mul(kf, c))), w)
 }
 
 /// Lower and upper values at t = 0 and t = 1 of the Figure 5 lines (chord and tangent
@@ -290,103 +326,141 @@ fn projected<T: Arith>(p: T, s: f32, kf: T, c: T, w: T) -> T {
 /// `literal_fig5` the tangent is replaced by the line as printed in Figure 5 (slope
 /// `f'(1/2) / 2`; only for the test that shows it is not a bound). Non-finite results
 /// give -inf / +inf.
-fn fig5_corners(n: [f32; 2], c: [f32; 2], literal_fig5: bool) -> ([f32; 2], [f32; 2]) {
-    let (chord, tan) = fig5_lines(n, c, literal_fig5);
-    let mut lo = [f32::NEG_INFINITY; 2];
-    let mut hi = [f32::INFINITY; 2];
-    for k in 0..2 {
-        let (a, b) = (chord[k], tan[k]);
-        if a.is_finite() && b.is_finite() {
-            lo[k] = if a < b { a } else { b };
-            hi[k] = if a > b { a } else { b };
-        }
-    }
-    (lo, hi)
+fn fig5_corners_of<A: F32Arith>(ar: &A, n: &[A::F; 2], c: &[A::F; 2], literal_fig5: bool) -> ([A::F; 2], [A::F; 2]) {
+    let (chord, tan) = fig5_lines(ar, n, c, literal_fig5);
+    let end = |k: usize| {
+        let (a, b) = (&chord[k], &tan[k]);
+        let fin = ar.and(&ar.is_finite(a), &ar.is_finite(b));
+        let lo = ar.select(&fin, &ar.select(&ar.lt(a, b), a, b), &ar.lit(f32::NEG_INFINITY));
+        let hi = ar.select(&fin, &ar.select(&ar.gt(a, b), a, b), &ar.lit(f32::INFINITY));
+        (lo, hi)
+    };
+    let ((l0, h0), (l1, h1)) = (end(0), end(1));
+    ([l0, l1], [h0, h1])
 }
+
+/// [`fig5_corners_of`] in f32.
+#[cfg(test)]
+fn fig5_corners(n: [f32; 2], c: [f32; 2], literal_fig5: bool) -> ([f32; 2], [f32; 2]) {
+    fig5_corners_of(&Plain, &n, &c, literal_fig5)
+}
+
+/// Per vertex j, a value at t = 0 and t = 1.
+type Ends<F> = [[F; 2]; 3];
 
 /// The patches of one axis: `pos[j]`, `w[j]`, `den[j]` are vertex j's coordinate, w and
 /// CoC denominator (`c` or `k c`) at t = 0, 1; `[xa, xb]` the patch domain.
-fn axis(pos: [[f32; 2]; 3], w: [[f32; 2]; 3], den: [[f32; 2]; 3], xa: f32, xb: f32, literal_fig5: bool) -> Axis {
+fn axis<A: F32Arith>(
+    ar: &A,
+    [pos, w, den]: [&Ends<A::F>; 3],
+    xa: &A::F,
+    xb: &A::F,
+    literal_fig5: bool,
+) -> Axis<A::F, A::B> {
     // corners[side][k]: side 0 at xa, 1 at xb; k = t end.
-    let mut lo = [[f32::INFINITY; 2]; 2];
-    let mut hi = [[f32::NEG_INFINITY; 2]; 2];
+    let mut lo = [[(); 2]; 2].map(|r| r.map(|_| ar.lit(f32::INFINITY)));
+    let mut hi = [[(); 2]; 2].map(|r| r.map(|_| ar.lit(f32::NEG_INFINITY)));
     for (side, x) in [xa, xb].into_iter().enumerate() {
         for j in 0..3 {
-            let n = numerators(x, w[j], pos[j]);
-            let (l, h) = fig5_corners(n, den[j], literal_fig5);
+            let n = numerators(ar, x, &w[j], &pos[j]);
+            let (l, h) = fig5_corners_of(ar, &n, &den[j], literal_fig5);
             for k in 0..2 {
                 // Explicit comparisons: l is never NaN here (fig5_corners maps it to -inf).
-                if l[k] < lo[side][k] {
-                    lo[side][k] = l[k];
-                }
-                if h[k] > hi[side][k] {
-                    hi[side][k] = h[k];
-                }
+                lo[side][k] = ar.select(&ar.lt(&l[k], &lo[side][k]), &l[k], &lo[side][k]);
+                hi[side][k] = ar.select(&ar.gt(&h[k], &hi[side][k]), &h[k], &hi[side][k]);
             }
         }
     }
-    let width = xb - xa;
-    let patch = |c: [[f32; 2]; 2]| -> Option<Patch> {
-        if !c.iter().flatten().all(|v| v.is_finite()) {
-            return None;
-        }
-        let slope = if width > 0.0 { [(c[1][0] - c[0][0]) / width, (c[1][1] - c[0][1]) / width] } else { [0.0, 0.0] };
-        (slope[0].is_finite() && slope[1].is_finite()).then_some(Patch { xa, at_xa: c[0], slope })
+    let width = ar.sub(xb, xa);
+    let patch = |c: [[A::F; 2]; 2]| -> Patch<A::F, A::B> {
+        let finite: Vec<A::B> = c.iter().flatten().map(|v| ar.is_finite(v)).collect();
+        let wide = ar.gt(&width, &ar.lit(0.0));
+        let slope = [0, 1].map(|k| ar.select(&wide, &ar.div(&ar.sub(&c[1][k], &c[0][k]), &width), &ar.lit(0.0)));
+        let ok = ar.all(&[ar.all(&finite), ar.is_finite(&slope[0]), ar.is_finite(&slope[1])]);
+        let [at_xa, _] = c;
+        Patch { ok, xa: xa.clone(), at_xa, slope }
     };
     Axis { lo: patch(lo), hi: patch(hi) }
 }
 
 /// Screen extent along `axis` (0: x, 1: y) of the moving, defocused triangle, from the
-/// corners (lens +-1, t = 0, 1) of each vertex. Requires every w > 0 (checked by caller).
-fn extent(tri: &Triangle, ax: usize) -> Option<(f32, f32)> {
-    let kf = if ax == 0 { 1.0 } else { tri.k };
-    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+/// corners (lens +-1, t = 0, 1) of each vertex, and whether every corner is finite.
+/// Requires every w > 0 (checked by caller).
+fn extent<A: F32Arith>(ar: &A, tri: &TriOf<A::F>, ax: usize) -> (A::B, A::F, A::F) {
+    let kf = if ax == 0 { ar.lit(1.0) } else { tri.k.clone() };
+    let (mut lo, mut hi) = (ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
+    let mut finite = vec![];
     for j in 0..3 {
-        for (p, c) in [(tri.q[j], tri.c0[j]), (tri.r[j], tri.c1[j])] {
+        for (p, c) in [(&tri.q[j], &tri.c0[j]), (&tri.r[j], &tri.c1[j])] {
             for s in [-1.0f32, 1.0] {
-                let x = projected(p[ax], s, kf, c, p[3]);
-                if !x.is_finite() {
-                    return None;
-                }
-                lo = lo.min(x);
-                hi = hi.max(x);
+                let x = projected(ar, &p[ax], s, &kf, c, &p[3]);
+                finite.push(ar.is_finite(&x));
+                lo = ar.min(&lo, &x);
+                hi = ar.max(&hi, &x);
             }
         }
     }
-    Some((lo, hi))
+    (ar.all(&finite), lo, hi)
 }
 
-/// The reason the test cannot run on this triangle, if any.
-fn why_disabled(tri: &Triangle) -> Option<&'static str> {
-    for j in 0..3 {
-        let (a, b) = (tri.c0[j], tri.c1[j]);
-        if a == 0.0 || b == 0.0 || (a > 0.0) != (b > 0.0) {
-            return Some("some c_j(t) = 0 in the shutter (a vertex touches or crosses the focal plane)");
-        }
-    }
-    let pos = tri.c0[0] > 0.0;
-    if tri.c0.iter().chain(tri.c1.iter()).any(|&c| (c > 0.0) != pos) {
-        return Some("the vertices' CoC differ in sign (the triangle straddles the focal plane)");
-    }
-    if (0..3).any(|j| !(tri.q[j][3] > 0.0 && tri.r[j][3] > 0.0)) {
-        return Some("a vertex has w <= 0 in the shutter (no finite screen extent for the patch domain)");
-    }
-    None
+/// Why the test cannot run on this triangle, as three conditions in order: some
+/// `c_j(t) = 0` in the shutter, the CoC differ in sign, some vertex has w <= 0.
+fn why_disabled<A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> [A::B; 3] {
+    let zero = ar.lit(0.0);
+    // `(a > 0) != (b > 0)`
+    let differ = |a: &A::B, b: &A::B| ar.or(&ar.and(a, &ar.not(b)), &ar.and(&ar.not(a), b));
+    let crossing: Vec<A::B> = (0..3)
+        .map(|j| {
+            let (a, b) = (&tri.c0[j], &tri.c1[j]);
+            ar.any(&[ar.eq(a, &zero), ar.eq(b, &zero), differ(&ar.gt(a, &zero), &ar.gt(b, &zero))])
+        })
+        .collect();
+    let pos = ar.gt(&tri.c0[0], &zero);
+    let mixed: Vec<A::B> = tri.c0.iter().chain(tri.c1.iter()).map(|c| differ(&ar.gt(c, &zero), &pos)).collect();
+    let behind: Vec<A::B> =
+        (0..3).map(|j| ar.not(&ar.and(&ar.gt(&tri.q[j][3], &zero), &ar.gt(&tri.r[j][3], &zero)))).collect();
+    [ar.any(&crossing), ar.any(&mixed), ar.any(&behind)]
 }
 
-fn setup(tri: &Triangle, literal_fig5: bool) -> Result<Setup, &'static str> {
-    if let Some(why) = why_disabled(tri) {
-        return Err(why);
+/// The reasons of [`why_disabled`], and the screen extent's.
+const WHY: [&str; 4] = [
+    "some c_j(t) = 0 in the shutter (a vertex touches or crosses the focal plane)",
+    "the vertices' CoC differ in sign (the triangle straddles the focal plane)",
+    "a vertex has w <= 0 in the shutter (no finite screen extent for the patch domain)",
+    "the screen extent of the triangle is not finite in f32",
+];
+
+/// The disabling conditions and the setup, as values of some [`F32Arith`].
+pub type SetupOf<F, B> = ([B; 4], Setup<F, B>);
+
+/// The setup over any [`F32Arith`]: whether the test runs (false for each reason of
+/// `WHY`, in order) and the patches of both axes.
+pub fn setup_of<A: F32Arith>(ar: &A, tri: &TriOf<A::F>, literal_fig5: bool) -> SetupOf<A::F, A::B> {
+    let [c, m, b] = why_disabled(ar, tri);
+    let ((okx, xa, xb), (oky, ya, yb)) = (extent(ar, tri, 0), extent(ar, tri, 1));
+    let ends = |f: &dyn Fn(&[A::F; 4]) -> A::F| [0, 1, 2].map(|j| [f(&tri.q[j]), f(&tri.r[j])]);
+    let w = ends(&|p| p[3].clone());
+    let px = ends(&|p| p[0].clone());
+    let py = ends(&|p| p[1].clone());
+    let cu = [0, 1, 2].map(|j| [tri.c0[j].clone(), tri.c1[j].clone()]);
+    let cv = [0, 1, 2].map(|j| [ar.mul(&tri.k, &tri.c0[j]), ar.mul(&tri.k, &tri.c1[j])]);
+    let u = axis(ar, [&px, &w, &cu], &xa, &xb, literal_fig5);
+    let v = axis(ar, [&py, &w, &cv], &ya, &yb, literal_fig5);
+    ([c, m, b, ar.not(&ar.and(&okx, &oky))], Setup { u, v })
+}
+
+/// The reason the test cannot run on this triangle (f32), if any (the extent aside).
+fn why_disabled_f32(tri: &Triangle) -> Option<&'static str> {
+    why_disabled(&Plain, &TriOf::of(tri)).iter().position(|&w| w).map(|k| WHY[k])
+}
+
+/// The f32 setup, or the reason the test is disabled.
+fn setup(tri: &Triangle, literal_fig5: bool) -> Result<Setup<f32, bool>, &'static str> {
+    let (why, s) = setup_of(&Plain, &TriOf::of(tri), literal_fig5);
+    match why.iter().position(|&w| w) {
+        Some(k) => Err(WHY[k]),
+        None => Ok(s),
     }
-    let (Some((xa, xb)), Some((ya, yb))) = (extent(tri, 0), extent(tri, 1)) else {
-        return Err("the screen extent of the triangle is not finite in f32");
-    };
-    let w = [0, 1, 2].map(|j| [tri.q[j][3], tri.r[j][3]]);
-    let px = [0, 1, 2].map(|j| [tri.q[j][0], tri.r[j][0]]);
-    let py = [0, 1, 2].map(|j| [tri.q[j][1], tri.r[j][1]]);
-    let cu = [0, 1, 2].map(|j| [tri.c0[j], tri.c1[j]]);
-    let cv = [0, 1, 2].map(|j| [tri.k * tri.c0[j], tri.k * tri.c1[j]]);
-    Ok(Setup { u: axis(px, w, cu, xa, xb, literal_fig5), v: axis(py, w, cv, ya, yb, literal_fig5) })
 }
 
 /// One of the four per-sample lines: `g = s.u - (a t + b)` (lower) or `(a t + b) - s.u`
@@ -442,35 +516,74 @@ impl SampleConstraint for Line {
     }
 }
 
+/// A per-tile line `a t + b` of some [`F32Arith`], and whether it is emitted.
+pub type LineOf<F, B> = (B, F, F);
+
+/// One axis's tile answer: non-empty, the range, the lower and upper line.
+pub type AxisAnswer<F, B> = (B, [F; 2], [LineOf<F, B>; 2]);
+
+/// One axis of the tile answer over any [`F32Arith`]: whether its lens range is
+/// non-empty, the range (`u^` or `v^`) and the lower and upper line, for the tile's
+/// centre `c` and half width `h` on that axis.
+pub fn axis_tile<A: F32Arith>(ar: &A, ax: &Axis<A::F, A::B>, c: &A::F, h: &A::F) -> AxisAnswer<A::F, A::B> {
+    let (lo_ok, lo) = ax.lo.line(ar, c, h, -1.0);
+    let (hi_ok, hi) = ax.hi.line(ar, c, h, 1.0);
+    let (one, minus) = (ar.lit(1.0), ar.lit(-1.0));
+    let r_lo = ar.select(&lo_ok, &ar.max(&ar.min(&lo[0], &lo[1]), &minus), &minus);
+    let r_hi = ar.select(&hi_ok, &ar.min(&ar.max(&hi[0], &hi[1]), &one), &one);
+    let nonempty = ar.le(&r_lo, &r_hi); // false on NaN too
+    let line = |ok: &A::B, l: &[A::F; 2]| {
+        let a = ar.sub(&l[1], &l[0]);
+        (ar.and(ok, &ar.is_finite(&a)), a, l[0].clone())
+    };
+    (nonempty, [r_lo, r_hi], [line(&lo_ok, &lo), line(&hi_ok, &hi)])
+}
+
+/// The tile's centre and half width on both axes, `[xc, yc]` and `[hx, hy]`.
+fn centre<A: F32Arith>(ar: &A, tile: &[A::F; 4]) -> ([A::F; 2], [A::F; 2]) {
+    let half = ar.lit(0.5);
+    let c = |a: usize| ar.mul(&half, &ar.add(&tile[a], &tile[a + 2]));
+    let h = |a: usize| ar.mul(&half, &ar.sub(&tile[a + 2], &tile[a]));
+    ([c(0), c(1)], [h(0), h(1)])
+}
+
+/// The answer for a tile `[x0, y0, x1, y1]` of an enabled setup, over any
+/// [`F32Arith`]: `(nonempty, u^, v^, lines)`, the lines in the order lower u, upper u,
+/// lower v, upper v; the tile is Empty when `nonempty` is false (the tile reject).
+#[allow(clippy::type_complexity)]
+pub fn tile_answer<A: F32Arith>(
+    ar: &A,
+    s: &Setup<A::F, A::B>,
+    tile: &[A::F; 4],
+) -> (A::B, [A::F; 2], [A::F; 2], [LineOf<A::F, A::B>; 4]) {
+    let (c, h) = centre(ar, tile);
+    let (oku, u, [lu0, lu1]) = axis_tile(ar, &s.u, &c[0], &h[0]);
+    let (okv, v, [lv0, lv1]) = axis_tile(ar, &s.v, &c[1], &h[1]);
+    (ar.and(&oku, &okv), u, v, [lu0, lu1, lv0, lv1])
+}
+
 impl Prepared for Prep {
     fn tile(&self, tile: &Tile) -> TileResult {
         let s = match &self.0 {
             Ok(s) => s,
             Err(_) => return TileResult::Bounds(TileBounds::full()),
         };
-        let (xc, yc) = tile.center();
-        let (hx, hy) = (0.5 * (tile.x1 - tile.x0), 0.5 * (tile.y1 - tile.y0));
+        let (c, h) = centre(&Plain, &tile_of(tile));
         let mut out = TileBounds::full();
-        for (is_v, ax, c, h) in [(false, &s.u, xc, hx), (true, &s.v, yc, hy)] {
-            let lo = ax.lo.and_then(|p| p.line(c, h, -1.0));
-            let hi = ax.hi.and_then(|p| p.line(c, h, 1.0));
-            let r_lo = lo.map_or(-1.0, |l| l[0].min(l[1]).max(-1.0));
-            let r_hi = hi.map_or(1.0, |l| l[0].max(l[1]).min(1.0));
-            let nonempty = r_lo <= r_hi; // false on NaN too
+        for (is_v, ax) in [(false, &s.u), (true, &s.v)] {
+            let k = is_v as usize;
+            let (nonempty, range, lines) = axis_tile(&Plain, ax, &c[k], &h[k]);
             if !nonempty {
                 return TileResult::Empty;
             }
             if is_v {
-                out.v = [r_lo, r_hi];
+                out.v = range;
             } else {
-                out.u = [r_lo, r_hi];
+                out.u = range;
             }
-            for (upper, l) in [(false, lo), (true, hi)] {
-                if let Some(l) = l {
-                    let a = l[1] - l[0];
-                    if a.is_finite() {
-                        out.constraints.push(Box::new(Line { is_v, upper, a, b: l[0] }));
-                    }
+            for (upper, (ok, a, b)) in [false, true].into_iter().zip(lines) {
+                if ok {
+                    out.constraints.push(Box::new(Line { is_v, upper, a, b }));
                 }
             }
         }
@@ -563,6 +676,28 @@ impl Div for Iv {
     }
 }
 
+/// [`Iv`]'s operations as the [`Ops`] the shared formulas are written in.
+struct IvOps;
+
+impl Ops for IvOps {
+    type T = Iv;
+    fn lit(&self, v: f32) -> Iv {
+        Iv::from(v)
+    }
+    fn add(&self, a: &Iv, b: &Iv) -> Iv {
+        *a + *b
+    }
+    fn sub(&self, a: &Iv, b: &Iv) -> Iv {
+        *a - *b
+    }
+    fn mul(&self, a: &Iv, b: &Iv) -> Iv {
+        *a * *b
+    }
+    fn div(&self, a: &Iv, b: &Iv) -> Iv {
+        *a / *b
+    }
+}
+
 /// The patch of `mam2012-safe` over `[xa, xb] x [0, 1]`: its corner values
 /// `at[side][k]` (side 0 at xa, 1 at xb; f32 numbers that define the exact patch) and an
 /// enclosure of its exact x-slope at t = k.
@@ -640,7 +775,7 @@ fn axis_safe(tri: &Triangle, ax: usize) -> Option<SafeAxis> {
     for j in 0..3 {
         for (p, c) in ends(j) {
             for s in [-1.0f32, 1.0] {
-                let x = projected(Iv::from(p[ax]), s, kf, Iv::from(c), Iv::from(p[3]));
+                let x = projected(&IvOps, &Iv::from(p[ax]), s, &kf, &Iv::from(c), &Iv::from(p[3]));
                 if !x.usable() {
                     return None;
                 }
@@ -660,9 +795,9 @@ fn axis_safe(tri: &Triangle, ax: usize) -> Option<SafeAxis> {
         for (side, x) in dom.into_iter().enumerate() {
             for (j, den_j) in den.iter().enumerate() {
                 let [(p0, _), (p1, _)] = ends(j);
-                let n =
-                    numerators(Iv::from(x), [Iv::from(p0[3]), Iv::from(p1[3])], [Iv::from(p0[ax]), Iv::from(p1[ax])]);
-                let (chord, tan) = fig5_lines(n, *den_j, false);
+                let (w, pos) = ([Iv::from(p0[3]), Iv::from(p1[3])], [Iv::from(p0[ax]), Iv::from(p1[ax])]);
+                let n = numerators(&IvOps, &Iv::from(x), &w, &pos);
+                let (chord, tan) = fig5_lines(&IvOps, &n, den_j, false);
                 for k in 0..2 {
                     // A NaN end makes the corner NaN: no patch on that side.
                     let (a, b) = (chord[k], tan[k]);
@@ -684,7 +819,7 @@ fn setup_safe(tri: &Triangle) -> Result<[SafeAxis; 2], &'static str> {
     if !(finite && tri.k.is_finite()) {
         return Err("a vertex, CoC or the aspect is NaN or infinite");
     }
-    if let Some(why) = why_disabled(tri) {
+    if let Some(why) = why_disabled_f32(tri) {
         return Err(why);
     }
     match (axis_safe(tri, 0), axis_safe(tri, 1)) {

@@ -225,6 +225,7 @@
 //! f32 facing "proves" a sign that intervals cannot).
 
 use super::*;
+use crate::symbolic::arith::{tile_of, F32Arith, Plain};
 use std::ops::{Add, Mul, Neg, Sub};
 
 /// Default ratio of the selective enabling rule: with selective enabling, the test is
@@ -528,15 +529,31 @@ fn raw_edge_safe(tri: &Triangle, i: usize, j: usize) -> RawEdge<Iv> {
     RawEdge { n0: b0, n12: sub(b2, b0), n2: sub(add(b0, b2), sum), mb }
 }
 
-/// Per-edge setup state (already multiplied by sigma = -sign(D)).
+/// Per-edge setup state (already multiplied by sigma = -sign(D)), its numbers f32 (the
+/// method) or values of another [`F32Arith`] (the encoding of the tile path).
 #[derive(Clone, Copy, Debug)]
-struct Edge {
-    n0: V3,
-    n12: V3,
-    n2: V3,
+pub struct Edge<F = f32> {
+    pub n0: [F; 3],
+    pub n12: [F; 3],
+    pub n2: [F; 3],
     /// Midpoint and radius of each component of m(t) over [0, 1].
-    mc: V3,
-    mr: V3,
+    pub mc: [F; 3],
+    pub mr: [F; 3],
+}
+
+impl Edge {
+    /// The same edge with every number mapped.
+    pub fn map<G>(&self, f: impl Fn(f32) -> G) -> Edge<G> {
+        let m = |v: &V3| v.map(&f);
+        Edge { n0: m(&self.n0), n12: m(&self.n12), n2: m(&self.n2), mc: m(&self.mc), mr: m(&self.mr) }
+    }
+}
+
+/// The f32 setup of `mam2012-hyperplane` (without selective enabling): the three
+/// edges and the aspect `k`, or the reason the test is disabled. The tile path
+/// ([`tile_answer`]) is encoded from these values.
+pub fn edges_of(tri: &Triangle) -> Result<([Edge; 3], f32), &'static str> {
+    setup(tri).map(|s| (s.edges, s.k))
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -614,23 +631,98 @@ fn selective_disable(tri: &Triangle, ratio: f32) -> Option<&'static str> {
     }
 }
 
-/// The hyperplane `a = (a_1, a_x, a_y, a_u, a_v, a_t)` of one edge for one tile.
-fn plane(e: &Edge, k: f32, xc: f32, yc: f32, hx: f32, hy: f32) -> Option<[f32; 6]> {
-    let xc3 = [xc, yc, 1.0];
+/// The hyperplane `a = (a_1, a_x, a_y, a_u, a_v, a_t)` of one edge for one tile, over
+/// any [`F32Arith`] (`xc`, `yc`: the tile's centre, `hx`, `hy`: its half extents), and
+/// whether every coefficient is finite (else the edge gives no bound).
+pub fn plane_of<A: F32Arith>(ar: &A, e: &Edge<A::F>, k: &A::F, c: &[A::F; 2], h: &[A::F; 2]) -> (A::B, [A::F; 6]) {
+    let ([xc, yc], [hx, hy]) = (c, h);
+    let xc3 = [xc.clone(), yc.clone(), ar.lit(1.0)];
+    let dot = |a: &[A::F; 3], b: &[A::F; 3]| {
+        ar.add(&ar.add(&ar.mul(&a[0], &b[0]), &ar.mul(&a[1], &b[1])), &ar.mul(&a[2], &b[2]))
+    };
+    let pad = |n: &[A::F; 3]| ar.add(&ar.mul(&ar.abs(&n[0]), hx), &ar.mul(&ar.abs(&n[1]), hy));
     // Eq. 7.
-    let z = e.n12[0].abs() * hx + e.n12[1].abs() * hy;
-    let a_t = dot(e.n12, xc3) - z;
-    let a2 = dot(e.n2, xc3) + (e.n2[0].abs() * hx + e.n2[1].abs() * hy);
-    let p = 0.25 * a2.max(0.0);
+    let z = pad(&e.n12);
+    let a_t = ar.sub(&dot(&e.n12, &xc3), &z);
+    let a2 = ar.add(&dot(&e.n2, &xc3), &pad(&e.n2));
+    let p = ar.mul(&ar.lit(0.25), &ar.max(&a2, &ar.lit(0.0)));
     // Eq. 8.
-    let pad_z = e.mc[2].abs() + e.mr[2];
-    let avg_x = yc * e.mc[2] - e.mc[1];
-    let rad_x = yc.abs() * e.mr[2] + hy * pad_z + e.mr[1];
-    let avg_y = e.mc[0] - xc * e.mc[2];
-    let rad_y = e.mr[0] + xc.abs() * e.mr[2] + hx * pad_z;
-    let xi = -(rad_x + k * rad_y);
-    let a = [e.n0[2] + xi - p, e.n0[0], e.n0[1], avg_x, k * avg_y, a_t];
-    a.iter().all(|v| v.is_finite()).then_some(a)
+    let (mc, mr) = (&e.mc, &e.mr);
+    let pad_z = ar.add(&ar.abs(&mc[2]), &mr[2]);
+    let avg_x = ar.sub(&ar.mul(yc, &mc[2]), &mc[1]);
+    let rad_x = ar.add(&ar.add(&ar.mul(&ar.abs(yc), &mr[2]), &ar.mul(hy, &pad_z)), &mr[1]);
+    let avg_y = ar.sub(&mc[0], &ar.mul(xc, &mc[2]));
+    let rad_y = ar.add(&ar.add(&mr[0], &ar.mul(&ar.abs(xc), &mr[2])), &ar.mul(hx, &pad_z));
+    let xi = ar.neg(&ar.add(&rad_x, &ar.mul(k, &rad_y)));
+    let a0 = ar.sub(&ar.add(&e.n0[2], &xi), &p);
+    let a = [a0, e.n0[0].clone(), e.n0[1].clone(), avg_x, ar.mul(k, &avg_y), a_t];
+    let finite: Vec<A::B> = a.iter().map(|v| ar.is_finite(v)).collect();
+    (ar.all(&finite), a)
+}
+
+/// The refined `[u^, v^, t^]` (before the clamp of [`finish_of`]) as values of some
+/// [`F32Arith`].
+pub type Ranges<F> = [[F; 2]; 3];
+
+/// One edge's part of the tile answer over any [`F32Arith`]: from its plane `a` (used
+/// only when `ok`), whether it rejects the tile (the plane's minimum over the tile, lens
+/// and shutter is > 0) and the ranges cut by it. The xy part is evaluated once at the
+/// tile centre, padded by the half extents.
+pub fn edge_tile<A: F32Arith>(
+    ar: &A,
+    (ok, a): (&A::B, &[A::F; 6]),
+    c: &[A::F; 2],
+    h: &[A::F; 2],
+    ranges: &Ranges<A::F>,
+) -> (A::B, Ranges<A::F>) {
+    let at_c = ar.add(&ar.add(&a[0], &ar.mul(&a[1], &c[0])), &ar.mul(&a[2], &c[1]));
+    let m_xy = ar.sub(&at_c, &ar.add(&ar.mul(&ar.abs(&a[1]), &h[0]), &ar.mul(&ar.abs(&a[2]), &h[1])));
+    let zero = ar.lit(0.0);
+    let (mu, mv, mt) = (ar.neg(&ar.abs(&a[3])), ar.neg(&ar.abs(&a[4])), ar.min(&a[5], &zero));
+    let m = ar.add(&ar.add(&ar.add(&m_xy, &mu), &mv), &mt);
+    let rejects = ar.and(ok, &ar.gt(&m, &zero));
+    let rests = [ar.add(&ar.add(&m_xy, &mv), &mt), ar.add(&ar.add(&m_xy, &mu), &mt), ar.add(&ar.add(&m_xy, &mu), &mv)];
+    let cut = [0, 1, 2].map(|r| {
+        let ak = &a[3 + r];
+        let bound = ar.div(&ar.neg(&rests[r]), ak);
+        let usable = ar.and(ok, &ar.is_finite(&bound));
+        let (up, down) = (ar.and(&usable, &ar.gt(ak, &zero)), ar.and(&usable, &ar.lt(ak, &zero)));
+        let [lo, hi] = &ranges[r];
+        [ar.select(&down, &ar.max(lo, &bound), lo), ar.select(&up, &ar.min(hi, &bound), hi)]
+    });
+    (rejects, cut)
+}
+
+/// The tile answer of `mam2012-hyperplane` over any [`F32Arith`] for an enabled
+/// setup's edges and aspect `k`: `(nonempty, [u^, v^, t^], planes)`; the tile is Empty
+/// when `nonempty` is false (the tile reject).
+#[allow(clippy::type_complexity)]
+pub fn tile_answer<A: F32Arith>(
+    ar: &A,
+    edges: &[Edge<A::F>; 3],
+    k: &A::F,
+    tile: &[A::F; 4],
+) -> (A::B, Ranges<A::F>, [(A::B, [A::F; 6]); 3]) {
+    let (c, h) = centre(ar, tile);
+    let full = TileBounds::full();
+    let mut ranges = [full.u, full.v, full.t].map(|r| r.map(|x| ar.lit(x)));
+    let mut rejects = vec![];
+    let planes = edges.each_ref().map(|e| plane_of(ar, e, k, &c, &h));
+    for (ok, a) in &planes {
+        let (rej, cut) = edge_tile(ar, (ok, a), &c, &h, &ranges);
+        rejects.push(rej);
+        ranges = cut;
+    }
+    let (ok, ranges) = finish_of(ar, &ranges);
+    (ar.and(&ar.not(&ar.any(&rejects)), &ok), ranges, planes)
+}
+
+/// The tile's centre and half extents, `[xc, yc]` and `[hx, hy]`.
+fn centre<A: F32Arith>(ar: &A, tile: &[A::F; 4]) -> ([A::F; 2], [A::F; 2]) {
+    let half = ar.lit(0.5);
+    let c = |a: usize| ar.mul(&half, &ar.add(&tile[a], &tile[a + 2]));
+    let h = |a: usize| ar.mul(&half, &ar.sub(&tile[a + 2], &tile[a]));
+    ([c(0), c(1)], [h(0), h(1)])
 }
 
 /// One per-sample hyperplane: culled when `a . (1, x, y, u, v, t) > 0`.
@@ -714,35 +806,18 @@ impl Prepared for Prep {
             Ok(s) => s,
             Err(_) => return TileResult::Bounds(TileBounds::full()),
         };
-        let (xc, yc) = tile.center();
-        let (hx, hy) = (0.5 * (tile.x1 - tile.x0), 0.5 * (tile.y1 - tile.y0));
+        let (c, h) = centre(&Plain, &tile_of(tile));
         let mut out = TileBounds::full();
         for (ei, e) in s.edges.iter().enumerate() {
-            let Some(a) = plane(e, s.k, xc, yc, hx, hy) else {
+            let (ok, a) = plane_of(&Plain, e, &s.k, &c, &h);
+            if !ok {
                 continue;
-            };
-            // The xy part once at the tile centre, padded by the half extents.
-            let m_xy = a[0] + a[1] * xc + a[2] * yc - (a[1].abs() * hx + a[2].abs() * hy);
-            let (mu, mv, mt) = (-a[3].abs(), -a[4].abs(), a[5].min(0.0));
-            let m = m_xy + mu + mv + mt;
-            if m > 0.0 {
+            }
+            let (rejects, [u, v, t]) = edge_tile(&Plain, (&ok, &a), &c, &h, &[out.u, out.v, out.t]);
+            if rejects {
                 return TileResult::Empty;
             }
-            for (ak, rest, range) in [
-                (a[3], m_xy + mv + mt, &mut out.u),
-                (a[4], m_xy + mu + mt, &mut out.v),
-                (a[5], m_xy + mu + mv, &mut out.t),
-            ] {
-                let bound = -rest / ak;
-                if !bound.is_finite() {
-                    continue;
-                }
-                if ak > 0.0 {
-                    range[1] = range[1].min(bound);
-                } else if ak < 0.0 {
-                    range[0] = range[0].max(bound);
-                }
-            }
+            (out.u, out.v, out.t) = (u, v, t);
             if self.per_sample {
                 out.constraints.push(Box::new(Plane { edge: ei, a, safe: false }));
             }
@@ -754,15 +829,22 @@ impl Prepared for Prep {
     }
 }
 
+/// The refined ranges clamped to the domain over any [`F32Arith`]; false when one is
+/// empty.
+pub fn finish_of<A: F32Arith>(ar: &A, r: &Ranges<A::F>) -> (A::B, Ranges<A::F>) {
+    let clamp = |r: &[A::F; 2], lo: f32, hi: f32| [ar.max(&r[0], &ar.lit(lo)), ar.min(&r[1], &ar.lit(hi))];
+    let r = [clamp(&r[0], -1.0, 1.0), clamp(&r[1], -1.0, 1.0), clamp(&r[2], 0.0, 1.0)];
+    let ok: Vec<A::B> = r.iter().map(|x| ar.le(&x[0], &x[1])).collect();
+    (ar.all(&ok), r)
+}
+
 /// Clamp the refined intervals to the domain; Empty when one is empty.
 fn finish(mut out: TileBounds) -> TileResult {
-    let clamp = |r: [f32; 2], lo: f32, hi: f32| [r[0].max(lo), r[1].min(hi)];
-    out.u = clamp(out.u, -1.0, 1.0);
-    out.v = clamp(out.v, -1.0, 1.0);
-    out.t = clamp(out.t, 0.0, 1.0);
-    if !(out.u[0] <= out.u[1] && out.v[0] <= out.v[1] && out.t[0] <= out.t[1]) {
+    let (ok, [u, v, t]) = finish_of(&Plain, &[out.u, out.v, out.t]);
+    if !ok {
         return TileResult::Empty;
     }
+    (out.u, out.v, out.t) = (u, v, t);
     TileResult::Bounds(out)
 }
 

@@ -70,14 +70,14 @@ pub const INPUTS: [&str; 4] = ["a", "c", "w", "t"];
 /// drawn uniformly admits a culled tile) and wide ranges. The x-max side mirrors them.
 /// Narrower ranges (e.g. `a=128:256,c=1:2,w=1.875:2,t=0:256`, about one in 5000) are a
 /// `--ranges` away.
-const SETS: [[[f32; 2]; 4]; 2] = [
+pub const SETS: [[[f32; 2]; 4]; 2] = [
     [[-64.0, 64.0], [0.5, 64.0], [0.5, 4.0], [-256.0, 256.0]],
     [[-4096.0, 4096.0], [0.25, 64.0], [0.25, 64.0], [-16384.0, 16384.0]],
 ];
 
 /// The ranges of the other side: `a` and `t` negated (the x-max template is the
 /// mirror image of the x-min one).
-fn mirrored(r: [[f32; 2]; 4]) -> [[f32; 2]; 4] {
+pub fn mirrored(r: [[f32; 2]; 4]) -> [[f32; 2]; 4] {
     let neg = |x: [f32; 2]| [-x[1], -x[0]];
     [neg(r[0]), r[1], r[2], neg(r[3])]
 }
@@ -155,6 +155,14 @@ pub fn assert_violation(smt: &Smt, rule: &Rule, side: Side, v: &[String; 4]) {
         Side::XMax => smt.gt(&tile[0], &bx[1]),
     };
     smt.assert(&smt.and(&enabled, &cull));
+    assert_reach(smt, side, v);
+}
+
+/// Assert that the template's exact footprint reaches into the tile of `side` (`a < t w
+/// + c` for x-min, `a > t w - c` for x-max), decided by two fused multiply-adds rounded
+/// down and up, with one implied bound on `t` that spares the solver the search through
+/// the multiplications. Shared by every family on this template.
+pub fn assert_reach(smt: &Smt, side: Side, v: &[String; 4]) {
     let [a, c, w, t] = v;
     let reach = match side {
         Side::XMin => {

@@ -11,9 +11,23 @@
 //!   maximum, the finiteness and `w > 0` guards) and the tile reject
 //!   (`crate::bounds::bbox::aabb_of`, `crate::bounds::bbox::rejects`).
 //! - Two slips planted in `bbox-safe` ([`planted`]), to measure the search on rare bugs.
+//! - `la2011` and `la2011-safe`: the whole setup (the shears `k c` and their enclosures,
+//!   the sign classes, the finiteness guard of `-safe`) and the whole tile answer (time
+//!   chords, lens thresholds and hulls, the Empty decision, the t, u, v ranges):
+//!   `crate::bounds::la2011::setup_of`, `crate::bounds::la2011::tile_answer`.
+//! - `mam2012`: the whole setup (the enabling conditions, the screen extent, the Figure 5
+//!   corners, the patches) and the tile answer (the reject, u^, v^ and the four
+//!   per-sample lines' coefficients): `crate::bounds::mam2012::setup_of`,
+//!   `crate::bounds::mam2012::tile_answer`. `mam2012-safe` shares the formulas (over
+//!   `crate::bounds::mam2012::Ops`) but its interval arithmetic is not encoded.
+//! - `mam2012-hyperplane` (and `-ps`): the tile path only (the planes of Eq. 7-9, the
+//!   reject, the range cuts and the clamp), from the f32 setup's edges
+//!   (`crate::bounds::mam2012_hyperplane::edges_of`, `tile_answer`); the setup (the
+//!   facing test, the edge coefficients) and the `-safe` variants are not encoded.
 //!
-//! The queries ([`bbox_query`]) attack the x sides of the box on a template triangle
-//! (four inputs); the other methods have no encoding yet. A method's template is a
+//! The queries attack the x sides of the box (of the footprint, for la2011) on a
+//! template triangle (four inputs): [`bbox_query`] for bbox, bbox-safe and the planted
+//! slips, [`la2011_query`] for la2011 and la2011-safe. A method's template is a
 //! [`family::Family`]; by default the search runs the concolic plan ([`concolic`]):
 //! many small queries, each with some inputs fixed, under a deterministic resource
 //! limit, in parallel.
@@ -22,6 +36,7 @@ pub mod arith;
 pub mod bbox_query;
 pub mod concolic;
 pub mod family;
+pub mod la2011_query;
 pub mod planted;
 pub mod prove;
 pub mod smt;

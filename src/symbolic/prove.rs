@@ -53,7 +53,8 @@ impl Corner for Rule {
 
 /// The methods with a symbolic encoding (setup and tile reject, over
 /// [`super::arith::F32Arith`]).
-pub const ENCODED: [&str; 4] = ["bbox", "bbox-safe", "broken/planted-eq/bbox-safe", "broken/planted-band/bbox-safe"];
+pub const ENCODED: [&str; 6] =
+    ["bbox", "bbox-safe", "la2011", "la2011-safe", "broken/planted-eq/bbox-safe", "broken/planted-band/bbox-safe"];
 
 /// The encoding of a bbox-like method, or an error naming the ones there are.
 pub fn rule(id: &str) -> Result<Rule> {
@@ -68,6 +69,9 @@ pub fn rule(id: &str) -> Result<Rule> {
 
 /// The query family of a method (a new encoding adds its arm here).
 pub fn family(id: &str) -> Result<Box<dyn Family>> {
+    if let Some(f) = super::la2011_query::family_of(id) {
+        return Ok(Box::new(f));
+    }
     Ok(Box::new(BBoxFamily(rule(id)?)))
 }
 

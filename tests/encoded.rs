@@ -1,0 +1,70 @@
+//! The methods whose tile path is written over `F32Arith` (`cullproof::symbolic`) answer
+//! bit for bit as the code they replaced (kept in `tests/encoded/`), on physical cases
+//! of every regime, wild random triangles and planted NaN, infinities, signed zeros and
+//! w <= 0: the encoded code is the method, not a copy beside it.
+
+#[path = "encoded/cases.rs"]
+mod cases;
+#[path = "encoded/hyperplane_old.rs"]
+mod hyperplane_old;
+#[path = "encoded/la2011_old.rs"]
+mod la2011_old;
+#[path = "encoded/mam2012_old.rs"]
+mod mam2012_old;
+
+use cullproof::bounds::by_id;
+use cullproof::{Tile, Triangle};
+
+/// Compare a method with its old code on `n` cases; returns (tiles, culled).
+fn compare(id: &str, n: usize, old: impl Fn(&Triangle, &Tile) -> cullproof::bounds::TileResult) -> (usize, usize) {
+    compare_bits(id, n, |tri, tile| cases::bits(&old(tri, tile)))
+}
+
+/// [`compare`] with the old answer given as [`cases::bits`].
+fn compare_bits(id: &str, n: usize, old: impl Fn(&Triangle, &Tile) -> Option<(Vec<u32>, String)>) -> (usize, usize) {
+    let m = by_id(id).unwrap();
+    let (mut tiles, mut culled) = (0, 0);
+    for k in 0..n {
+        let (tri, ts) = cases::case(0xe2c0de, k);
+        let p = m.setup(&tri);
+        for tile in &ts {
+            let (new, old) = (cases::bits(&p.tile(tile)), old(&tri, tile));
+            assert_eq!(new, old, "{id} case {k}: {tri:?} {tile:?}");
+            tiles += 1;
+            culled += new.is_none() as usize;
+        }
+    }
+    (tiles, culled)
+}
+
+const N: usize = 60_000;
+
+#[test]
+fn la2011_is_its_old_code_bit_for_bit() {
+    let (tiles, culled) = compare("la2011", N, |tri, tile| la2011_old::answer(false, tri, tile));
+    assert_eq!(tiles, 2 * N);
+    assert!(culled > N / 20, "only {culled} of {tiles} tiles culled: the reject went untested");
+}
+
+#[test]
+fn la2011_safe_is_its_old_code_bit_for_bit() {
+    let (tiles, culled) = compare("la2011-safe", N, |tri, tile| la2011_old::answer(true, tri, tile));
+    assert_eq!(tiles, 2 * N);
+    assert!(culled > N / 20, "only {culled} of {tiles} tiles culled: the reject went untested");
+}
+
+#[test]
+fn mam2012_is_its_old_code_bit_for_bit() {
+    let (tiles, culled) = compare("mam2012", N, mam2012_old::answer);
+    assert_eq!(tiles, 2 * N);
+    assert!(culled > N / 20, "only {culled} of {tiles} tiles culled: the reject went untested");
+}
+
+#[test]
+fn mam2012_hyperplane_tile_path_is_its_old_code_bit_for_bit() {
+    for (id, ps) in [("mam2012-hyperplane", false), ("mam2012-hyperplane-ps", true)] {
+        let (tiles, culled) = compare_bits(id, N, |tri, tile| hyperplane_old::answer(ps, tri, tile));
+        assert_eq!(tiles, 2 * N);
+        assert!(culled > N / 20, "{id}: only {culled} of {tiles} tiles culled: the reject went untested");
+    }
+}
