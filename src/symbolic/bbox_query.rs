@@ -70,16 +70,33 @@ pub const INPUTS: [&str; 4] = ["a", "c", "w", "t"];
 /// drawn uniformly admits a culled tile) and wide ranges. The x-max side mirrors them.
 /// Narrower ranges (e.g. `a=128:256,c=1:2,w=1.875:2,t=0:256`, about one in 5000) are a
 /// `--ranges` away.
-pub const SETS: [[[f32; 2]; 4]; 2] = [
+const SETS: [[[f32; 2]; 4]; 2] = [
     [[-64.0, 64.0], [0.5, 64.0], [0.5, 4.0], [-256.0, 256.0]],
     [[-4096.0, 4096.0], [0.25, 64.0], [0.25, 64.0], [-16384.0, 16384.0]],
 ];
 
 /// The ranges of the other side: `a` and `t` negated (the x-max template is the
 /// mirror image of the x-min one).
-pub fn mirrored(r: [[f32; 2]; 4]) -> [[f32; 2]; 4] {
+fn mirrored(r: [[f32; 2]; 4]) -> [[f32; 2]; 4] {
     let neg = |x: [f32; 2]| [-x[1], -x[0]];
     [neg(r[0]), r[1], r[2], neg(r[3])]
+}
+
+/// The default range sets of the template on a side (x-max mirrors x-min).
+pub fn default_ranges(side: usize) -> Vec<Vec<[f32; 2]>> {
+    SETS.iter().map(|r| if side == 0 { r.to_vec() } else { mirrored(*r).to_vec() }).collect()
+}
+
+/// Whether a range starting at `lo` is allowed for input `k` of the template (`c` and
+/// `w` positive).
+pub fn check_range(k: usize, lo: f32) -> Result<(), String> {
+    if (k == 1 || k == 2) && lo <= 0.0 {
+        return Err(format!(
+            "the range of `{}` must be positive (the template has c > 0 and w > 0), not from {lo}",
+            INPUTS[k]
+        ));
+    }
+    Ok(())
 }
 
 /// The bbox family under one corner rule (bbox, bbox-safe or a planted slip).
@@ -97,16 +114,10 @@ impl Family for BBoxFamily {
         &[3]
     }
     fn default_ranges(&self, side: usize) -> Vec<Vec<[f32; 2]>> {
-        SETS.iter().map(|r| if side == 0 { r.to_vec() } else { mirrored(*r).to_vec() }).collect()
+        default_ranges(side)
     }
     fn check_range(&self, k: usize, lo: f32, _hi: f32) -> Result<(), String> {
-        if (k == 1 || k == 2) && lo <= 0.0 {
-            return Err(format!(
-                "the range of `{}` must be positive (the template has c > 0 and w > 0), not from {lo}",
-                INPUTS[k]
-            ));
-        }
-        Ok(())
+        check_range(k, lo)
     }
     fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
         assert_violation(smt, &self.0, Side::of(side), &[v[0].clone(), v[1].clone(), v[2].clone(), v[3].clone()])

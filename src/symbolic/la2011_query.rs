@@ -18,7 +18,7 @@
 //! whole answer's reject instead made a query z3 4.8.12 did not decide within 900 s.
 
 use super::arith::TriOf;
-use super::bbox_query::{assert_reach, instance, mirrored, template, Side, INPUTS, SETS};
+use super::bbox_query::{assert_reach, check_range, default_ranges, instance, template, Side, INPUTS};
 use super::family::Family;
 use super::smt::Smt;
 use crate::bounds::la2011::{setup_of, Nearest, Outward, Round};
@@ -41,16 +41,10 @@ impl Family for La2011Family {
         &[3]
     }
     fn default_ranges(&self, side: usize) -> Vec<Vec<[f32; 2]>> {
-        SETS.iter().map(|r| if side == 0 { r.to_vec() } else { mirrored(*r).to_vec() }).collect()
+        default_ranges(side)
     }
     fn check_range(&self, k: usize, lo: f32, _hi: f32) -> Result<(), String> {
-        if (k == 1 || k == 2) && lo <= 0.0 {
-            return Err(format!(
-                "the range of `{}` must be positive (the template has c > 0 and w > 0), not from {lo}",
-                INPUTS[k]
-            ));
-        }
-        Ok(())
+        check_range(k, lo)
     }
     fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
         let v = [v[0].clone(), v[1].clone(), v[2].clone(), v[3].clone()];
