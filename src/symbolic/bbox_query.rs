@@ -169,10 +169,11 @@ pub fn assert_violation(smt: &Smt, rule: &Rule, side: Side, v: &[String; 4]) {
     assert_reach(smt, side, v);
 }
 
-/// Assert that the template's exact footprint reaches into the tile of `side` (`a < t w
-/// + c` for x-min, `a > t w - c` for x-max), decided by two fused multiply-adds rounded
-/// down and up, with one implied bound on `t` that spares the solver the search through
-/// the multiplications. Shared by every family on this template.
+/// Assert that the template's exact footprint reaches into the tile of `side`:
+/// `a < t w + c` for x-min, `a > t w - c` for x-max, decided by two fused
+/// multiply-adds rounded down and up, with one implied bound on `t` that spares the
+/// solver the search through the multiplications. Shared by every family on this
+/// template.
 pub fn assert_reach(smt: &Smt, side: Side, v: &[String; 4]) {
     let [a, c, w, t] = v;
     let reach = match side {
