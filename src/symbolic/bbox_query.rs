@@ -82,28 +82,18 @@ fn mirrored(r: [[f32; 2]; 4]) -> [[f32; 2]; 4] {
     [neg(r[0]), r[1], r[2], neg(r[3])]
 }
 
-/// The default range sets of the template on a side (x-max mirrors x-min).
-pub fn default_ranges(side: usize) -> Vec<Vec<[f32; 2]>> {
-    SETS.iter().map(|r| if side == 0 { r.to_vec() } else { mirrored(*r).to_vec() }).collect()
+/// What a method asserts on this template: that it culls the template's tile of `side`
+/// (the tile `[x0, y0, x1, y1]`, the triangle built by [`template`]).
+pub trait TemplateCull: Sync {
+    fn assert_cull(&self, smt: &Smt, side: Side, tri: &TriOf<String>, tile: &[String; 4]);
 }
 
-/// Whether a range starting at `lo` is allowed for input `k` of the template (`c` and
-/// `w` positive).
-pub fn check_range(k: usize, lo: f32) -> Result<(), String> {
-    if (k == 1 || k == 2) && lo <= 0.0 {
-        return Err(format!(
-            "the range of `{}` must be positive (the template has c > 0 and w > 0), not from {lo}",
-            INPUTS[k]
-        ));
-    }
-    Ok(())
-}
-
-/// The bbox family under one corner rule (bbox, bbox-safe or a planted slip).
+/// The query family of every method on this template: the inputs, sides, ranges and
+/// exact side are the template's, the cull is the method's ([`TemplateCull`]).
 #[derive(Clone, Copy, Debug)]
-pub struct BBoxFamily(pub Rule);
+pub struct TemplateFamily<C>(pub C);
 
-impl Family for BBoxFamily {
+impl<C: TemplateCull> Family for TemplateFamily<C> {
     fn inputs(&self) -> &'static [&'static str] {
         &INPUTS
     }
@@ -114,13 +104,22 @@ impl Family for BBoxFamily {
         &[3]
     }
     fn default_ranges(&self, side: usize) -> Vec<Vec<[f32; 2]>> {
-        default_ranges(side)
+        SETS.iter().map(|r| if side == 0 { r.to_vec() } else { mirrored(*r).to_vec() }).collect()
     }
     fn check_range(&self, k: usize, lo: f32, _hi: f32) -> Result<(), String> {
-        check_range(k, lo)
+        if (k == 1 || k == 2) && lo <= 0.0 {
+            return Err(format!(
+                "the range of `{}` must be positive (the template has c > 0 and w > 0), not from {lo}",
+                INPUTS[k]
+            ));
+        }
+        Ok(())
     }
     fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
-        assert_violation(smt, &self.0, Side::of(side), &[v[0].clone(), v[1].clone(), v[2].clone(), v[3].clone()])
+        let (side, v) = (Side::of(side), [v[0].clone(), v[1].clone(), v[2].clone(), v[3].clone()]);
+        let (tri, tile) = template(smt, side, &v);
+        self.0.assert_cull(smt, side, &tri, &tile);
+        assert_reach(smt, side, &v);
     }
     fn instance(&self, side: usize, v: &[f32]) -> (crate::model::Triangle, crate::model::Tile) {
         instance(Side::of(side), [v[0], v[1], v[2], v[3]])
@@ -152,21 +151,20 @@ pub fn template<A: F32Arith>(ar: &A, side: Side, v: &[A::F; 4]) -> (TriOf<A::F>,
     (tri, tile)
 }
 
-/// Assert the query over `smt` for the inputs `v` (free variables or literals): the
-/// method's setup and tile reject on the template (the reject asserted), and the exact
-/// footprint reaching into the tile.
-pub fn assert_violation(smt: &Smt, rule: &Rule, side: Side, v: &[String; 4]) {
-    let (tri, tile) = template(smt, side, v);
-    let (enabled, bx) = aabb_of(smt, rule, &tri);
-    // The method's reject is `enabled` and one of four disjoint-side tests; the query
-    // asserts the side it attacks (a model satisfies the whole reject, and z3 need not
-    // rule out the y sides, whose terms then drop out of the query).
-    let cull = match side {
-        Side::XMin => smt.lt(&tile[2], &bx[0]),
-        Side::XMax => smt.gt(&tile[0], &bx[1]),
-    };
-    smt.assert(&smt.and(&enabled, &cull));
-    assert_reach(smt, side, v);
+/// bbox's cull under one corner rule (bbox, bbox-safe or a planted slip): its setup and
+/// tile reject on the template.
+impl TemplateCull for Rule {
+    fn assert_cull(&self, smt: &Smt, side: Side, tri: &TriOf<String>, tile: &[String; 4]) {
+        let (enabled, bx) = aabb_of(smt, self, tri);
+        // The method's reject is `enabled` and one of four disjoint-side tests; the query
+        // asserts the side it attacks (a model satisfies the whole reject, and z3 need
+        // not rule out the y sides, whose terms then drop out of the query).
+        let cull = match side {
+            Side::XMin => smt.lt(&tile[2], &bx[0]),
+            Side::XMax => smt.gt(&tile[0], &bx[1]),
+        };
+        smt.assert(&smt.and(&enabled, &cull));
+    }
 }
 
 /// Assert that the template's exact footprint reaches into the tile of `side`:

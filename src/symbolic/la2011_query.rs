@@ -18,62 +18,38 @@
 //! whole answer's reject instead made a query z3 4.8.12 did not decide within 900 s.
 
 use super::arith::TriOf;
-use super::bbox_query::{assert_reach, check_range, default_ranges, instance, template, Side, INPUTS};
-use super::family::Family;
+use super::bbox_query::{Side, TemplateCull, TemplateFamily};
 use super::smt::Smt;
 use crate::bounds::la2011::{setup_of, Nearest, Outward, Round};
-use crate::model::{Tile, Triangle};
 
-/// The la2011 family: `safe` false for `la2011`, true for `la2011-safe`.
+/// la2011's cull on the template: `safe` false for `la2011`, true for `la2011-safe`.
 #[derive(Clone, Copy, Debug)]
-pub struct La2011Family {
+pub struct La2011Cull {
     pub safe: bool,
 }
 
-impl Family for La2011Family {
-    fn inputs(&self) -> &'static [&'static str] {
-        &INPUTS
-    }
-    fn sides(&self) -> &'static [&'static str] {
-        &["x-min", "x-max"]
-    }
-    fn tile_inputs(&self) -> &'static [usize] {
-        &[3]
-    }
-    fn default_ranges(&self, side: usize) -> Vec<Vec<[f32; 2]>> {
-        default_ranges(side)
-    }
-    fn check_range(&self, k: usize, lo: f32, _hi: f32) -> Result<(), String> {
-        check_range(k, lo)
-    }
-    fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
-        let v = [v[0].clone(), v[1].clone(), v[2].clone(), v[3].clone()];
+impl TemplateCull for La2011Cull {
+    fn assert_cull(&self, smt: &Smt, _side: Side, tri: &TriOf<String>, tile: &[String; 4]) {
         if self.safe {
-            assert_time_reject::<Outward>(smt, Side::of(side), &v)
+            assert_time_reject::<Outward>(smt, tri, tile)
         } else {
-            assert_time_reject::<Nearest>(smt, Side::of(side), &v)
+            assert_time_reject::<Nearest>(smt, tri, tile)
         }
-    }
-    fn instance(&self, side: usize, v: &[f32]) -> (Triangle, Tile) {
-        instance(Side::of(side), [v[0], v[1], v[2], v[3]])
     }
 }
 
-/// The template's triangle and tile, la2011's setup, its x time part asserted to say
-/// Empty, and the exact footprint asserted to reach into the tile.
-fn assert_time_reject<R: Round>(smt: &Smt, side: Side, v: &[String; 4]) {
-    let (tri, tile): (TriOf<String>, [String; 4]) = template(smt, side, v);
-    let s = setup_of::<R, Smt>(smt, &tri);
+/// la2011's setup, its x time part asserted to say Empty.
+fn assert_time_reject<R: Round>(smt: &Smt, tri: &TriOf<String>, tile: &[String; 4]) {
+    let s = setup_of::<R, Smt>(smt, tri);
     let (time_ok, _) = s.x.time::<R, Smt>(smt, &[tile[0].clone(), tile[2].clone()]);
     smt.assert(&format!("(not {time_ok})"));
-    assert_reach(smt, side, v);
 }
 
 /// The family of `id`, if it is la2011 or la2011-safe.
-pub fn family_of(id: &str) -> Option<La2011Family> {
+pub fn family_of(id: &str) -> Option<TemplateFamily<La2011Cull>> {
     match id {
-        "la2011" => Some(La2011Family { safe: false }),
-        "la2011-safe" => Some(La2011Family { safe: true }),
+        "la2011" => Some(TemplateFamily(La2011Cull { safe: false })),
+        "la2011-safe" => Some(TemplateFamily(La2011Cull { safe: true })),
         _ => None,
     }
 }

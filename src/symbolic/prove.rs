@@ -14,7 +14,7 @@
 //! depends on the machine.
 
 use super::arith::F32Arith;
-use super::bbox_query::BBoxFamily;
+use super::bbox_query::TemplateFamily;
 use super::concolic;
 use super::family::{self, Family, Query};
 use super::planted::{BandSlip, EqSlip};
@@ -72,7 +72,7 @@ pub fn family(id: &str) -> Result<Box<dyn Family>> {
     if let Some(f) = super::la2011_query::family_of(id) {
         return Ok(Box::new(f));
     }
-    Ok(Box::new(BBoxFamily(rule(id)?)))
+    Ok(Box::new(TemplateFamily(rule(id)?)))
 }
 
 /// How the queries are made.
