@@ -592,7 +592,8 @@ pub fn exact_coverage(
 
 /// [`exact_coverage`] sample by sample with the scalar oracle (the reference the
 /// batched path is tested against).
-pub fn exact_coverage_scalar(tri: &oracles::Tri, samples: &[Sample], out: &mut [bool]) -> (u64, u64, u64) {
+#[cfg(test)]
+pub(crate) fn exact_coverage_scalar(tri: &oracles::Tri, samples: &[Sample], out: &mut [bool]) -> (u64, u64, u64) {
     let (mut covered, mut boundary, mut exact) = (0u64, 0u64, 0u64);
     for (s, o) in samples.iter().zip(out.iter_mut()) {
         let (c, ex) = oracles::coverage::classify_traced(tri, s.to_oracle());
