@@ -280,18 +280,11 @@ fn clipped_polygon(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<Clipped> {
     Some((poly, lines, d, zs))
 }
 
-/// True when some vertex is on or behind the lens plane (`w_i <= 0`) at time `t`.
-pub(super) fn behind_at(tri: &Tri, t: f64) -> bool {
-    (0..3).any(|i| {
-        let w = (1.0 - t) * tri.q[i][3] + t * tri.r[i][3];
-        w.is_nan() || w <= 0.0
-    })
-}
-
 /// Witness proposals at the corners of the box's (u, v, t) (each with the point of
-/// [`clipped_point`] there): with a vertex behind the lens the covered set near an
-/// extreme is a thin wedge whose apex a box's centre keeps missing, while a corner on
-/// the wedge's open side lies in it.
+/// [`clipped_point`] there). Near an extreme the covered set of a box is often a thin
+/// wedge: behind the lens its apex, in front of it the place where a vertex or edge
+/// enters the tile at the end of a lens or time range. The box's centre keeps missing
+/// it while a corner on the wedge's open side lies in it.
 pub(super) fn corner_points(tri: &Tri, b: &Box5) -> Vec<[f64; 5]> {
     let mut pts = Vec::with_capacity(8);
     for n in 0..8 {

@@ -2,7 +2,7 @@
 //! about each: the key of a box, the value at a witness, and where to look for
 //! witnesses.
 
-use super::elimination::{behind_at, clipped_point, corner_points};
+use super::elimination::{clipped_point, corner_points};
 use super::enclosure::{Box5, BoxValues};
 use crate::coverage::certainly_interior;
 use crate::interval::Interval;
@@ -135,13 +135,15 @@ pub(super) fn value_at(tri: &Tri, obj: Objective, s: [f64; 5]) -> Interval {
 }
 
 /// Witness candidates in a box: the point nearest the bound being sought (objective at
-/// its end, the rest at the centre), the centre, the far end, then a few points drawn
+/// its end, the rest at the centre), the centre, the far end (each with (x, y) clipped
+/// into the projected triangle where it meets the tile), with elimination the corners
+/// of the box's (u, v, t) ([`corner_points`]), then a few points drawn
 /// from a generator seeded by the box itself (so runs are reproducible). Near an
 /// extreme the covered set is often a thin wedge through a box corner that its centre
 /// misses; scattered points find it.
 pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: bool) -> Vec<[f64; 5]> {
-    // Behind the lens, with elimination: the clipped point at a (u, v, t) (any signs of
-    // w) and at the corners of the box's (u, v, t).
+    // With elimination: the clipped point at a (u, v, t) (any signs of w) and at the
+    // corners of the box's (u, v, t).
     let clip =
         |p: [f64; 5]| clipped_centroid(tri, p, b).or_else(|| if eliminate { clipped_point(tri, p, b) } else { None });
     let centre = b.map(|i| i.mid());
@@ -169,11 +171,19 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: b
         pts.push(centre);
         let mut far = centre;
         far[index] = if max { b[index].lo } else { b[index].hi };
+        // The box's far end in the objective's coordinate, clipped: where the covered
+        // set only begins inside the box (an edge or vertex grazing the tile), the near
+        // end and the centre can both miss it.
+        if let Some((fx, fy)) = clip(far) {
+            let mut p = far;
+            (p[0], p[1]) = (fx, fy);
+            pts.push(p);
+        }
         pts.push(far);
     } else {
         pts.push(centre);
     }
-    if eliminate && behind_at(tri, centre[4]) {
+    if eliminate {
         pts.extend(corner_points(tri, b));
     }
     let mut seed = b

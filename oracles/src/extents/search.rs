@@ -104,8 +104,7 @@ pub struct Search {
     pub stall: Option<usize>,
     /// Decide (x, y) by elimination ([`super::box_values_eliminating`]: the covered
     /// pixels at a fixed (u, v, t) are a convex polygon) and split only (u, v, t) for a
-    /// coordinate extent; behind the lens, propose witnesses at the (u, v, t) corners
-    /// of a box too. Otherwise the boxes are judged by the enclosures alone and (x, y)
+    /// coordinate extent; propose witnesses at the (u, v, t) corners of a box too. Otherwise the boxes are judged by the enclosures alone and (x, y)
     /// is split like the rest behind the lens.
     pub eliminate: bool,
 }
