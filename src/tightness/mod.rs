@@ -37,7 +37,8 @@
 //! # The ceiling
 //! The tightest interval-only tile test lets through, per tile, the samples inside the
 //! box of the exact (u, v, t) extents of the covered set over the tile. Certified
-//! extents are too slow for every tile, so two figures are reported:
+//! extents of every tile take minutes on a real scene (`--certified all`), so by default
+//! two figures are reported:
 //! - the **sample ceiling**: per tile, the box of the (u, v, t) of the covered *pattern
 //!   samples* themselves (the whole range in a coordinate the triangle's coverage does
 //!   not depend on: u, v without defocus, t without motion), and the pattern samples
@@ -46,7 +47,7 @@
 //!   it (those are not interval tests); an interval-only method that misses nothing
 //!   cannot.
 //! - optionally, a **certified ceiling** on a seeded random subset of the traversed
-//!   tiles: certified enclosures of the six extents (`oracles::extents::TileSolver`,
+//!   tiles, or on every one of them (the exact ceiling of the scene): certified enclosures of the six extents (`oracles::extents::TileSolver`,
 //!   resolution and box budget of [`Config::certified`]), each side taken at its outer
 //!   end, so the box contains the exact one and its STE is a **lower bound** on the true
 //!   ceiling over those tiles; the sample ceiling of the same tiles is shown beside it.
@@ -173,7 +174,8 @@ pub struct Config {
     /// Tile sizes in pixels.
     pub tiles: Vec<u32>,
     pub pattern: Pattern,
-    /// Tiles per (setting, tile size) given a certified ceiling (0: none).
+    /// Tiles per (setting, tile size) given a certified ceiling (0: none; at least the
+    /// number traversed, e.g. `usize::MAX`: every one).
     pub certified_tiles: usize,
     /// Solver settings of the certified ceiling.
     pub certified: ExtentsConfig,
@@ -725,7 +727,8 @@ fn measure_triangle(
                     }
                 }
                 let l = (ty - ty0) as u64 * ntx + (tx - tx0) as u64;
-                if chosen.contains(&(ti, l)) {
+                // `chosen` is sorted: tile sizes in order, each one's tiles in order.
+                if chosen.binary_search(&(ti, l)).is_ok() {
                     out.certified.push(certify(&otri, dims, table, &local, &p, &cfg.certified, setting, s));
                 }
             }
@@ -890,8 +893,9 @@ fn tiles_traversed(fp: Footprint, tiles: &[u32], width: u32, height: u32) -> Vec
         .collect()
 }
 
-/// The certified subset: per triangle, (tile index, local tile number) pairs; for each
-/// tile size `n` pairs drawn uniformly without replacement from all traversed ones.
+/// The certified subset: per triangle, (tile index, local tile number) pairs, sorted;
+/// for each tile size `n` pairs drawn uniformly without replacement from all traversed
+/// ones (every one when `n` is at least their number).
 fn choose_certified(
     fps: &[Footprint],
     cfg: &Config,
@@ -917,9 +921,14 @@ fn choose_certified(
         let mut rng =
             rand_chacha::ChaCha8Rng::seed_from_u64(pattern::hash(&[cfg.seed, 0xce47, setting as u64, s as u64]));
         let n = cfg.certified_tiles.min(total as usize);
-        let mut picks: Vec<u64> =
-            rand::seq::index::sample(&mut rng, total as usize, n).into_iter().map(|x| x as u64).collect();
-        picks.sort_unstable();
+        let picks: Vec<u64> = if n == total as usize {
+            (0..total).collect()
+        } else {
+            let mut p: Vec<u64> =
+                rand::seq::index::sample(&mut rng, total as usize, n).into_iter().map(|x| x as u64).collect();
+            p.sort_unstable();
+            p
+        };
         for g in picks {
             let tri = prefix.partition_point(|&p| p <= g) - 1;
             chosen[tri].push((ti, g - prefix[tri]));

@@ -107,6 +107,27 @@ fn the_certified_ceiling_brackets_with_the_sample_ceiling() {
 }
 
 #[test]
+fn the_certified_ceiling_of_every_tile() {
+    // `--certified all`: every traversed tile is solved, so the certified rows count as
+    // many tiles as bbox tests, their covered samples are every covered sample of the
+    // setting, and the certified box lets through at least the sample ceiling.
+    let s = tiny("interior", 16, 12);
+    let mut cfg = Config::new(vec![1, 4], Pattern::new(PatternKind::Stratified, 2, 3));
+    cfg.certified_tiles = usize::MAX;
+    cfg.certified.max_boxes = 300;
+    let m = measure(&s, &registry()[..1], &Setting::ALL, &cfg, &ProgressBar::hidden());
+    assert_eq!(m.certified.len(), m.ceiling.len());
+    for (c, ceil) in m.certified.iter().zip(&m.ceiling) {
+        let bbox = m.rows.iter().find(|r| r.method == "bbox" && r.setting == c.setting && r.tile == c.tile).unwrap();
+        assert_eq!(c.tiles, bbox.work.tile_tests, "{c:?}");
+        assert!(c.tiles > 0);
+        let sum = m.settings.iter().find(|x| x.setting == c.setting).unwrap();
+        assert_eq!(c.covered, sum.covered, "{c:?}");
+        assert!(c.tested_certified >= ceil.tested, "{c:?} {ceil:?}");
+    }
+}
+
+#[test]
 fn a_hand_made_static_triangle() {
     // One static, in-focus triangle on a 16x16 screen: with one sample per pixel at the
     // pixel's stratified position, bbox tests all samples of the tiles over its box.
