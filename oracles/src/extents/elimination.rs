@@ -160,58 +160,30 @@ fn multipliers<const F: usize>(a: &[[f64; 16]; F]) -> Option<[f64; F]> {
     best.map(|(l, _)| l)
 }
 
-/// Certify that no interior sample of the box has a hit depth beyond `z` (below it when
-/// `!max`, above it when `max`), where `D` has the sign `sg` over the box: such a
-/// sample has every `sg E_k > 0` and `g = sg (z D - N) > 0` (`sg (N - z D)` for a
-/// maximum), four half-planes in (x, y) for a fixed (u, v, t), so one non-negative
-/// combination of the four that is `<= 0` over the box rules it out, as for
-/// [`no_covered_xy`]. `n` and `d` are N and D in the lanes of the edge values.
-pub(super) fn no_depth_beyond(
-    ev: &[LPoly<3, 16>; 3],
-    n: &LPoly<4, 16>,
-    d: &LPoly<4, 16>,
-    h: f64,
-    sg: f64,
-    z: f64,
-    max: bool,
-) -> bool {
-    if !z.is_finite() {
-        return false;
-    }
-    let zd = lconst(&[z; 16]).mul::<4, 4>(d);
-    let gz = if max { n.sub(&zd) } else { zd.sub(n) };
-    // The four functions in the lanes, signed; E_k widened to four coefficients (an
-    // exact zero cubic term).
-    let mut f = [LPoly::<4, 16>::zero(); 4];
-    for k in 0..3 {
-        for q in 0..3 {
-            f[k].0[q] = ev[k].0[q];
-        }
-    }
-    f[3] = gz;
-    let sgn = lconst(&[sg; 16]);
-    let f: [LPoly<4, 16>; 4] = std::array::from_fn(|k| sgn.mul::<4, 4>(&f[k]));
-    let mid: [[f64; 16]; 4] = std::array::from_fn(|k| f[k].0[0].v);
-    let Some(lam) = multipliers(&mid) else { return false };
-    let mut g = LPoly::<4, 16>::zero();
-    for (k, &l) in lam.iter().enumerate() {
-        if l != 0.0 {
-            g = g.add(&lconst(&[l; 16]).mul::<4, 4>(&f[k]));
-        }
-    }
-    let (_, hi) = g.range(h);
-    hi.iter().all(|&v| v <= 0.0)
-}
-
-/// The least and greatest hit depth over the covered polygon at (u, v, t) = `s[2..5]`
-/// within the box's rectangle (at its vertices: the depth is linear-fractional in
-/// (x, y) with a denominator of one sign), plain f64; None when the polygon is empty.
-pub(super) fn polygon_depths(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
-    let (poly, lines, d, zs) = clipped_polygon(tri, s, b)?;
+/// Witness proposals for an extreme of the hit depth at (u, v, t) = `s[2..5]`: the
+/// vertex of the covered polygon (within the box's rectangle) of least depth (greatest
+/// when `max`; the depth is affine in (x, y) there, so its extremes over the polygon
+/// are at vertices) moved a little towards the polygon's centroid, by a few fractions
+/// (the extreme is on the boundary, which is not covered). Plain f64: the exact
+/// classifier judges them.
+pub(super) fn depth_extreme_points(tri: &Tri, s: [f64; 5], b: &Box5, max: bool) -> Vec<[f64; 5]> {
+    let Some((poly, lines, d, zs)) = clipped_polygon(tri, s, b) else { return Vec::new() };
     let depth =
         |p: &(f64, f64)| (0..3).map(|k| zs[k] * (lines[k][2] + lines[k][0] * p.0 + lines[k][1] * p.1)).sum::<f64>() / d;
-    let (lo, hi) = poly.iter().map(depth).fold((f64::INFINITY, f64::NEG_INFINITY), |a, z| (a.0.min(z), a.1.max(z)));
-    (lo.is_finite() && hi.is_finite()).then_some((lo, hi))
+    let key = |p: &(f64, f64)| if max { -depth(p) } else { depth(p) };
+    let Some(ext) = poly.iter().min_by(|p, q| key(p).total_cmp(&key(q))) else { return Vec::new() };
+    let n = poly.len() as f64;
+    let (cx, cy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0 / n, a.1 + p.1 / n));
+    [1e-9, 1e-6, 1e-3]
+        .iter()
+        .map(|f| {
+            let mut p = s;
+            p[0] = (ext.0 + f * (cx - ext.0)).clamp(b[0].lo, b[0].hi);
+            p[1] = (ext.1 + f * (cy - ext.1)).clamp(b[1].lo, b[1].hi);
+            p
+        })
+        .filter(|p| p[0].is_finite() && p[1].is_finite())
+        .collect()
 }
 
 /// The centroid of the box's (x, y) rectangle clipped by the half-planes where every

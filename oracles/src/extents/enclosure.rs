@@ -1,7 +1,8 @@
 //! Box enclosures: the coverage values E_0, E_1, E_2, D (and the depth numerator) over
 //! a box of samples, and the judgement empty / full / undecided they imply.
 
-use super::elimination::{no_covered_xy, no_depth_beyond, polygon_depths, Elimination};
+use super::depth::covered_depth;
+use super::elimination::{no_covered_xy, Elimination};
 use super::lanes::{lconst, LPoly};
 use super::tpoly::TPoly;
 use crate::coverage::interval_div;
@@ -58,10 +59,14 @@ pub struct BoxValues {
     /// When the elimination ran and did not certify the box: how much u, v and t each
     /// move the combination it tried (zero otherwise). Guides splitting.
     pub elim_smear: [f64; 3],
-    /// Bounds on the hit depth of every covered sample of the box certified by the
-    /// elimination (the whole line where it certified nothing; only from
-    /// [`box_values_eliminating`] with depth).
+    /// Bounds on the hit depth of every covered sample of the box certified by a
+    /// combination of the depth with the edge values (see the module `depth`; the
+    /// whole line where it certified nothing; only from [`box_values_eliminating`]
+    /// with depth).
     pub covered_depth: Interval,
+    /// How much u, v and t each move [`BoxValues::covered_depth`] over the box (zero
+    /// where it is not known). Guides splitting.
+    pub covered_smear: [f64; 3],
 }
 
 impl BoxValues {
@@ -346,6 +351,7 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
         eliminated: false,
         elim_smear: [0.0; 3],
         covered_depth: Interval::new(f64::NEG_INFINITY, f64::INFINITY),
+        covered_smear: [0.0; 3],
     };
     if eliminate && classify_values(&bv) == BoxClass::Undecided {
         match no_covered_xy(&ev, h, d) {
@@ -355,49 +361,10 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
         }
     }
     if let Some((n, dl)) = depth_lanes.filter(|_| !bv.eliminated && (d.lo > 0.0 || d.hi < 0.0)) {
-        bv.covered_depth = covered_depth(tri, b, &bv, &ev, &n, &dl, h, if d.lo > 0.0 { 1.0 } else { -1.0 });
+        let cd = covered_depth(&ev, &n, &dl, h);
+        (bv.covered_depth, bv.covered_smear) = (cd.bounds, cd.smear);
     }
     bv
-}
-
-/// Bounds on the hit depth of the covered samples of a box from the elimination
-/// ([`BoxValues::covered_depth`]): the least and greatest depth over the covered polygon
-/// at the box's middle (u, v, t) propose a bound a little beyond each (a tenth, then a
-/// half of the way to the enclosure already known), which a combination of the edge
-/// values and the depth condition must certify; an end stays infinite otherwise.
-#[allow(clippy::too_many_arguments)]
-fn covered_depth(
-    tri: &Tri,
-    b: &Box5,
-    bv: &BoxValues,
-    ev: &[LPoly<3, 16>; 3],
-    n: &LPoly<4, 16>,
-    dl: &LPoly<4, 16>,
-    h: f64,
-    sg: f64,
-) -> Interval {
-    let mut out = Interval::new(f64::NEG_INFINITY, f64::INFINITY);
-    let Some((zlo, zhi)) = polygon_depths(tri, b.map(|i| i.mid()), b) else { return out };
-    let known = match (bv.depth, bv.vertex_depth) {
-        (Some(a), Some(v)) => Interval::new(a.lo.max(v.lo), a.hi.min(v.hi)),
-        (Some(a), None) | (None, Some(a)) => a,
-        (None, None) => return out,
-    };
-    for f in [0.1, 0.5] {
-        let z = zlo - f * (zlo - known.lo);
-        if z > known.lo && no_depth_beyond(ev, n, dl, h, sg, z, false) {
-            out.lo = z;
-            break;
-        }
-    }
-    for f in [0.1, 0.5] {
-        let z = zhi + f * (known.hi - zhi);
-        if z < known.hi && no_depth_beyond(ev, n, dl, h, sg, z, true) {
-            out.hi = z;
-            break;
-        }
-    }
-    out
 }
 
 /// The hull of the vertex depths `z_k(t) / w_k(t)` over the times `t` (see

@@ -2,7 +2,7 @@
 //! about each: the key of a box, the value at a witness, and where to look for
 //! witnesses.
 
-use super::elimination::{behind_at, clipped_point, corner_points};
+use super::elimination::{behind_at, clipped_point, corner_points, depth_extreme_points};
 use super::enclosure::{Box5, BoxValues};
 use crate::coverage::certainly_interior;
 use crate::interval::Interval;
@@ -146,6 +146,11 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: b
         |p: [f64; 5]| clipped_centroid(tri, p, b).or_else(|| if eliminate { clipped_point(tri, p, b) } else { None });
     let centre = b.map(|i| i.mid());
     let mut pts = Vec::with_capacity(9);
+    if let (Objective::Depth { max }, true) = (obj, eliminate) {
+        // The vertex of the covered polygon at the box's middle (u, v, t) where the
+        // depth is extreme, nudged inside.
+        pts.extend(depth_extreme_points(tri, centre, b, max));
+    }
     // The centroid of the projected triangle (at the box's centre in u, v, t) clipped to
     // the box's (x, y) rectangle, when that is not empty: near an extreme the triangle
     // only grazes the tile and scattered points miss it.

@@ -223,7 +223,10 @@ impl Problem for ExtentSearch<'_> {
         // like any other coordinate (for deciding boxes, not for the bound).
         let (init, active, min_w) = (&self.init, &self.active, &self.min_w);
         let mut smear = bv.open_smear();
-        if matches!(obj, Objective::Coord { .. }) && !bv.in_front && bv.elim_smear.iter().any(|&v| v > 0.0) {
+        if (matches!(obj, Objective::Coord { .. }) || opts.eliminate)
+            && !bv.in_front
+            && bv.elim_smear.iter().any(|&v| v > 0.0)
+        {
             // While (x, y) is eliminated, (u, v, t) are split where the combination
             // that nearly certified the box moves most.
             smear[2..5].copy_from_slice(&bv.elim_smear);
@@ -240,7 +243,12 @@ impl Problem for ExtentSearch<'_> {
                 // Both what decides coverage and what moves the depth matter: each
                 // smear relative to its largest coordinate; with neither known, the
                 // widest side relative to the initial box.
-                let (ds, dmax) = (bv.depth_smear[i], bv.depth_smear.iter().cloned().fold(0.0, f64::max));
+                let mut dsm = bv.depth_smear;
+                if opts.eliminate && bv.covered_depth.lo.is_finite() && bv.covered_depth.hi.is_finite() {
+                    // The bounds over the covered polygon move with (u, v, t) only.
+                    dsm = [0.0, 0.0, bv.covered_smear[0], bv.covered_smear[1], bv.covered_smear[2]];
+                }
+                let (ds, dmax) = (dsm[i], dsm.iter().cloned().fold(0.0, f64::max));
                 score = if dmax > 0.0 { ds / dmax } else { 0.0 };
                 if max_smear > 0.0 {
                     score = score.max(smear[i] / max_smear);
@@ -251,7 +259,7 @@ impl Problem for ExtentSearch<'_> {
             }
             if i < 2
                 && (bv.in_front || opts.eliminate)
-                && matches!(obj, Objective::Coord { .. })
+                && (matches!(obj, Objective::Coord { .. }) || opts.eliminate)
                 && uvt_open(&b, init, min_w, active)
             {
                 // The elimination (and in front of the lens the side test) decides
