@@ -252,14 +252,6 @@ fn clipped_polygon(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<Clipped> {
     Some((poly, lines, d, zs))
 }
 
-/// True when some vertex is on or behind the lens plane (`w_i <= 0`) at time `t`.
-pub(super) fn behind_at(tri: &Tri, t: f64) -> bool {
-    (0..3).any(|i| {
-        let w = (1.0 - t) * tri.q[i][3] + t * tri.r[i][3];
-        w.is_nan() || w <= 0.0
-    })
-}
-
 /// Witness proposals at the corners of the box's (u, v, t) (each with the point of
 /// [`clipped_point`] there): with a vertex behind the lens the covered set near an
 /// extreme is a thin wedge whose apex a box's centre keeps missing, while a corner on

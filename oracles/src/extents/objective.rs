@@ -2,7 +2,7 @@
 //! about each: the key of a box, the value at a witness, and where to look for
 //! witnesses.
 
-use super::elimination::{behind_at, clipped_point, corner_points, depth_extreme_points};
+use super::elimination::{clipped_point, depth_extreme_points};
 use super::enclosure::{Box5, BoxValues};
 use crate::coverage::certainly_interior;
 use crate::interval::Interval;
@@ -178,9 +178,6 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: b
     } else {
         pts.push(centre);
     }
-    if eliminate && behind_at(tri, centre[4]) {
-        pts.extend(corner_points(tri, b));
-    }
     let mut seed = b
         .iter()
         .fold(0x9E37_79B9_7F4A_7C15u64, |h, i| (h ^ i.lo.to_bits()).wrapping_mul(0x100_0000_01B3) ^ i.hi.to_bits());
@@ -253,7 +250,10 @@ pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64,
 /// bisection, every step certified interior by the fast path of the classifier (a point
 /// it cannot certify counts as outside: the witness stays a hair short of the boundary
 /// there, at no cost in exact arithmetic), so a witness hugs the boundary of the
-/// covered set instead of sitting where it was drawn.
+/// covered set instead of sitting where it was drawn. A step whose point is outside
+/// is tried again at the centroid of the covered polygon at its (u, v, t) (within the
+/// box's rectangle): the covered pixels move with the lens and the time, and near an
+/// extreme they shrink to a point that a fixed (x, y) leaves early.
 pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box5) -> [f64; 5] {
     let Objective::Coord { index, max } = obj else { return p };
     let mut inside = p;
@@ -270,9 +270,17 @@ pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box
         }
         if certainly_interior(tri, mid) {
             inside = mid;
-        } else {
-            out = mid;
+            continue;
         }
+        if let Some((x, y)) = clipped_point(tri, mid, b) {
+            let mut moved = mid;
+            (moved[0], moved[1]) = (x, y);
+            if certainly_interior(tri, moved) {
+                inside = moved;
+                continue;
+            }
+        }
+        out = mid;
     }
     inside
 }

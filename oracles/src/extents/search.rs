@@ -3,6 +3,7 @@
 
 use super::bnb::{self, Flow, Frontier, Open, Problem, Ties};
 use super::enclosure::{box_values_eliminating, box_values_with, classify_values, Box5, BoxClass, BoxValues};
+use super::elimination::corner_points;
 use super::objective::{candidate_points, key_of, push_towards_bound, value_at, Extent, Objective};
 use crate::coverage::{classify, Coverage};
 use crate::interval::Interval;
@@ -151,6 +152,37 @@ struct ExtentSearch<'a> {
     moved_at: u64,
 }
 
+impl ExtentSearch<'_> {
+    /// Could a witness in a box of this key still improve on the best by more than the
+    /// resolution?
+    fn wanted(&self, key: f64) -> bool {
+        self.best.is_none_or(|(w, _)| w - key > self.cfg.resolution)
+    }
+
+    /// Judge the points exactly and keep the best interior one (pushed towards the
+    /// box's bound), until one is within the resolution of the box's key; true when
+    /// some point was interior.
+    fn try_witnesses(&mut self, pts: Vec<[f64; 5]>, b: &Box5, key: f64) -> bool {
+        let (tri, obj) = (self.tri, self.obj);
+        let mut found = false;
+        for p in pts {
+            if !self.wanted(key) {
+                break;
+            }
+            if classify(tri, p) == Coverage::Interior {
+                found = true;
+                let p = push_towards_bound(tri, obj, p, b);
+                let val = value_at(tri, obj, p);
+                let k = if self.sg > 0.0 { val.hi } else { -val.lo };
+                if self.best.is_none_or(|(w, _)| k < w) {
+                    self.best = Some((k, p));
+                }
+            }
+        }
+        found
+    }
+}
+
 impl Problem for ExtentSearch<'_> {
     type Node = Cell;
 
@@ -191,22 +223,23 @@ impl Problem for ExtentSearch<'_> {
             self.final_lo = lower;
             return Flow::Stop;
         }
+        if std::env::var("EXTDBG").is_ok() {
+            eprintln!("pop {} key {:.7} best {:?} depth {} w {:?} elim {} class {:?} es {:?} sm {:?}", self.boxes, key, self.best.map(|b| b.0), depth, b.map(|i| i.width()), bv.eliminated, classify_values(&bv), bv.elim_smear, bv.open_smear());
+        }
         let class = classify_values(&bv);
         if class == BoxClass::Empty {
             return Flow::Continue;
         }
         let tri = self.tri;
         // Witnesses, while one could still improve on the best.
-        if self.best.is_none_or(|(w, _)| w - key > cfg.resolution) {
-            for p in candidate_points(tri, obj, &b, opts.eliminate) {
-                if classify(tri, p) == Coverage::Interior {
-                    let p = push_towards_bound(tri, obj, p, &b);
-                    let val = value_at(tri, obj, p);
-                    let k = if sg > 0.0 { val.hi } else { -val.lo };
-                    if self.best.is_none_or(|(w, _)| k < w) {
-                        self.best = Some((k, p));
-                    }
-                }
+        if self.wanted(key) {
+            let found = self.try_witnesses(candidate_points(tri, obj, &b, opts.eliminate), &b, key);
+            if !found && opts.eliminate && self.wanted(key) {
+                // Nothing interior at the box's middle (u, v, t): its corners, each at
+                // its covered polygon (near an extreme the covered set is a thin wedge
+                // whose apex the box's centre keeps missing, while a corner on its open
+                // side lies in it).
+                self.try_witnesses(corner_points(tri, &b), &b, key);
             }
         }
         if opts.first_witness && self.best.is_some() {
@@ -230,6 +263,10 @@ impl Problem for ExtentSearch<'_> {
             // While (x, y) is eliminated, (u, v, t) are split where the combination
             // that nearly certified the box moves most.
             smear[2..5].copy_from_slice(&bv.elim_smear);
+            // (x, y) are not split meanwhile, and their smears are of the edge values,
+            // not of the combination: they do not scale the others.
+            smear[0] = 0.0;
+            smear[1] = 0.0;
         }
         let max_smear = smear.iter().cloned().fold(0.0, f64::max);
         let mut dim = None;
@@ -277,7 +314,7 @@ impl Problem for ExtentSearch<'_> {
                 dim = Some(i);
             }
         }
-        let Some(dim) = dim else {
+        let Some(mut dim) = dim else {
             if class != BoxClass::Full {
                 // (a full box's witness already stands for it)
                 self.stuck.push(key);
@@ -285,7 +322,16 @@ impl Problem for ExtentSearch<'_> {
             }
             return Flow::Continue;
         };
-        let m = b[dim].mid();
+        let mut m = b[dim].mid();
+        if let (Objective::Coord { index, .. }, Some((w, _))) = (obj, self.best) {
+            // A box across the resolution band below the best witness is cut at the
+            // band's edge: the part within the band is then settled as it stands and
+            // only the part beyond it needs to be ruled out.
+            let cut = sg * (w - 0.875 * cfg.resolution);
+            if b[index].lo < cut && cut < b[index].hi {
+                (dim, m) = (index, cut);
+            }
+        }
         for half in [Interval::new(b[dim].lo, m), Interval::new(m, b[dim].hi)] {
             let mut c = b;
             c[dim] = half;
