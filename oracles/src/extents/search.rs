@@ -223,9 +223,6 @@ impl Problem for ExtentSearch<'_> {
             self.final_lo = lower;
             return Flow::Stop;
         }
-        if std::env::var("EXTDBG").is_ok() {
-            eprintln!("pop {} key {:.7} best {:?} depth {} w {:?} elim {} class {:?} es {:?} sm {:?}", self.boxes, key, self.best.map(|b| b.0), depth, b.map(|i| i.width()), bv.eliminated, classify_values(&bv), bv.elim_smear, bv.open_smear());
-        }
         let class = classify_values(&bv);
         if class == BoxClass::Empty {
             return Flow::Continue;
