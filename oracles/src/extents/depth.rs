@@ -43,8 +43,15 @@ pub(super) struct CoveredDepth {
 /// The bounds of [`CoveredDepth`] from the edge values `ev`, the depth numerator `n`
 /// and `D` (`d`), all in the 16 lanes of the box corners (lane `8 iu + 4 iv + 2 ix +
 /// iy`) as polynomials in `s = t - t_mid` over `s in [-h, h]`. `D`'s enclosure must keep
-/// one sign over the box (else nothing is certified).
-pub(super) fn covered_depth(ev: &[LPoly<3, 16>; 3], n: &LPoly<4, 16>, d: &LPoly<4, 16>, h: f64) -> CoveredDepth {
+/// one sign over the box (else nothing is certified). Only the ends asked for in
+/// `ends` (lower, upper) are certified; the others stay infinite.
+pub(super) fn covered_depth(
+    ev: &[LPoly<3, 16>; 3],
+    n: &LPoly<4, 16>,
+    d: &LPoly<4, 16>,
+    h: f64,
+    ends: [bool; 2],
+) -> CoveredDepth {
     let whole = CoveredDepth { bounds: Interval::new(f64::NEG_INFINITY, f64::INFINITY), smear: [0.0; 3] };
     let (d_lo, d_hi) = d.range(h);
     let pos = d_lo.iter().all(|&v| v > 0.0);
@@ -56,6 +63,9 @@ pub(super) fn covered_depth(ev: &[LPoly<3, 16>; 3], n: &LPoly<4, 16>, d: &LPoly<
     let dm = &d.0[0].v;
     let mut out = whole;
     for upper in [true, false] {
+        if !ends[upper as usize] {
+            continue;
+        }
         // Upper end: maximise sg N / |D| subject to sg E_k > 0; lower end: the same for
         // -sg N. Both relax to max (a + sum lambda_k b_k) / |D|, b_k = sg E_k.
         let s = if upper { 1.0 } else { -1.0 };
@@ -119,6 +129,9 @@ fn widen(p: &LPoly<3, 16>) -> LPoly<4, 16> {
     r
 }
 
+/// For each rectangle corner, the other three.
+const OTHERS: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
+
 /// Non-negative multipliers that make `max_c (a_c + sum_k lambda_k b_kc) / |D_c|` small,
 /// from the values at the box's middle time in the 16 corner lanes (`inv` holds
 /// `1 / |D_c|`). The candidates are the vertices of the linear programme at the
@@ -158,7 +171,7 @@ fn multipliers(a: &[f64; 16], b: &[[f64; 16]; 3], inv: &[f64; 16]) -> [f64; 3] {
     for k in 0..3 {
         for j in k + 1..3 {
             for skip in 0..4 {
-                let cs: Vec<usize> = (0..4).filter(|&c| c != skip).collect();
+                let cs = OTHERS[skip];
                 // Corners cs[0], cs[1], cs[2] tie: two equations in (l_k, l_j).
                 let row = |p: usize| {
                     let (c0, c1) = (cs[0], cs[p]);

@@ -141,7 +141,7 @@ fn multipliers<const F: usize>(a: &[[f64; 16]; F]) -> Option<[f64; F]> {
             for i in j + 1..F {
                 let f = [k, j, i];
                 for skip in 0..4 {
-                    let cs: Vec<usize> = (0..4).filter(|&c| c != skip).collect();
+                    let cs = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]][skip];
                     let p: [f64; 3] = std::array::from_fn(|q| m[f[q]][cs[0]] - m[f[q]][cs[1]]);
                     let r: [f64; 3] = std::array::from_fn(|q| m[f[q]][cs[0]] - m[f[q]][cs[2]]);
                     let n = [p[1] * r[2] - p[2] * r[1], p[2] * r[0] - p[0] * r[2], p[0] * r[1] - p[1] * r[0]];
@@ -172,8 +172,7 @@ pub(super) fn depth_extreme_points(tri: &Tri, s: [f64; 5], b: &Box5, max: bool) 
         |p: &(f64, f64)| (0..3).map(|k| zs[k] * (lines[k][2] + lines[k][0] * p.0 + lines[k][1] * p.1)).sum::<f64>() / d;
     let key = |p: &(f64, f64)| if max { -depth(p) } else { depth(p) };
     let Some(ext) = poly.iter().min_by(|p, q| key(p).total_cmp(&key(q))) else { return Vec::new() };
-    let n = poly.len() as f64;
-    let (cx, cy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0 / n, a.1 + p.1 / n));
+    let Some((cx, cy)) = poly.centroid() else { return Vec::new() };
     [1e-9, 1e-6, 1e-3]
         .iter()
         .map(|f| {
@@ -192,15 +191,54 @@ pub(super) fn depth_extreme_points(tri: &Tri, s: [f64; 5], b: &Box5, max: bool) 
 /// proposes a point.
 pub(super) fn clipped_point(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
     let (poly, ..) = clipped_polygon(tri, s, b)?;
-    let n = poly.len() as f64;
-    let (sx, sy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
-    let (cx, cy) = (sx / n, sy / n);
-    (cx.is_finite() && cy.is_finite()).then_some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
+    let (cx, cy) = poly.centroid()?;
+    Some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
 }
 
 /// A covered polygon, its edge lines `E_k = C_k + A_k x + B_k y` as `[A, B, C]`, D and
 /// the vertex depth rows `z_k`.
-type Clipped = (Vec<(f64, f64)>, [[f64; 3]; 3], f64, [f64; 3]);
+type Clipped = (Polygon, [[f64; 3]; 3], f64, [f64; 3]);
+
+/// A convex polygon of at most 8 vertices, kept on the stack: a rectangle clipped by
+/// three half-planes (or a triangle by four) has at most 7.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Polygon {
+    pts: [(f64, f64); 8],
+    len: usize,
+}
+
+impl Polygon {
+    pub(super) fn new() -> Self {
+        Polygon { pts: [(0.0, 0.0); 8], len: 0 }
+    }
+    /// Append a vertex (beyond 8 the polygon is not convex: a bug; ignored).
+    pub(super) fn push(&mut self, p: (f64, f64)) {
+        if self.len < 8 {
+            self.pts[self.len] = p;
+            self.len += 1;
+        }
+    }
+    pub(super) fn len(&self) -> usize {
+        self.len
+    }
+    pub(super) fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+    pub(super) fn iter(&self) -> impl Iterator<Item = &(f64, f64)> {
+        self.pts[..self.len].iter()
+    }
+    /// The vertex `k` (modulo the length).
+    pub(super) fn at(&self, k: usize) -> (f64, f64) {
+        self.pts[k % self.len]
+    }
+    /// The mean of the vertices, None when empty or not finite.
+    pub(super) fn centroid(&self) -> Option<(f64, f64)> {
+        let n = self.len as f64;
+        let (sx, sy) = self.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+        let c = (sx / n, sy / n);
+        (c.0.is_finite() && c.1.is_finite()).then_some(c)
+    }
+}
 
 /// The box's rectangle clipped by the half-planes `sigma E_k > 0` at (u, v, t) =
 /// `s[2..5]` (plain f64); None when empty or D is 0 there.
@@ -228,13 +266,15 @@ fn clipped_polygon(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<Clipped> {
         return None;
     }
     let sg = d.signum();
-    let mut poly: Vec<(f64, f64)> =
-        vec![(b[0].lo, b[1].lo), (b[0].hi, b[1].lo), (b[0].hi, b[1].hi), (b[0].lo, b[1].hi)];
+    let mut poly = Polygon::new();
+    for p in [(b[0].lo, b[1].lo), (b[0].hi, b[1].lo), (b[0].hi, b[1].hi), (b[0].lo, b[1].hi)] {
+        poly.push(p);
+    }
     for l in &lines {
         let f = |p: &(f64, f64)| sg * (l[0] * p.0 + l[1] * p.1 + l[2]);
-        let mut out = Vec::with_capacity(poly.len() + 1);
+        let mut out = Polygon::new();
         for k in 0..poly.len() {
-            let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (p, q) = (poly.at(k), poly.at(k + 1));
             let (fp, fq) = (f(&p), f(&q));
             if fp > 0.0 {
                 out.push(p);

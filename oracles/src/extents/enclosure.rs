@@ -135,7 +135,19 @@ pub fn box_values_eliminating(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValue
     values(tri, b, with_depth, true)
 }
 
+/// [`box_values_eliminating`] with depth for a search of one end of the depth (the
+/// greatest when `max`): [`BoxValues::covered_depth`] is certified at that end only (the
+/// other is infinite), at half the cost.
+pub(super) fn box_values_for_depth(tri: &Tri, b: &Box5, max: bool) -> BoxValues {
+    values_ends(tri, b, true, true, [!max, max])
+}
+
 fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
+    values_ends(tri, b, with_depth, eliminate, [true, true])
+}
+
+/// The box values; `depth_ends` says which ends (lower, upper) of the covered depth to certify.
+fn values_ends(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool, depth_ends: [bool; 2]) -> BoxValues {
     let tm = b[4].mid();
     let h = (b[4].hi - tm).max(tm - b[4].lo).max(0.0);
     let t = TPoly::t_at(tm);
@@ -361,7 +373,7 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
         }
     }
     if let Some((n, dl)) = depth_lanes.filter(|_| !bv.eliminated && (d.lo > 0.0 || d.hi < 0.0)) {
-        let cd = covered_depth(&ev, &n, &dl, h);
+        let cd = covered_depth(&ev, &n, &dl, h, depth_ends);
         (bv.covered_depth, bv.covered_smear) = (cd.bounds, cd.smear);
     }
     bv

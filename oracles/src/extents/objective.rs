@@ -2,7 +2,7 @@
 //! about each: the key of a box, the value at a witness, and where to look for
 //! witnesses.
 
-use super::elimination::{clipped_point, depth_extreme_points};
+use super::elimination::{clipped_point, depth_extreme_points, Polygon};
 use super::enclosure::{Box5, BoxValues};
 use crate::coverage::certainly_interior;
 use crate::interval::Interval;
@@ -200,7 +200,7 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: b
 /// exactly). None when a vertex is not in front or the clipped polygon is empty.
 pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
     let (u, v, t) = (s[2], s[3], s[4]);
-    let mut poly: Vec<(f64, f64)> = Vec::with_capacity(8);
+    let mut poly = Polygon::new();
     for i in 0..3 {
         let at = |j: usize| (1.0 - t) * tri.q[i][j] + t * tri.r[i][j];
         let c = (1.0 - t) * tri.c0[i] + t * tri.c1[i];
@@ -222,9 +222,9 @@ pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64,
                 c <= lim
             }
         };
-        let mut out = Vec::with_capacity(poly.len() + 2);
+        let mut out = Polygon::new();
         for k in 0..poly.len() {
-            let (a, bb) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (a, bb) = (poly.at(k), poly.at(k + 1));
             let (ia, ib) = (inside(&a), inside(&bb));
             if ia {
                 out.push(a);
@@ -240,10 +240,8 @@ pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64,
             return None;
         }
     }
-    let n = poly.len() as f64;
-    let (sx, sy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
-    let (cx, cy) = (sx / n, sy / n);
-    (cx.is_finite() && cy.is_finite()).then_some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
+    let (cx, cy) = poly.centroid()?;
+    Some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
 }
 
 /// From an interior point, move the objective coordinate towards the box's bound by

@@ -2,7 +2,7 @@
 //! [`super::bnb`].
 
 use super::bnb::{self, Flow, Frontier, Open, Problem, Ties};
-use super::enclosure::{box_values_eliminating, box_values_with, classify_values, Box5, BoxClass, BoxValues};
+use super::enclosure::{box_values_eliminating, box_values_for_depth, box_values_with, classify_values, Box5, BoxClass, BoxValues};
 use super::elimination::corner_points;
 use super::objective::{candidate_points, key_of, push_towards_bound, value_at, Extent, Objective};
 use crate::coverage::{classify, Coverage};
@@ -278,7 +278,8 @@ impl Problem for ExtentSearch<'_> {
                 // smear relative to its largest coordinate; with neither known, the
                 // widest side relative to the initial box.
                 let mut dsm = bv.depth_smear;
-                if opts.eliminate && bv.covered_depth.lo.is_finite() && bv.covered_depth.hi.is_finite() {
+                let end = if obj.is_max() { bv.covered_depth.hi } else { bv.covered_depth.lo };
+                if opts.eliminate && end.is_finite() {
                     // The bounds over the covered polygon move with (u, v, t) only.
                     dsm = [0.0, 0.0, bv.covered_smear[0], bv.covered_smear[1], bv.covered_smear[2]];
                 }
@@ -332,7 +333,7 @@ impl Problem for ExtentSearch<'_> {
         for half in [Interval::new(b[dim].lo, m), Interval::new(m, b[dim].hi)] {
             let mut c = b;
             c[dim] = half;
-            let cv = values(tri, &c, self.with_depth, opts.eliminate);
+            let cv = values(tri, obj, &c, self.with_depth, opts.eliminate);
             if classify_values(&cv) == BoxClass::Empty {
                 continue;
             }
@@ -344,7 +345,10 @@ impl Problem for ExtentSearch<'_> {
 }
 
 /// The box values the search judges by (see [`Search::eliminate`]).
-fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
+fn values(tri: &Tri, obj: Objective, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
+    if let (Objective::Depth { max }, true, true) = (obj, with_depth, eliminate) {
+        return box_values_for_depth(tri, b, max);
+    }
     if eliminate {
         box_values_eliminating(tri, b, with_depth)
     } else {
@@ -385,7 +389,7 @@ pub fn search(tri: &Tri, init: Box5, ext: Extent, cfg: &ExtentsConfig, opts: Sea
         moved_at: 0,
     };
     let mut frontier = Frontier::new(Ties::Deepest);
-    let bv = values(tri, &init, with_depth, opts.eliminate);
+    let bv = values(tri, obj, &init, with_depth, opts.eliminate);
     frontier.push(key_of(obj, &init, &bv), 0, Cell { b: init, bv });
     bnb::run(&mut s, &mut frontier);
     let mut final_lo = s.final_lo;
