@@ -103,9 +103,18 @@ fn multipliers<const F: usize>(a: &[[f64; 16]; F]) -> Option<[f64; F]> {
     let score = |l: &[f64; F]| -> f64 {
         (0..16).map(|n| (0..F).map(|k| l[k] * a[k][n]).sum::<f64>()).fold(f64::NEG_INFINITY, f64::max)
     };
+    // The largest value at the middle (u, v): a lower bound of the score (each middle
+    // value is the mean of four lanes), which rules most candidates out cheaply.
+    let mid_score = |l: &[f64; F]| -> f64 {
+        (0..4).map(|c| (0..F).map(|k| l[k] * m[k][c]).sum::<f64>()).fold(f64::NEG_INFINITY, f64::max)
+    };
     let mut best: Option<([f64; F], f64)> = None;
     let mut consider = |l: [f64; F]| {
         if l.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
+            return;
+        }
+        let ms = mid_score(&l);
+        if ms >= 0.0 || best.is_some_and(|(_, b)| ms >= b) {
             return;
         }
         let s = score(&l);
@@ -240,9 +249,17 @@ impl Polygon {
     }
 }
 
-/// The box's rectangle clipped by the half-planes `sigma E_k > 0` at (u, v, t) =
-/// `s[2..5]` (plain f64); None when empty or D is 0 there.
-fn clipped_polygon(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<Clipped> {
+/// The hit depth at the sample `s` in plain f64 (None when D is 0 there): an estimate,
+/// for choosing among witness proposals only.
+pub(super) fn depth_estimate(tri: &Tri, s: [f64; 5]) -> Option<f64> {
+    let (lines, d, zs) = edge_lines(tri, s)?;
+    let z = (0..3).map(|k| zs[k] * (lines[k][2] + lines[k][0] * s[0] + lines[k][1] * s[1])).sum::<f64>() / d;
+    z.is_finite().then_some(z)
+}
+
+/// The edge lines `E_k = C_k + A_k x + B_k y` as `[A, B, C]` at (u, v, t) = `s[2..5]`,
+/// D and the vertex depth rows `z_k` (plain f64); None when D is 0 or not finite.
+fn edge_lines(tri: &Tri, s: [f64; 5]) -> Option<([[f64; 3]; 3], f64, [f64; 3])> {
     let (u, v, t) = (s[2], s[3], s[4]);
     let mut xs = [0.0; 3];
     let mut ys = [0.0; 3];
@@ -262,9 +279,13 @@ fn clipped_polygon(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<Clipped> {
         [ys[i] * ws[j] - ws[i] * ys[j], ws[i] * xs[j] - xs[i] * ws[j], xs[i] * ys[j] - ys[i] * xs[j]]
     });
     let d: f64 = (0..3).map(|k| ws[k] * lines[k][2]).sum();
-    if !(d.is_finite() && d != 0.0) {
-        return None;
-    }
+    (d.is_finite() && d != 0.0).then_some((lines, d, zs))
+}
+
+/// The box's rectangle clipped by the half-planes `sigma E_k > 0` at (u, v, t) =
+/// `s[2..5]` (plain f64); None when empty or D is 0 there.
+fn clipped_polygon(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<Clipped> {
+    let (lines, d, zs) = edge_lines(tri, s)?;
     let sg = d.signum();
     let mut poly = Polygon::new();
     for p in [(b[0].lo, b[1].lo), (b[0].hi, b[1].lo), (b[0].hi, b[1].hi), (b[0].lo, b[1].hi)] {

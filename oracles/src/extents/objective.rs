@@ -178,6 +178,9 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: b
     } else {
         pts.push(centre);
     }
+    if eliminate && !pts.is_empty() {
+        return pts;
+    }
     let mut seed = b
         .iter()
         .fold(0x9E37_79B9_7F4A_7C15u64, |h, i| (h ^ i.lo.to_bits()).wrapping_mul(0x100_0000_01B3) ^ i.hi.to_bits());
@@ -252,7 +255,8 @@ pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64,
 /// is tried again at the centroid of the covered polygon at its (u, v, t) (within the
 /// box's rectangle): the covered pixels move with the lens and the time, and near an
 /// extreme they shrink to a point that a fixed (x, y) leaves early.
-pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box5) -> [f64; 5] {
+/// The bisection stops once the step is within `tol` of the boundary it found.
+pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box5, tol: f64) -> [f64; 5] {
     let Objective::Coord { index, max } = obj else { return p };
     let mut inside = p;
     let mut out = p;
@@ -263,7 +267,7 @@ pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box
     for _ in 0..48 {
         let mut mid = inside;
         mid[index] = inside[index] + 0.5 * (out[index] - inside[index]);
-        if mid[index] == inside[index] || mid[index] == out[index] {
+        if mid[index] == inside[index] || mid[index] == out[index] || (out[index] - inside[index]).abs() <= tol {
             break;
         }
         if certainly_interior(tri, mid) {

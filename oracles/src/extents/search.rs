@@ -3,7 +3,7 @@
 
 use super::bnb::{self, Flow, Frontier, Open, Problem, Ties};
 use super::enclosure::{box_values_eliminating, box_values_for_depth, box_values_with, classify_values, Box5, BoxClass, BoxValues};
-use super::elimination::corner_points;
+use super::elimination::{corner_points, depth_estimate};
 use super::objective::{candidate_points, key_of, push_towards_bound, value_at, Extent, Objective};
 use crate::coverage::{classify, Coverage};
 use crate::interval::Interval;
@@ -169,9 +169,16 @@ impl ExtentSearch<'_> {
             if !self.wanted(key) {
                 break;
             }
+            if let (Objective::Depth { .. }, Some((w, _)), Some(z)) = (obj, self.best, depth_estimate(tri, p)) {
+                // (plain f64: only to skip a point that would not improve the best)
+                if self.sg * z >= w {
+                    continue;
+                }
+            }
             if classify(tri, p) == Coverage::Interior {
                 found = true;
-                let p = push_towards_bound(tri, obj, p, b);
+                // (to a sixteenth of the resolution: the rest is not worth the steps)
+                let p = push_towards_bound(tri, obj, p, b, self.cfg.resolution / 16.0);
                 let val = value_at(tri, obj, p);
                 let k = if self.sg > 0.0 { val.hi } else { -val.lo };
                 if self.best.is_none_or(|(w, _)| k < w) {
