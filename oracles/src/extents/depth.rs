@@ -143,7 +143,9 @@ fn multipliers(a: &[f64; 16], b: &[[f64; 16]; 3], inv: &[f64; 16]) -> [f64; 3] {
     let am = mid(a);
     let bm: [[f64; 4]; 3] = std::array::from_fn(|k| mid(&b[k]));
     let score = |l: &[f64; 3]| -> f64 {
-        (0..16).map(|c| (a[c] + l[0] * b[0][c] + l[1] * b[1][c] + l[2] * b[2][c]) * inv[c]).fold(f64::NEG_INFINITY, f64::max)
+        (0..16)
+            .map(|c| (a[c] + l[0] * b[0][c] + l[1] * b[1][c] + l[2] * b[2][c]) * inv[c])
+            .fold(f64::NEG_INFINITY, f64::max)
     };
     let mut best = ([0.0; 3], score(&[0.0; 3]));
     let mut consider = |l: [f64; 3]| {

@@ -137,7 +137,8 @@ pub fn box_values_eliminating(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValue
 
 /// [`box_values_eliminating`] with depth for a search of one end of the depth (the
 /// greatest when `max`): [`BoxValues::covered_depth`] is certified at that end only (the
-/// other is infinite), at half the cost.
+/// other is infinite), and the corner quotient [`BoxValues::depth`] is left out (None,
+/// with a zero `depth_smear`): that end's bound has it among its candidates.
 pub(super) fn box_values_for_depth(tri: &Tri, b: &Box5, max: bool) -> BoxValues {
     values_ends(tri, b, true, true, [!max, max])
 }
@@ -256,14 +257,6 @@ fn values_ends(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool, depth_end
         let n = nk(0).add(&nk(1)).add(&nk(2));
         let (n_lo, n_hi) = n.range(h);
         nz = Some(hull_lanes(&n_lo, &n_hi));
-        // The depth N / D around a centre value z_c: N / D = z_c + M / D with
-        // M = N - z_c D. M keeps the correlation of N and D in t, so the quotient of
-        // enclosures stays tight where N and D move together.
-        let dmid: [f64; 16] = std::array::from_fn(|c| {
-            let (iu, iv, _, _) = corner(c);
-            dm[2 * iu + iv]
-        });
-        let zc: [f64; 16] = std::array::from_fn(|c| n.0[0].v[c] / dmid[c]);
         let mut dp16 = LPoly::<4, 16>::zero();
         for q in 0..4 {
             for c in 0..16 {
@@ -272,45 +265,59 @@ fn values_ends(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool, depth_end
                 dp16.0[q].e[c] = dp.0[q].e[2 * iu + iv];
             }
         }
-        let m = n.sub(&lconst(&zc).mul(&dp16));
+        // The corner quotient of the depth, unless only one end of the covered depth is
+        // wanted (that end's bound over the covered polygon has it among its candidates).
+        if depth_ends == [true, true] {
+            // The depth N / D around a centre value z_c: N / D = z_c + M / D with
+            // M = N - z_c D. M keeps the correlation of N and D in t, so the quotient of
+            // enclosures stays tight where N and D move together.
+            let dmid: [f64; 16] = std::array::from_fn(|c| {
+                let (iu, iv, _, _) = corner(c);
+                dm[2 * iu + iv]
+            });
+            let zc: [f64; 16] = std::array::from_fn(|c| n.0[0].v[c] / dmid[c]);
+            let m = n.sub(&lconst(&zc).mul(&dp16));
+            let (m_lo, m_hi) = m.range(h);
+            let m_var = m.variation(h);
+            let mut ok = true;
+            let mut acc: Option<Interval> = None;
+            for c in 0..16 {
+                let (iu, iv, _, _) = corner(c);
+                let dc = Interval::new(d_lo[2 * iu + iv], d_hi[2 * iu + iv]);
+                // N / D is linear-fractional in each of x, y, u, v separately, hence
+                // monotone in each while D keeps its sign: its extremes over the box are at
+                // the corners too.
+                let zq = if zc[c].is_finite() {
+                    depth_smear[4] = depth_smear[4].max(m_var[c] / dmid[c].abs());
+                    interval_div(Interval::new(m_lo[c], m_hi[c]), dc).map(|q| Interval::point(zc[c]) + q)
+                } else {
+                    None
+                };
+                match zq {
+                    Some(z) if ok => {
+                        acc = Some(match acc {
+                            Some(a) if z.lo.is_nan() || z.hi.is_nan() || a.lo.is_nan() => {
+                                Interval::new(f64::NAN, f64::NAN)
+                            }
+                            Some(a) => a.hull(z),
+                            None => z,
+                        })
+                    }
+                    _ => ok = false,
+                }
+            }
+            if ok {
+                depth = acc;
+            }
+            let [su, sv, sx, sy] = spread(&zc, open);
+            depth_smear[0] = sx;
+            depth_smear[1] = sy;
+            depth_smear[2] = su;
+            depth_smear[3] = sv;
+        }
         if eliminate {
             depth_lanes = Some((n, dp16));
         }
-        let (m_lo, m_hi) = m.range(h);
-        let m_var = m.variation(h);
-        let mut ok = true;
-        let mut acc: Option<Interval> = None;
-        for c in 0..16 {
-            let (iu, iv, _, _) = corner(c);
-            let dc = Interval::new(d_lo[2 * iu + iv], d_hi[2 * iu + iv]);
-            // N / D is linear-fractional in each of x, y, u, v separately, hence
-            // monotone in each while D keeps its sign: its extremes over the box are at
-            // the corners too.
-            let zq = if zc[c].is_finite() {
-                depth_smear[4] = depth_smear[4].max(m_var[c] / dmid[c].abs());
-                interval_div(Interval::new(m_lo[c], m_hi[c]), dc).map(|q| Interval::point(zc[c]) + q)
-            } else {
-                None
-            };
-            match zq {
-                Some(z) if ok => {
-                    acc = Some(match acc {
-                        Some(a) if z.lo.is_nan() || z.hi.is_nan() || a.lo.is_nan() => Interval::new(f64::NAN, f64::NAN),
-                        Some(a) => a.hull(z),
-                        None => z,
-                    })
-                }
-                _ => ok = false,
-            }
-        }
-        if ok {
-            depth = acc;
-        }
-        let [su, sv, sx, sy] = spread(&zc, open);
-        depth_smear[0] = sx;
-        depth_smear[1] = sy;
-        depth_smear[2] = su;
-        depth_smear[3] = sv;
     }
     // Separation by a side of the (x, y) rectangle: P_i.x at x = x_lo is
     // x'_i - x_lo w_i, negative iff vertex i projects left of x_lo (w_i > 0).

@@ -247,17 +247,29 @@ pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64,
     Some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
 }
 
+/// How [`push_towards_bound`] moves a witness.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Push {
+    /// At a fixed (x, y), bisecting as far as f64 goes.
+    FixedXy,
+    /// A step whose point is outside is tried again at the centroid of the covered
+    /// polygon at its (u, v, t) (within the box's rectangle): the covered pixels move
+    /// with the lens and the time, and near an extreme they shrink to a point that a
+    /// fixed (x, y) leaves early. The bisection stops once its step is within `tol`.
+    AlongPolygon { tol: f64 },
+}
+
 /// From an interior point, move the objective coordinate towards the box's bound by
 /// bisection, every step certified interior by the fast path of the classifier (a point
 /// it cannot certify counts as outside: the witness stays a hair short of the boundary
 /// there, at no cost in exact arithmetic), so a witness hugs the boundary of the
-/// covered set instead of sitting where it was drawn. A step whose point is outside
-/// is tried again at the centroid of the covered polygon at its (u, v, t) (within the
-/// box's rectangle): the covered pixels move with the lens and the time, and near an
-/// extreme they shrink to a point that a fixed (x, y) leaves early.
-/// The bisection stops once the step is within `tol` of the boundary it found.
-pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box5, tol: f64) -> [f64; 5] {
+/// covered set instead of sitting where it was drawn. See [`Push`] for the two ways.
+pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box5, push: Push) -> [f64; 5] {
     let Objective::Coord { index, max } = obj else { return p };
+    let (tol, along) = match push {
+        Push::FixedXy => (0.0, false),
+        Push::AlongPolygon { tol } => (tol, true),
+    };
     let mut inside = p;
     let mut out = p;
     out[index] = if max { b[index].hi } else { b[index].lo };
@@ -274,7 +286,7 @@ pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box
             inside = mid;
             continue;
         }
-        if let Some((x, y)) = clipped_point(tri, mid, b) {
+        if let Some((x, y)) = clipped_point(tri, mid, b).filter(|_| along) {
             let mut moved = mid;
             (moved[0], moved[1]) = (x, y);
             if certainly_interior(tri, moved) {

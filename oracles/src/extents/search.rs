@@ -2,9 +2,11 @@
 //! [`super::bnb`].
 
 use super::bnb::{self, Flow, Frontier, Open, Problem, Ties};
-use super::enclosure::{box_values_eliminating, box_values_for_depth, box_values_with, classify_values, Box5, BoxClass, BoxValues};
 use super::elimination::{corner_points, depth_estimate};
-use super::objective::{candidate_points, key_of, push_towards_bound, value_at, Extent, Objective};
+use super::enclosure::{
+    box_values_eliminating, box_values_for_depth, box_values_with, classify_values, Box5, BoxClass, BoxValues,
+};
+use super::objective::{candidate_points, key_of, push_towards_bound, value_at, Extent, Objective, Push};
 use crate::coverage::{classify, Coverage};
 use crate::interval::Interval;
 use crate::tri::Tri;
@@ -162,14 +164,23 @@ impl ExtentSearch<'_> {
     /// Judge the points exactly and keep the best interior one (pushed towards the
     /// box's bound), until one is within the resolution of the box's key; true when
     /// some point was interior.
+    ///
+    /// Only with elimination ([`Search::eliminate`]) does it skip points: those after a
+    /// witness within the resolution, and depth proposals whose plain-f64 depth does not
+    /// improve on the best; and only then is a witness pushed along the covered
+    /// polygon, to a sixteenth of the resolution. Without it, it judges every point and
+    /// pushes at a fixed (x, y) as far as f64 goes, as the side searches of the gate
+    /// always have (their answers stay the same bits).
     fn try_witnesses(&mut self, pts: Vec<[f64; 5]>, b: &Box5, key: f64) -> bool {
-        let (tri, obj) = (self.tri, self.obj);
+        let (tri, obj, eliminate) = (self.tri, self.obj, self.opts.eliminate);
         let mut found = false;
         for p in pts {
-            if !self.wanted(key) {
+            if eliminate && !self.wanted(key) {
                 break;
             }
-            if let (Objective::Depth { .. }, Some((w, _)), Some(z)) = (obj, self.best, depth_estimate(tri, p)) {
+            if let (true, Objective::Depth { .. }, Some((w, _)), Some(z)) =
+                (eliminate, obj, self.best, depth_estimate(tri, p))
+            {
                 // (plain f64: only to skip a point that would not improve the best)
                 if self.sg * z >= w {
                     continue;
@@ -177,8 +188,9 @@ impl ExtentSearch<'_> {
             }
             if classify(tri, p) == Coverage::Interior {
                 found = true;
-                // (to a sixteenth of the resolution: the rest is not worth the steps)
-                let p = push_towards_bound(tri, obj, p, b, self.cfg.resolution / 16.0);
+                let push =
+                    if eliminate { Push::AlongPolygon { tol: self.cfg.resolution / 16.0 } } else { Push::FixedXy };
+                let p = push_towards_bound(tri, obj, p, b, push);
                 let val = value_at(tri, obj, p);
                 let k = if self.sg > 0.0 { val.hi } else { -val.lo };
                 if self.best.is_none_or(|(w, _)| k < w) {
@@ -328,7 +340,7 @@ impl Problem for ExtentSearch<'_> {
             return Flow::Continue;
         };
         let mut m = b[dim].mid();
-        if let (Objective::Coord { index, .. }, Some((w, _))) = (obj, self.best) {
+        if let (Objective::Coord { index, .. }, Some((w, _)), true) = (obj, self.best, opts.eliminate) {
             // A box across the resolution band below the best witness is cut at the
             // band's edge: the part within the band is then settled as it stands and
             // only the part beyond it needs to be ruled out.
