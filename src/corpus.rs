@@ -706,7 +706,7 @@ pub fn describe(cf: &CaseFile) -> String {
             s += "\n";
         }
     }
-    let cfg = ExtentsConfig { resolution: 1e-4, max_boxes: 20_000, min_fraction: 1e-7, second_chance: false };
+    let cfg = ExtentsConfig { occupancy_eliminates: false, ..ExtentsConfig::default() };
     let tb = [t.x0 as f64, t.x1 as f64, t.y0 as f64, t.y1 as f64];
     let mut solver = TileSolver::new(&tri, tb, [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg);
     match solver.occupancy() {

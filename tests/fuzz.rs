@@ -537,7 +537,13 @@ fn oracles_take_any_numbers() {
     let n = n_inputs();
     let mut rng = ChaCha8Rng::seed_from_u64(0xf022_0002);
     let mut fz = Fuzz::new("oracles");
-    let small = ExtentsConfig { resolution: 1e-3, max_boxes: 48, min_fraction: 1e-7, second_chance: false };
+    let small = ExtentsConfig {
+        resolution: 1e-3,
+        max_boxes: 48,
+        min_fraction: 1e-7,
+        second_chance: false,
+        occupancy_eliminates: false,
+    };
     let mut classes = [0u64; 3];
     let (mut spans, mut extents, mut not_boxes) = (0u64, 0u64, 0u64);
     for i in 0..n {
@@ -1076,7 +1082,13 @@ fn extents_refuse_no_box_yet() {
         c1: [1.0; 3],
         k: 1.0,
     };
-    let cfg = ExtentsConfig { resolution: 1e-3, max_boxes: 48, min_fraction: 1e-7, second_chance: false };
+    let cfg = ExtentsConfig {
+        resolution: 1e-3,
+        max_boxes: 48,
+        min_fraction: 1e-7,
+        second_chance: false,
+        occupancy_eliminates: false,
+    };
     let r = catch_unwind(|| {
         oracles::extents::tile_extents(&tri, [0.0, 2.0, 0.0, 2.0], [[1.0, -1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg)
     });

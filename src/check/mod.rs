@@ -118,7 +118,13 @@ impl CheckConfig {
             samples: 512,
             // Boxes may shrink to 1e-9 of the tile and domain: fine enough to separate a
             // bound from the true extreme when they differ by an f32 rounding.
-            extents: ExtentsConfig { resolution: 1e-3, max_boxes: 20_000, min_fraction: 1e-9, second_chance: false },
+            extents: ExtentsConfig {
+                resolution: 1e-3,
+                max_boxes: 20_000,
+                min_fraction: 1e-9,
+                second_chance: false,
+                occupancy_eliminates: false,
+            },
             band: 0.0,
             side_budget: 2000,
             side_stall: 250,

@@ -189,7 +189,7 @@ impl Config {
             tiles,
             pattern,
             certified_tiles: 0,
-            certified: ExtentsConfig { resolution: 1e-2, max_boxes: 2000, min_fraction: 1e-7, second_chance: false },
+            certified: ExtentsConfig { resolution: 1e-2, max_boxes: 2000, ..ExtentsConfig::default() },
             seed: pattern.seed,
         }
     }

@@ -103,9 +103,18 @@ fn multipliers<const F: usize>(a: &[[f64; 16]; F]) -> Option<[f64; F]> {
     let score = |l: &[f64; F]| -> f64 {
         (0..16).map(|n| (0..F).map(|k| l[k] * a[k][n]).sum::<f64>()).fold(f64::NEG_INFINITY, f64::max)
     };
+    // The largest value at the middle (u, v): a lower bound of the score (each middle
+    // value is the mean of four lanes), which rules most candidates out cheaply.
+    let mid_score = |l: &[f64; F]| -> f64 {
+        (0..4).map(|c| (0..F).map(|k| l[k] * m[k][c]).sum::<f64>()).fold(f64::NEG_INFINITY, f64::max)
+    };
     let mut best: Option<([f64; F], f64)> = None;
     let mut consider = |l: [f64; F]| {
         if l.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
+            return;
+        }
+        let ms = mid_score(&l);
+        if ms >= 0.0 || best.is_some_and(|(_, b)| ms >= b) {
             return;
         }
         let s = score(&l);
@@ -141,7 +150,7 @@ fn multipliers<const F: usize>(a: &[[f64; 16]; F]) -> Option<[f64; F]> {
             for i in j + 1..F {
                 let f = [k, j, i];
                 for skip in 0..4 {
-                    let cs: Vec<usize> = (0..4).filter(|&c| c != skip).collect();
+                    let cs = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]][skip];
                     let p: [f64; 3] = std::array::from_fn(|q| m[f[q]][cs[0]] - m[f[q]][cs[1]]);
                     let r: [f64; 3] = std::array::from_fn(|q| m[f[q]][cs[0]] - m[f[q]][cs[2]]);
                     let n = [p[1] * r[2] - p[2] * r[1], p[2] * r[0] - p[0] * r[2], p[0] * r[1] - p[1] * r[0]];
@@ -160,58 +169,29 @@ fn multipliers<const F: usize>(a: &[[f64; 16]; F]) -> Option<[f64; F]> {
     best.map(|(l, _)| l)
 }
 
-/// Certify that no interior sample of the box has a hit depth beyond `z` (below it when
-/// `!max`, above it when `max`), where `D` has the sign `sg` over the box: such a
-/// sample has every `sg E_k > 0` and `g = sg (z D - N) > 0` (`sg (N - z D)` for a
-/// maximum), four half-planes in (x, y) for a fixed (u, v, t), so one non-negative
-/// combination of the four that is `<= 0` over the box rules it out, as for
-/// [`no_covered_xy`]. `n` and `d` are N and D in the lanes of the edge values.
-pub(super) fn no_depth_beyond(
-    ev: &[LPoly<3, 16>; 3],
-    n: &LPoly<4, 16>,
-    d: &LPoly<4, 16>,
-    h: f64,
-    sg: f64,
-    z: f64,
-    max: bool,
-) -> bool {
-    if !z.is_finite() {
-        return false;
-    }
-    let zd = lconst(&[z; 16]).mul::<4, 4>(d);
-    let gz = if max { n.sub(&zd) } else { zd.sub(n) };
-    // The four functions in the lanes, signed; E_k widened to four coefficients (an
-    // exact zero cubic term).
-    let mut f = [LPoly::<4, 16>::zero(); 4];
-    for k in 0..3 {
-        for q in 0..3 {
-            f[k].0[q] = ev[k].0[q];
-        }
-    }
-    f[3] = gz;
-    let sgn = lconst(&[sg; 16]);
-    let f: [LPoly<4, 16>; 4] = std::array::from_fn(|k| sgn.mul::<4, 4>(&f[k]));
-    let mid: [[f64; 16]; 4] = std::array::from_fn(|k| f[k].0[0].v);
-    let Some(lam) = multipliers(&mid) else { return false };
-    let mut g = LPoly::<4, 16>::zero();
-    for (k, &l) in lam.iter().enumerate() {
-        if l != 0.0 {
-            g = g.add(&lconst(&[l; 16]).mul::<4, 4>(&f[k]));
-        }
-    }
-    let (_, hi) = g.range(h);
-    hi.iter().all(|&v| v <= 0.0)
-}
-
-/// The least and greatest hit depth over the covered polygon at (u, v, t) = `s[2..5]`
-/// within the box's rectangle (at its vertices: the depth is linear-fractional in
-/// (x, y) with a denominator of one sign), plain f64; None when the polygon is empty.
-pub(super) fn polygon_depths(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
-    let (poly, lines, d, zs) = clipped_polygon(tri, s, b)?;
+/// Witness proposals for an extreme of the hit depth at (u, v, t) = `s[2..5]`: the
+/// vertex of the covered polygon (within the box's rectangle) of least depth (greatest
+/// when `max`; the depth is affine in (x, y) there, so its extremes over the polygon
+/// are at vertices) moved a little towards the polygon's centroid, by a few fractions
+/// (the extreme is on the boundary, which is not covered). Plain f64: the exact
+/// classifier judges them.
+pub(super) fn depth_extreme_points(tri: &Tri, s: [f64; 5], b: &Box5, max: bool) -> Vec<[f64; 5]> {
+    let Some((poly, lines, d, zs)) = clipped_polygon(tri, s, b) else { return Vec::new() };
     let depth =
         |p: &(f64, f64)| (0..3).map(|k| zs[k] * (lines[k][2] + lines[k][0] * p.0 + lines[k][1] * p.1)).sum::<f64>() / d;
-    let (lo, hi) = poly.iter().map(depth).fold((f64::INFINITY, f64::NEG_INFINITY), |a, z| (a.0.min(z), a.1.max(z)));
-    (lo.is_finite() && hi.is_finite()).then_some((lo, hi))
+    let key = |p: &(f64, f64)| if max { -depth(p) } else { depth(p) };
+    let Some(ext) = poly.iter().min_by(|p, q| key(p).total_cmp(&key(q))) else { return Vec::new() };
+    let Some((cx, cy)) = poly.centroid() else { return Vec::new() };
+    [1e-9, 1e-6, 1e-3]
+        .iter()
+        .map(|f| {
+            let mut p = s;
+            p[0] = (ext.0 + f * (cx - ext.0)).clamp(b[0].lo, b[0].hi);
+            p[1] = (ext.1 + f * (cy - ext.1)).clamp(b[1].lo, b[1].hi);
+            p
+        })
+        .filter(|p| p[0].is_finite() && p[1].is_finite())
+        .collect()
 }
 
 /// The centroid of the box's (x, y) rectangle clipped by the half-planes where every
@@ -220,19 +200,66 @@ pub(super) fn polygon_depths(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f
 /// proposes a point.
 pub(super) fn clipped_point(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
     let (poly, ..) = clipped_polygon(tri, s, b)?;
-    let n = poly.len() as f64;
-    let (sx, sy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
-    let (cx, cy) = (sx / n, sy / n);
-    (cx.is_finite() && cy.is_finite()).then_some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
+    let (cx, cy) = poly.centroid()?;
+    Some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
 }
 
 /// A covered polygon, its edge lines `E_k = C_k + A_k x + B_k y` as `[A, B, C]`, D and
 /// the vertex depth rows `z_k`.
-type Clipped = (Vec<(f64, f64)>, [[f64; 3]; 3], f64, [f64; 3]);
+type Clipped = (Polygon, [[f64; 3]; 3], f64, [f64; 3]);
 
-/// The box's rectangle clipped by the half-planes `sigma E_k > 0` at (u, v, t) =
-/// `s[2..5]` (plain f64); None when empty or D is 0 there.
-fn clipped_polygon(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<Clipped> {
+/// A convex polygon of at most 8 vertices, kept on the stack: a rectangle clipped by
+/// three half-planes (or a triangle by four) has at most 7.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Polygon {
+    pts: [(f64, f64); 8],
+    len: usize,
+}
+
+impl Polygon {
+    pub(super) fn new() -> Self {
+        Polygon { pts: [(0.0, 0.0); 8], len: 0 }
+    }
+    /// Append a vertex (beyond 8 the polygon is not convex: a bug; ignored).
+    pub(super) fn push(&mut self, p: (f64, f64)) {
+        if self.len < 8 {
+            self.pts[self.len] = p;
+            self.len += 1;
+        }
+    }
+    pub(super) fn len(&self) -> usize {
+        self.len
+    }
+    pub(super) fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+    pub(super) fn iter(&self) -> impl Iterator<Item = &(f64, f64)> {
+        self.pts[..self.len].iter()
+    }
+    /// The vertex `k` (modulo the length).
+    pub(super) fn at(&self, k: usize) -> (f64, f64) {
+        self.pts[k % self.len]
+    }
+    /// The mean of the vertices, None when empty or not finite.
+    pub(super) fn centroid(&self) -> Option<(f64, f64)> {
+        let n = self.len as f64;
+        let (sx, sy) = self.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+        let c = (sx / n, sy / n);
+        (c.0.is_finite() && c.1.is_finite()).then_some(c)
+    }
+}
+
+/// The hit depth at the sample `s` in plain f64 (None when D is 0 there): an estimate,
+/// for choosing among witness proposals only.
+pub(super) fn depth_estimate(tri: &Tri, s: [f64; 5]) -> Option<f64> {
+    let (lines, d, zs) = edge_lines(tri, s)?;
+    let z = (0..3).map(|k| zs[k] * (lines[k][2] + lines[k][0] * s[0] + lines[k][1] * s[1])).sum::<f64>() / d;
+    z.is_finite().then_some(z)
+}
+
+/// The edge lines `E_k = C_k + A_k x + B_k y` as `[A, B, C]` at (u, v, t) = `s[2..5]`,
+/// D and the vertex depth rows `z_k` (plain f64); None when D is 0 or not finite.
+fn edge_lines(tri: &Tri, s: [f64; 5]) -> Option<([[f64; 3]; 3], f64, [f64; 3])> {
     let (u, v, t) = (s[2], s[3], s[4]);
     let mut xs = [0.0; 3];
     let mut ys = [0.0; 3];
@@ -252,17 +279,23 @@ fn clipped_polygon(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<Clipped> {
         [ys[i] * ws[j] - ws[i] * ys[j], ws[i] * xs[j] - xs[i] * ws[j], xs[i] * ys[j] - ys[i] * xs[j]]
     });
     let d: f64 = (0..3).map(|k| ws[k] * lines[k][2]).sum();
-    if !(d.is_finite() && d != 0.0) {
-        return None;
-    }
+    (d.is_finite() && d != 0.0).then_some((lines, d, zs))
+}
+
+/// The box's rectangle clipped by the half-planes `sigma E_k > 0` at (u, v, t) =
+/// `s[2..5]` (plain f64); None when empty or D is 0 there.
+fn clipped_polygon(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<Clipped> {
+    let (lines, d, zs) = edge_lines(tri, s)?;
     let sg = d.signum();
-    let mut poly: Vec<(f64, f64)> =
-        vec![(b[0].lo, b[1].lo), (b[0].hi, b[1].lo), (b[0].hi, b[1].hi), (b[0].lo, b[1].hi)];
+    let mut poly = Polygon::new();
+    for p in [(b[0].lo, b[1].lo), (b[0].hi, b[1].lo), (b[0].hi, b[1].hi), (b[0].lo, b[1].hi)] {
+        poly.push(p);
+    }
     for l in &lines {
         let f = |p: &(f64, f64)| sg * (l[0] * p.0 + l[1] * p.1 + l[2]);
-        let mut out = Vec::with_capacity(poly.len() + 1);
+        let mut out = Polygon::new();
         for k in 0..poly.len() {
-            let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (p, q) = (poly.at(k), poly.at(k + 1));
             let (fp, fq) = (f(&p), f(&q));
             if fp > 0.0 {
                 out.push(p);

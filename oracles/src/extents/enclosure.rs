@@ -1,7 +1,8 @@
 //! Box enclosures: the coverage values E_0, E_1, E_2, D (and the depth numerator) over
 //! a box of samples, and the judgement empty / full / undecided they imply.
 
-use super::elimination::{no_covered_xy, no_depth_beyond, polygon_depths, Elimination};
+use super::depth::covered_depth;
+use super::elimination::{no_covered_xy, Elimination};
 use super::lanes::{lconst, LPoly};
 use super::tpoly::TPoly;
 use crate::coverage::interval_div;
@@ -58,10 +59,14 @@ pub struct BoxValues {
     /// When the elimination ran and did not certify the box: how much u, v and t each
     /// move the combination it tried (zero otherwise). Guides splitting.
     pub elim_smear: [f64; 3],
-    /// Bounds on the hit depth of every covered sample of the box certified by the
-    /// elimination (the whole line where it certified nothing; only from
-    /// [`box_values_eliminating`] with depth).
+    /// Bounds on the hit depth of every covered sample of the box certified by a
+    /// combination of the depth with the edge values (see the module `depth`; the
+    /// whole line where it certified nothing; only from [`box_values_eliminating`]
+    /// with depth).
     pub covered_depth: Interval,
+    /// How much u, v and t each move [`BoxValues::covered_depth`] over the box (zero
+    /// where it is not known). Guides splitting.
+    pub covered_smear: [f64; 3],
 }
 
 impl BoxValues {
@@ -130,7 +135,20 @@ pub fn box_values_eliminating(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValue
     values(tri, b, with_depth, true)
 }
 
+/// [`box_values_eliminating`] with depth for a search of one end of the depth (the
+/// greatest when `max`): [`BoxValues::covered_depth`] is certified at that end only (the
+/// other is infinite), and the corner quotient [`BoxValues::depth`] is left out (None,
+/// with a zero `depth_smear`): that end's bound has it among its candidates.
+pub(super) fn box_values_for_depth(tri: &Tri, b: &Box5, max: bool) -> BoxValues {
+    values_ends(tri, b, true, true, [!max, max])
+}
+
 fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
+    values_ends(tri, b, with_depth, eliminate, [true, true])
+}
+
+/// The box values; `depth_ends` says which ends (lower, upper) of the covered depth to certify.
+fn values_ends(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool, depth_ends: [bool; 2]) -> BoxValues {
     let tm = b[4].mid();
     let h = (b[4].hi - tm).max(tm - b[4].lo).max(0.0);
     let t = TPoly::t_at(tm);
@@ -239,14 +257,6 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
         let n = nk(0).add(&nk(1)).add(&nk(2));
         let (n_lo, n_hi) = n.range(h);
         nz = Some(hull_lanes(&n_lo, &n_hi));
-        // The depth N / D around a centre value z_c: N / D = z_c + M / D with
-        // M = N - z_c D. M keeps the correlation of N and D in t, so the quotient of
-        // enclosures stays tight where N and D move together.
-        let dmid: [f64; 16] = std::array::from_fn(|c| {
-            let (iu, iv, _, _) = corner(c);
-            dm[2 * iu + iv]
-        });
-        let zc: [f64; 16] = std::array::from_fn(|c| n.0[0].v[c] / dmid[c]);
         let mut dp16 = LPoly::<4, 16>::zero();
         for q in 0..4 {
             for c in 0..16 {
@@ -255,45 +265,59 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
                 dp16.0[q].e[c] = dp.0[q].e[2 * iu + iv];
             }
         }
-        let m = n.sub(&lconst(&zc).mul(&dp16));
+        // The corner quotient of the depth, unless only one end of the covered depth is
+        // wanted (that end's bound over the covered polygon has it among its candidates).
+        if depth_ends == [true, true] {
+            // The depth N / D around a centre value z_c: N / D = z_c + M / D with
+            // M = N - z_c D. M keeps the correlation of N and D in t, so the quotient of
+            // enclosures stays tight where N and D move together.
+            let dmid: [f64; 16] = std::array::from_fn(|c| {
+                let (iu, iv, _, _) = corner(c);
+                dm[2 * iu + iv]
+            });
+            let zc: [f64; 16] = std::array::from_fn(|c| n.0[0].v[c] / dmid[c]);
+            let m = n.sub(&lconst(&zc).mul(&dp16));
+            let (m_lo, m_hi) = m.range(h);
+            let m_var = m.variation(h);
+            let mut ok = true;
+            let mut acc: Option<Interval> = None;
+            for c in 0..16 {
+                let (iu, iv, _, _) = corner(c);
+                let dc = Interval::new(d_lo[2 * iu + iv], d_hi[2 * iu + iv]);
+                // N / D is linear-fractional in each of x, y, u, v separately, hence
+                // monotone in each while D keeps its sign: its extremes over the box are at
+                // the corners too.
+                let zq = if zc[c].is_finite() {
+                    depth_smear[4] = depth_smear[4].max(m_var[c] / dmid[c].abs());
+                    interval_div(Interval::new(m_lo[c], m_hi[c]), dc).map(|q| Interval::point(zc[c]) + q)
+                } else {
+                    None
+                };
+                match zq {
+                    Some(z) if ok => {
+                        acc = Some(match acc {
+                            Some(a) if z.lo.is_nan() || z.hi.is_nan() || a.lo.is_nan() => {
+                                Interval::new(f64::NAN, f64::NAN)
+                            }
+                            Some(a) => a.hull(z),
+                            None => z,
+                        })
+                    }
+                    _ => ok = false,
+                }
+            }
+            if ok {
+                depth = acc;
+            }
+            let [su, sv, sx, sy] = spread(&zc, open);
+            depth_smear[0] = sx;
+            depth_smear[1] = sy;
+            depth_smear[2] = su;
+            depth_smear[3] = sv;
+        }
         if eliminate {
             depth_lanes = Some((n, dp16));
         }
-        let (m_lo, m_hi) = m.range(h);
-        let m_var = m.variation(h);
-        let mut ok = true;
-        let mut acc: Option<Interval> = None;
-        for c in 0..16 {
-            let (iu, iv, _, _) = corner(c);
-            let dc = Interval::new(d_lo[2 * iu + iv], d_hi[2 * iu + iv]);
-            // N / D is linear-fractional in each of x, y, u, v separately, hence
-            // monotone in each while D keeps its sign: its extremes over the box are at
-            // the corners too.
-            let zq = if zc[c].is_finite() {
-                depth_smear[4] = depth_smear[4].max(m_var[c] / dmid[c].abs());
-                interval_div(Interval::new(m_lo[c], m_hi[c]), dc).map(|q| Interval::point(zc[c]) + q)
-            } else {
-                None
-            };
-            match zq {
-                Some(z) if ok => {
-                    acc = Some(match acc {
-                        Some(a) if z.lo.is_nan() || z.hi.is_nan() || a.lo.is_nan() => Interval::new(f64::NAN, f64::NAN),
-                        Some(a) => a.hull(z),
-                        None => z,
-                    })
-                }
-                _ => ok = false,
-            }
-        }
-        if ok {
-            depth = acc;
-        }
-        let [su, sv, sx, sy] = spread(&zc, open);
-        depth_smear[0] = sx;
-        depth_smear[1] = sy;
-        depth_smear[2] = su;
-        depth_smear[3] = sv;
     }
     // Separation by a side of the (x, y) rectangle: P_i.x at x = x_lo is
     // x'_i - x_lo w_i, negative iff vertex i projects left of x_lo (w_i > 0).
@@ -346,6 +370,7 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
         eliminated: false,
         elim_smear: [0.0; 3],
         covered_depth: Interval::new(f64::NEG_INFINITY, f64::INFINITY),
+        covered_smear: [0.0; 3],
     };
     if eliminate && classify_values(&bv) == BoxClass::Undecided {
         match no_covered_xy(&ev, h, d) {
@@ -355,49 +380,10 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
         }
     }
     if let Some((n, dl)) = depth_lanes.filter(|_| !bv.eliminated && (d.lo > 0.0 || d.hi < 0.0)) {
-        bv.covered_depth = covered_depth(tri, b, &bv, &ev, &n, &dl, h, if d.lo > 0.0 { 1.0 } else { -1.0 });
+        let cd = covered_depth(&ev, &n, &dl, h, depth_ends);
+        (bv.covered_depth, bv.covered_smear) = (cd.bounds, cd.smear);
     }
     bv
-}
-
-/// Bounds on the hit depth of the covered samples of a box from the elimination
-/// ([`BoxValues::covered_depth`]): the least and greatest depth over the covered polygon
-/// at the box's middle (u, v, t) propose a bound a little beyond each (a tenth, then a
-/// half of the way to the enclosure already known), which a combination of the edge
-/// values and the depth condition must certify; an end stays infinite otherwise.
-#[allow(clippy::too_many_arguments)]
-fn covered_depth(
-    tri: &Tri,
-    b: &Box5,
-    bv: &BoxValues,
-    ev: &[LPoly<3, 16>; 3],
-    n: &LPoly<4, 16>,
-    dl: &LPoly<4, 16>,
-    h: f64,
-    sg: f64,
-) -> Interval {
-    let mut out = Interval::new(f64::NEG_INFINITY, f64::INFINITY);
-    let Some((zlo, zhi)) = polygon_depths(tri, b.map(|i| i.mid()), b) else { return out };
-    let known = match (bv.depth, bv.vertex_depth) {
-        (Some(a), Some(v)) => Interval::new(a.lo.max(v.lo), a.hi.min(v.hi)),
-        (Some(a), None) | (None, Some(a)) => a,
-        (None, None) => return out,
-    };
-    for f in [0.1, 0.5] {
-        let z = zlo - f * (zlo - known.lo);
-        if z > known.lo && no_depth_beyond(ev, n, dl, h, sg, z, false) {
-            out.lo = z;
-            break;
-        }
-    }
-    for f in [0.1, 0.5] {
-        let z = zhi + f * (known.hi - zhi);
-        if z < known.hi && no_depth_beyond(ev, n, dl, h, sg, z, true) {
-            out.hi = z;
-            break;
-        }
-    }
-    out
 }
 
 /// The hull of the vertex depths `z_k(t) / w_k(t)` over the times `t` (see

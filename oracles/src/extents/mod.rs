@@ -55,6 +55,7 @@
 //! - [`solver`]: the tile solver that runs the searches on demand and keeps them.
 
 pub mod bnb;
+mod depth;
 mod elimination;
 pub mod enclosure;
 mod lanes;

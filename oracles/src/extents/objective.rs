@@ -2,7 +2,7 @@
 //! about each: the key of a box, the value at a witness, and where to look for
 //! witnesses.
 
-use super::elimination::{clipped_point, corner_points};
+use super::elimination::{clipped_point, depth_extreme_points, Polygon};
 use super::enclosure::{Box5, BoxValues};
 use crate::coverage::certainly_interior;
 use crate::interval::Interval;
@@ -136,18 +136,23 @@ pub(super) fn value_at(tri: &Tri, obj: Objective, s: [f64; 5]) -> Interval {
 
 /// Witness candidates in a box: the point nearest the bound being sought (objective at
 /// its end, the rest at the centre), the centre, the far end (each with (x, y) clipped
-/// into the projected triangle where it meets the tile), with elimination the corners
-/// of the box's (u, v, t) ([`corner_points`]), then a few points drawn
+/// into the projected triangle where it meets the tile; the far end only with
+/// elimination), then a few points drawn
 /// from a generator seeded by the box itself (so runs are reproducible). Near an
 /// extreme the covered set is often a thin wedge through a box corner that its centre
 /// misses; scattered points find it.
 pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: bool) -> Vec<[f64; 5]> {
-    // With elimination: the clipped point at a (u, v, t) (any signs of w) and at the
-    // corners of the box's (u, v, t).
+    // With elimination also the clipped point at a (u, v, t) for any signs of w (the
+    // search tries the corners of the box's (u, v, t) when none of these is interior).
     let clip =
         |p: [f64; 5]| clipped_centroid(tri, p, b).or_else(|| if eliminate { clipped_point(tri, p, b) } else { None });
     let centre = b.map(|i| i.mid());
     let mut pts = Vec::with_capacity(9);
+    if let (Objective::Depth { max }, true) = (obj, eliminate) {
+        // The vertex of the covered polygon at the box's middle (u, v, t) where the
+        // depth is extreme, nudged inside.
+        pts.extend(depth_extreme_points(tri, centre, b, max));
+    }
     // The centroid of the projected triangle (at the box's centre in u, v, t) clipped to
     // the box's (x, y) rectangle, when that is not empty: near an extreme the triangle
     // only grazes the tile and scattered points miss it.
@@ -174,7 +179,8 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: b
         // The box's far end in the objective's coordinate, clipped: where the covered
         // set only begins inside the box (an edge or vertex grazing the tile), the near
         // end and the centre can both miss it.
-        if let Some((fx, fy)) = clip(far) {
+        // (With elimination only: the gate's side searches keep their proposals.)
+        if let Some((fx, fy)) = clip(far).filter(|_| eliminate) {
             let mut p = far;
             (p[0], p[1]) = (fx, fy);
             pts.push(p);
@@ -183,8 +189,8 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: b
     } else {
         pts.push(centre);
     }
-    if eliminate {
-        pts.extend(corner_points(tri, b));
+    if eliminate && !pts.is_empty() {
+        return pts;
     }
     let mut seed = b
         .iter()
@@ -208,7 +214,7 @@ pub(super) fn candidate_points(tri: &Tri, obj: Objective, b: &Box5, eliminate: b
 /// exactly). None when a vertex is not in front or the clipped polygon is empty.
 pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
     let (u, v, t) = (s[2], s[3], s[4]);
-    let mut poly: Vec<(f64, f64)> = Vec::with_capacity(8);
+    let mut poly = Polygon::new();
     for i in 0..3 {
         let at = |j: usize| (1.0 - t) * tri.q[i][j] + t * tri.r[i][j];
         let c = (1.0 - t) * tri.c0[i] + t * tri.c1[i];
@@ -230,9 +236,9 @@ pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64,
                 c <= lim
             }
         };
-        let mut out = Vec::with_capacity(poly.len() + 2);
+        let mut out = Polygon::new();
         for k in 0..poly.len() {
-            let (a, bb) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (a, bb) = (poly.at(k), poly.at(k + 1));
             let (ia, ib) = (inside(&a), inside(&bb));
             if ia {
                 out.push(a);
@@ -248,19 +254,33 @@ pub(super) fn clipped_centroid(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64,
             return None;
         }
     }
-    let n = poly.len() as f64;
-    let (sx, sy) = poly.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
-    let (cx, cy) = (sx / n, sy / n);
-    (cx.is_finite() && cy.is_finite()).then_some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
+    let (cx, cy) = poly.centroid()?;
+    Some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))
+}
+
+/// How [`push_towards_bound`] moves a witness.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Push {
+    /// At a fixed (x, y), bisecting as far as f64 goes.
+    FixedXy,
+    /// A step whose point is outside is tried again at the centroid of the covered
+    /// polygon at its (u, v, t) (within the box's rectangle): the covered pixels move
+    /// with the lens and the time, and near an extreme they shrink to a point that a
+    /// fixed (x, y) leaves early. The bisection stops once its step is within `tol`.
+    AlongPolygon { tol: f64 },
 }
 
 /// From an interior point, move the objective coordinate towards the box's bound by
 /// bisection, every step certified interior by the fast path of the classifier (a point
 /// it cannot certify counts as outside: the witness stays a hair short of the boundary
 /// there, at no cost in exact arithmetic), so a witness hugs the boundary of the
-/// covered set instead of sitting where it was drawn.
-pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box5) -> [f64; 5] {
+/// covered set instead of sitting where it was drawn. See [`Push`] for the two ways.
+pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box5, push: Push) -> [f64; 5] {
     let Objective::Coord { index, max } = obj else { return p };
+    let (tol, along) = match push {
+        Push::FixedXy => (0.0, false),
+        Push::AlongPolygon { tol } => (tol, true),
+    };
     let mut inside = p;
     let mut out = p;
     out[index] = if max { b[index].hi } else { b[index].lo };
@@ -270,14 +290,22 @@ pub(super) fn push_towards_bound(tri: &Tri, obj: Objective, p: [f64; 5], b: &Box
     for _ in 0..48 {
         let mut mid = inside;
         mid[index] = inside[index] + 0.5 * (out[index] - inside[index]);
-        if mid[index] == inside[index] || mid[index] == out[index] {
+        if mid[index] == inside[index] || mid[index] == out[index] || (out[index] - inside[index]).abs() <= tol {
             break;
         }
         if certainly_interior(tri, mid) {
             inside = mid;
-        } else {
-            out = mid;
+            continue;
         }
+        if let Some((x, y)) = clipped_point(tri, mid, b).filter(|_| along) {
+            let mut moved = mid;
+            (moved[0], moved[1]) = (x, y);
+            if certainly_interior(tri, moved) {
+                inside = moved;
+                continue;
+            }
+        }
+        out = mid;
     }
     inside
 }

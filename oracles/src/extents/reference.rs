@@ -190,6 +190,7 @@ pub(super) fn box_values_with(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValue
         eliminated: false,
         elim_smear: [0.0; 3],
         covered_depth: Interval::new(f64::NEG_INFINITY, f64::INFINITY),
+        covered_smear: [0.0; 3],
     }
 }
 

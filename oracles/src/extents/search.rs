@@ -2,8 +2,11 @@
 //! [`super::bnb`].
 
 use super::bnb::{self, Flow, Frontier, Open, Problem, Ties};
-use super::enclosure::{box_values_eliminating, box_values_with, classify_values, Box5, BoxClass, BoxValues};
-use super::objective::{candidate_points, key_of, push_towards_bound, value_at, Extent, Objective};
+use super::elimination::{corner_points, depth_estimate};
+use super::enclosure::{
+    box_values_eliminating, box_values_for_depth, box_values_with, classify_values, Box5, BoxClass, BoxValues,
+};
+use super::objective::{candidate_points, key_of, push_towards_bound, value_at, Extent, Objective, Push};
 use crate::coverage::{classify, Coverage};
 use crate::interval::Interval;
 use crate::tri::Tri;
@@ -23,11 +26,24 @@ pub struct ExtentsConfig {
     /// are certified, so the better stands. It decides more cases (behind the lens
     /// above all) at the price of more boxes. Objective searches always eliminate.
     pub second_chance: bool,
+    /// The occupancy search ("is anything covered?") eliminates (x, y) from the start,
+    /// as the objective searches do. Otherwise it runs on the enclosures alone and
+    /// eliminates only as a second chance: where a vertex or an edge grazes the tile
+    /// at the end of a lens or time range, the enclosures alone spend the whole budget
+    /// without a witness. The gate keeps it off, so its rows stay comparable with the
+    /// recorded ones.
+    pub occupancy_eliminates: bool,
 }
 
 impl Default for ExtentsConfig {
     fn default() -> Self {
-        ExtentsConfig { resolution: 1e-4, max_boxes: 20_000, min_fraction: 1e-7, second_chance: false }
+        ExtentsConfig {
+            resolution: 1e-4,
+            max_boxes: 20_000,
+            min_fraction: 1e-7,
+            second_chance: false,
+            occupancy_eliminates: true,
+        }
     }
 }
 
@@ -150,6 +166,54 @@ struct ExtentSearch<'a> {
     moved_at: u64,
 }
 
+impl ExtentSearch<'_> {
+    /// Could a witness in a box of this key still improve on the best by more than the
+    /// resolution?
+    fn wanted(&self, key: f64) -> bool {
+        self.best.is_none_or(|(w, _)| w - key > self.cfg.resolution)
+    }
+
+    /// Judge the points exactly and keep the best interior one (pushed towards the
+    /// box's bound), until one is within the resolution of the box's key; true when
+    /// some point was interior.
+    ///
+    /// Only with elimination ([`Search::eliminate`]) does it skip points: those after a
+    /// witness within the resolution, and depth proposals whose plain-f64 depth does not
+    /// improve on the best; and only then is a witness pushed along the covered
+    /// polygon, to a sixteenth of the resolution. Without it, it judges every point and
+    /// pushes at a fixed (x, y) as far as f64 goes, as the side searches of the gate
+    /// always have (their answers stay the same bits).
+    fn try_witnesses(&mut self, pts: Vec<[f64; 5]>, b: &Box5, key: f64) -> bool {
+        let (tri, obj, eliminate) = (self.tri, self.obj, self.opts.eliminate);
+        let mut found = false;
+        for p in pts {
+            if eliminate && !self.wanted(key) {
+                break;
+            }
+            if let (true, Objective::Depth { .. }, Some((w, _)), Some(z)) =
+                (eliminate, obj, self.best, depth_estimate(tri, p))
+            {
+                // (plain f64: only to skip a point that would not improve the best)
+                if self.sg * z >= w {
+                    continue;
+                }
+            }
+            if classify(tri, p) == Coverage::Interior {
+                found = true;
+                let push =
+                    if eliminate { Push::AlongPolygon { tol: self.cfg.resolution / 16.0 } } else { Push::FixedXy };
+                let p = push_towards_bound(tri, obj, p, b, push);
+                let val = value_at(tri, obj, p);
+                let k = if self.sg > 0.0 { val.hi } else { -val.lo };
+                if self.best.is_none_or(|(w, _)| k < w) {
+                    self.best = Some((k, p));
+                }
+            }
+        }
+        found
+    }
+}
+
 impl Problem for ExtentSearch<'_> {
     type Node = Cell;
 
@@ -196,16 +260,14 @@ impl Problem for ExtentSearch<'_> {
         }
         let tri = self.tri;
         // Witnesses, while one could still improve on the best.
-        if self.best.is_none_or(|(w, _)| w - key > cfg.resolution) {
-            for p in candidate_points(tri, obj, &b, opts.eliminate) {
-                if classify(tri, p) == Coverage::Interior {
-                    let p = push_towards_bound(tri, obj, p, &b);
-                    let val = value_at(tri, obj, p);
-                    let k = if sg > 0.0 { val.hi } else { -val.lo };
-                    if self.best.is_none_or(|(w, _)| k < w) {
-                        self.best = Some((k, p));
-                    }
-                }
+        if self.wanted(key) {
+            let found = self.try_witnesses(candidate_points(tri, obj, &b, opts.eliminate), &b, key);
+            if !found && opts.eliminate && self.wanted(key) {
+                // Nothing interior at the box's middle (u, v, t): its corners, each at
+                // its covered polygon (near an extreme the covered set is a thin wedge
+                // whose apex the box's centre keeps missing, while a corner on its open
+                // side lies in it).
+                self.try_witnesses(corner_points(tri, &b), &b, key);
             }
         }
         if opts.first_witness && self.best.is_some() {
@@ -222,10 +284,17 @@ impl Problem for ExtentSearch<'_> {
         // like any other coordinate (for deciding boxes, not for the bound).
         let (init, active, min_w) = (&self.init, &self.active, &self.min_w);
         let mut smear = bv.open_smear();
-        if matches!(obj, Objective::Coord { .. }) && !bv.in_front && bv.elim_smear.iter().any(|&v| v > 0.0) {
+        if (matches!(obj, Objective::Coord { .. }) || opts.eliminate)
+            && !bv.in_front
+            && bv.elim_smear.iter().any(|&v| v > 0.0)
+        {
             // While (x, y) is eliminated, (u, v, t) are split where the combination
             // that nearly certified the box moves most.
             smear[2..5].copy_from_slice(&bv.elim_smear);
+            // (x, y) are not split meanwhile, and their smears are of the edge values,
+            // not of the combination: they do not scale the others.
+            smear[0] = 0.0;
+            smear[1] = 0.0;
         }
         let max_smear = smear.iter().cloned().fold(0.0, f64::max);
         let mut dim = None;
@@ -239,7 +308,13 @@ impl Problem for ExtentSearch<'_> {
                 // Both what decides coverage and what moves the depth matter: each
                 // smear relative to its largest coordinate; with neither known, the
                 // widest side relative to the initial box.
-                let (ds, dmax) = (bv.depth_smear[i], bv.depth_smear.iter().cloned().fold(0.0, f64::max));
+                let mut dsm = bv.depth_smear;
+                let end = if obj.is_max() { bv.covered_depth.hi } else { bv.covered_depth.lo };
+                if opts.eliminate && end.is_finite() {
+                    // The bounds over the covered polygon move with (u, v, t) only.
+                    dsm = [0.0, 0.0, bv.covered_smear[0], bv.covered_smear[1], bv.covered_smear[2]];
+                }
+                let (ds, dmax) = (dsm[i], dsm.iter().cloned().fold(0.0, f64::max));
                 score = if dmax > 0.0 { ds / dmax } else { 0.0 };
                 if max_smear > 0.0 {
                     score = score.max(smear[i] / max_smear);
@@ -250,7 +325,7 @@ impl Problem for ExtentSearch<'_> {
             }
             if i < 2
                 && (bv.in_front || opts.eliminate)
-                && matches!(obj, Objective::Coord { .. })
+                && (matches!(obj, Objective::Coord { .. }) || opts.eliminate)
                 && uvt_open(&b, init, min_w, active)
             {
                 // The elimination (and in front of the lens the side test) decides
@@ -268,7 +343,7 @@ impl Problem for ExtentSearch<'_> {
                 dim = Some(i);
             }
         }
-        let Some(dim) = dim else {
+        let Some(mut dim) = dim else {
             if class != BoxClass::Full {
                 // (a full box's witness already stands for it)
                 self.stuck.push(key);
@@ -276,11 +351,20 @@ impl Problem for ExtentSearch<'_> {
             }
             return Flow::Continue;
         };
-        let m = b[dim].mid();
+        let mut m = b[dim].mid();
+        if let (Objective::Coord { index, .. }, Some((w, _)), true) = (obj, self.best, opts.eliminate) {
+            // A box across the resolution band below the best witness is cut at the
+            // band's edge: the part within the band is then settled as it stands and
+            // only the part beyond it needs to be ruled out.
+            let cut = sg * (w - 0.875 * cfg.resolution);
+            if b[index].lo < cut && cut < b[index].hi {
+                (dim, m) = (index, cut);
+            }
+        }
         for half in [Interval::new(b[dim].lo, m), Interval::new(m, b[dim].hi)] {
             let mut c = b;
             c[dim] = half;
-            let cv = values(tri, &c, self.with_depth, opts.eliminate);
+            let cv = values(tri, obj, &c, self.with_depth, opts.eliminate);
             if classify_values(&cv) == BoxClass::Empty {
                 continue;
             }
@@ -292,7 +376,10 @@ impl Problem for ExtentSearch<'_> {
 }
 
 /// The box values the search judges by (see [`Search::eliminate`]).
-fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
+fn values(tri: &Tri, obj: Objective, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
+    if let (Objective::Depth { max }, true, true) = (obj, with_depth, eliminate) {
+        return box_values_for_depth(tri, b, max);
+    }
     if eliminate {
         box_values_eliminating(tri, b, with_depth)
     } else {
@@ -333,7 +420,7 @@ pub fn search(tri: &Tri, init: Box5, ext: Extent, cfg: &ExtentsConfig, opts: Sea
         moved_at: 0,
     };
     let mut frontier = Frontier::new(Ties::Deepest);
-    let bv = values(tri, &init, with_depth, opts.eliminate);
+    let bv = values(tri, obj, &init, with_depth, opts.eliminate);
     frontier.push(key_of(obj, &init, &bv), 0, Cell { b: init, bv });
     bnb::run(&mut s, &mut frontier);
     let mut final_lo = s.final_lo;
