@@ -79,7 +79,7 @@ pub mod scene;
 
 pub use cli::{run_cli, TightnessArgs};
 
-use crate::bounds::{Method, Prepared, SampleCols, TileBounds, TileResult};
+use crate::bounds::{Conjunction, Method, Prepared, SampleCols, SampleConstraint, TileResult};
 use crate::model::{Dims, Sample, Tile, Triangle};
 use indicatif::ProgressBar;
 use oracles::batch::Batch;
@@ -608,9 +608,53 @@ pub(crate) fn exact_coverage_scalar(tri: &oracles::Tri, samples: &[Sample], out:
 /// What every triangle of one setting shares.
 struct Ctx<'a> {
     methods: &'a [&'static dyn Method],
+    plan: &'a Plan,
     cfg: &'a Config,
     table: &'a SampleTable,
     setting: Setting,
+}
+
+/// Where a method's tile answer comes from.
+enum Source {
+    /// Its own setup (slot index).
+    Own(usize),
+    /// A conjunction of other methods' answers ([`Method::conjunction`]), their slots in
+    /// order: derived from the answers the slots give anyway.
+    Conj(Conjunction, Vec<usize>),
+}
+
+/// The methods the measurement sets up and asks per tile (**slots**: each distinct
+/// method once), and per method of the run where its answer comes from. A method that
+/// is by definition a conjunction of other registered methods (lc, mam2012-new and
+/// their -safe variants) is not asked itself: its parts are (once, when they are also
+/// in the run) and its answer is met from theirs ([`Conjunction::meet`], bit for bit
+/// its own answer), so no tile test is repeated for the same tile.
+struct Plan {
+    slots: Vec<&'static dyn Method>,
+    of: Vec<Source>,
+}
+
+impl Plan {
+    fn new(methods: &[&'static dyn Method]) -> Plan {
+        let mut slots: Vec<&'static dyn Method> = Vec::new();
+        let mut slot = |m: &'static dyn Method| -> usize {
+            let id = m.info().id;
+            slots.iter().position(|x| x.info().id == id).unwrap_or_else(|| {
+                slots.push(m);
+                slots.len() - 1
+            })
+        };
+        let mut of = Vec::with_capacity(methods.len());
+        for &m in methods {
+            of.push(match m.conjunction() {
+                Some(c) if !c.parts.is_empty() && c.parts.iter().all(|p| p.conjunction().is_none()) => {
+                    Source::Conj(c, c.parts.iter().map(|p| slot(**p)).collect())
+                }
+                _ => Source::Own(slot(m)),
+            });
+        }
+        Plan { slots, of }
+    }
 }
 
 /// Buffers reused from triangle to triangle (one per worker).
@@ -629,7 +673,7 @@ fn measure_triangle(
     fp: Footprint,
     chosen: &[(usize, u64)],
 ) -> TriCounts {
-    let Ctx { methods, cfg, table, setting } = *ctx;
+    let Ctx { methods, plan, cfg, table, setting } = *ctx;
     let (width, height) = (table.width, table.height);
     let nt = cfg.tiles.len();
     let mut out = TriCounts {
@@ -681,12 +725,37 @@ fn measure_triangle(
         out.exact += e;
     }
     let dims = tri.dims();
-    let preps: Vec<Box<dyn Prepared>> = methods.iter().map(|m| m.setup(tri)).collect();
-    for (d, p) in out.disabled.iter_mut().zip(&preps) {
-        *d = p.disabled().is_some();
+    let preps: Vec<Box<dyn Prepared>> = plan.slots.iter().map(|m| m.setup(tri)).collect();
+    let slot_disabled: Vec<bool> = preps.iter().map(|p| p.disabled().is_some()).collect();
+    for (d, src) in out.disabled.iter_mut().zip(&plan.of) {
+        *d = match src {
+            Source::Own(k) => slot_disabled[*k],
+            Source::Conj(_, parts) => parts.iter().all(|&k| slot_disabled[k]),
+        };
+    }
+    // The slots whose answer does not read the tile: asked once, and the values of their
+    // per-sample constraints taken once per sample of the region (`pass`).
+    let mut fixed: Vec<Option<TileResult>> = Vec::with_capacity(preps.len());
+    let mut pass: Vec<Option<Vec<bool>>> = Vec::with_capacity(preps.len());
+    let any_tile = tile_of(&tile_pixels(r.x0 / cfg.tiles[0], r.y0 / cfg.tiles[0], cfg.tiles[0], width, height));
+    for p in &preps {
+        if p.tile_independent() {
+            let a = p.tile(&any_tile);
+            pass.push(match &a {
+                TileResult::Bounds(b) if !b.constraints.is_empty() => {
+                    Some(region_pass(&mut scratch.admit, &[&b.constraints], table, &local))
+                }
+                _ => None,
+            });
+            fixed.push(Some(a));
+        } else {
+            fixed.push(None);
+            pass.push(None);
+        }
     }
     let mut rows = std::mem::take(&mut scratch.rows);
     let mut admit = std::mem::take(&mut scratch.admit);
+    let mut asked: Vec<Option<TileResult>> = Vec::with_capacity(preps.len());
     for (ti, &s) in cfg.tiles.iter().enumerate() {
         for (mi, w) in out.work[ti].iter_mut().enumerate() {
             w.add_setup(out.disabled[mi]);
@@ -710,18 +779,48 @@ fn measure_triangle(
                         out.ceiling[ti].1 += cov_here;
                     }
                 }
-                for (mi, prep) in preps.iter().enumerate() {
+                asked.clear();
+                asked.extend(preps.iter().zip(&fixed).map(|(p, f)| f.is_none().then(|| p.tile(&tile))));
+                let answer = |k: usize| -> &TileResult { fixed[k].as_ref().or(asked[k].as_ref()).expect("asked") };
+                for (mi, src) in plan.of.iter().enumerate() {
                     let c = &mut out.counts[ti][mi];
                     let w = &mut out.work[ti][mi];
-                    match prep.tile(&tile) {
-                        TileResult::Empty => {
-                            w.add_tile(out.disabled[mi], 0);
-                            c.missed += cov_here
+                    let here = Here { table, local: &local, rows: &rows, n: n_here, cov: cov_here };
+                    let kept = match src {
+                        Source::Own(k) => match answer(*k) {
+                            TileResult::Empty => false,
+                            TileResult::Bounds(b) => {
+                                let iv = (b.u, b.v, b.t);
+                                match &pass[*k] {
+                                    Some(ps) => count_passing(iv, ps, &here, c),
+                                    None => count_admitted(&mut admit, iv, &[&b.constraints], &here, c),
+                                }
+                                true
+                            }
+                        },
+                        Source::Conj(conj, parts) => {
+                            let ans: Vec<&TileResult> = parts.iter().map(|&k| answer(k)).collect();
+                            match conj.meet(&ans) {
+                                None => false,
+                                Some(mt) => {
+                                    let cons: Vec<&[Box<dyn SampleConstraint>]> = ans
+                                        .iter()
+                                        .map(|a| match a {
+                                            TileResult::Bounds(b) => &b.constraints[..],
+                                            TileResult::Empty => &[],
+                                        })
+                                        .collect();
+                                    count_admitted(&mut admit, (mt.u, mt.v, mt.t), &cons, &here, c);
+                                    true
+                                }
+                            }
                         }
-                        TileResult::Bounds(b) => {
-                            w.add_tile(out.disabled[mi], n_here);
-                            count_admitted(&mut admit, &b, table, &local, &rows, n_here, cov_here, c)
-                        }
+                    };
+                    if kept {
+                        w.add_tile(out.disabled[mi], n_here);
+                    } else {
+                        w.add_tile(out.disabled[mi], 0);
+                        c.missed += cov_here;
                     }
                 }
                 let l = (ty - ty0) as u64 * ntx + (tx - tx0) as u64;
@@ -735,6 +834,67 @@ fn measure_triangle(
     scratch.admit = admit;
     scratch.covered = local.covered;
     out
+}
+
+/// The samples of one tile being counted: the rows ([`tile_rows`]) over the table and
+/// the triangle's coverage, `n` samples of which `cov` are covered.
+struct Here<'a> {
+    table: &'a SampleTable,
+    local: &'a Local,
+    rows: &'a [(usize, usize, usize)],
+    n: u64,
+    cov: u64,
+}
+
+/// Per sample of the [`Local`] region: no constraint of `cons` culls it (`g < 0` for
+/// none; a NaN value culls nothing), the values computed row by row
+/// ([`SampleConstraint::eval_row`]).
+fn region_pass(
+    sc: &mut AdmitScratch,
+    cons: &[&[Box<dyn SampleConstraint>]],
+    table: &SampleTable,
+    local: &Local,
+) -> Vec<bool> {
+    let rect = local.rect;
+    let n = (rect.x1 - rect.x0 + 1) as usize * table.spp;
+    let mut pass = vec![true; local.covered.len()];
+    sc.reserve(n);
+    for py in rect.y0..=rect.y1 {
+        let (ts, ls) = (table.start(rect.x0, py), local.start(rect.x0, py));
+        let cols = table.cols(ts, n);
+        let values = &mut sc.values[..n];
+        for k in cons.iter().flat_map(|c| c.iter()) {
+            k.eval_row(&cols, values);
+            for (a, &g) in pass[ls..ls + n].iter_mut().zip(values.iter()) {
+                *a &= !(g < 0.0);
+            }
+        }
+    }
+    pass
+}
+
+/// [`count_admitted`] for an answer whose constraints' verdicts per sample are `pass`
+/// (of [`region_pass`]): the intervals side by side, and the verdicts looked up.
+fn count_passing(iv: ([f32; 2], [f32; 2], [f32; 2]), pass: &[bool], h: &Here, c: &mut Counts) {
+    let ([u0, u1], [v0, v1], [t0, t1]) = iv;
+    let (mut tested, mut hits) = (0u64, 0u64);
+    for &(ts, ls, n) in h.rows {
+        let t = &h.table.cols;
+        let (us, vs, tv) = (&t[2][ts..ts + n], &t[3][ts..ts + n], &t[4][ts..ts + n]);
+        let (cv, ps) = (&h.local.covered[ls..ls + n], &pass[ls..ls + n]);
+        let (mut t_row, mut h_row) = (0u32, 0u32);
+        for i in 0..n {
+            let a =
+                (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1) & ps[i];
+            t_row += a as u32;
+            h_row += (a & cv[i]) as u32;
+        }
+        tested += t_row as u64;
+        hits += h_row as u64;
+    }
+    c.tested += tested;
+    c.hits += hits;
+    c.missed += h.cov - hits;
 }
 
 /// Buffers of [`count_admitted`], reused from tile to tile.
@@ -767,37 +927,38 @@ impl AdmitScratch {
     }
 }
 
-/// Count the samples of a tile that `b` admits (`n` samples, `cov` of them covered).
-/// An answer with the whole (u, v, t) domain and no per-sample constraint admits every
-/// sample ([`TileBounds::admits`] would say so sample by sample). Otherwise, row by
-/// row, the samples inside the intervals are found side by side, and each per-sample
-/// constraint is evaluated once on each of them ([`SampleConstraint::eval_row`], the
-/// same values as `eval`): a sample passes when no value is negative, as in `admits`.
+/// Count the samples of a tile that an answer admits: intervals `iv` (u, v, t) and the
+/// per-sample constraints of every slice of `cons` (one answer's, or the parts' of a
+/// conjunction). An answer with the whole (u, v, t) domain and no per-sample constraint
+/// admits every sample ([`TileBounds::admits`] would say so sample by sample).
+/// Otherwise, row by row, the samples inside the intervals are found side by side, and
+/// each per-sample constraint is evaluated once on each of them
+/// ([`SampleConstraint::eval_row`], the same values as `eval`): a sample passes when no
+/// value is negative, as in `admits`.
 ///
-/// [`SampleConstraint::eval_row`]: crate::bounds::SampleConstraint::eval_row
-#[allow(clippy::too_many_arguments)]
+/// [`TileBounds::admits`]: crate::bounds::TileBounds::admits
 fn count_admitted(
     sc: &mut AdmitScratch,
-    b: &TileBounds,
-    table: &SampleTable,
-    local: &Local,
-    rows: &[(usize, usize, usize)],
-    n: u64,
-    cov: u64,
+    iv: ([f32; 2], [f32; 2], [f32; 2]),
+    cons: &[&[Box<dyn SampleConstraint>]],
+    h: &Here,
     c: &mut Counts,
 ) {
-    let whole = b.u[0] <= -1.0 && b.u[1] >= 1.0 && b.v[0] <= -1.0 && b.v[1] >= 1.0 && b.t[0] <= 0.0 && b.t[1] >= 1.0;
-    if whole && b.constraints.is_empty() {
+    let (b_u, b_v, b_t) = iv;
+    let (table, local, rows, n, cov) = (h.table, h.local, h.rows, h.n, h.cov);
+    let no_constraints = cons.iter().all(|c| c.is_empty());
+    let whole = b_u[0] <= -1.0 && b_u[1] >= 1.0 && b_v[0] <= -1.0 && b_v[1] >= 1.0 && b_t[0] <= 0.0 && b_t[1] >= 1.0;
+    if whole && no_constraints {
         c.tested += n;
         c.hits += cov;
         return;
     }
     let (mut tested, mut hits) = (0u64, 0u64);
-    let ([u0, u1], [v0, v1], [t0, t1]) = (b.u, b.v, b.t);
+    let ([u0, u1], [v0, v1], [t0, t1]) = (b_u, b_v, b_t);
     for &(ts, ls, n) in rows {
         let (us, vs, tv) = (&table.cols[2][ts..ts + n], &table.cols[3][ts..ts + n], &table.cols[4][ts..ts + n]);
         let cv = &local.covered[ls..ls + n];
-        if b.constraints.is_empty() {
+        if no_constraints {
             // The interval test of `TileBounds::admits`, side by side (vectorised).
             let (mut t_row, mut h_row) = (0u32, 0u32);
             for i in 0..n {
@@ -846,7 +1007,7 @@ fn count_admitted(
         };
         let (alive, values) = (&mut sc.alive[..m], &mut sc.values[..m]);
         alive.fill(true);
-        for k in &b.constraints {
+        for k in cons.iter().flat_map(|c| c.iter()) {
             k.eval_row(&cols, values);
             for (a, &g) in alive.iter_mut().zip(values.iter()) {
                 // Culled when negative (a NaN value culls nothing, as in `admits`).
@@ -954,11 +1115,12 @@ pub fn measure_with(
     let (w, h) = (scene.width, scene.height);
     assert_eq!((table.width, table.height, table.spp), (w, h, cfg.pattern.spp as usize), "sample table mismatch");
     let mut m = Measurement::default();
+    let plan = Plan::new(methods);
     for &setting in settings {
         let tris = scene.triangles(setting);
         let fps: Vec<Footprint> = tris.iter().map(|t| footprint(t, w, h)).collect();
         let chosen = choose_certified(&fps, cfg, setting, w, h);
-        let ctx = Ctx { methods, cfg, table, setting };
+        let ctx = Ctx { methods, plan: &plan, cfg, table, setting };
         let per: Vec<TriCounts> = tris
             .par_iter()
             .zip(fps.par_iter())
