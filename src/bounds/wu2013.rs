@@ -1928,6 +1928,9 @@ mod tests {
             }
         }
         // Every kind of answer was compared: culled, narrowed, with lines.
-        assert!(culled > 1000 && narrowed > 1000 && lines > 500, "{tiles} tiles: {culled} culled, {narrowed} narrowed, {lines} with lines");
+        assert!(
+            culled > 1000 && narrowed > 1000 && lines > 500,
+            "{tiles} tiles: {culled} culled, {narrowed} narrowed, {lines} with lines"
+        );
     }
 }

@@ -614,6 +614,13 @@ struct Ctx<'a> {
     setting: Setting,
 }
 
+/// The most parts of a conjunction met from its parts' answers (one with more is asked
+/// itself).
+const MAX_PARTS: usize = 4;
+
+/// A placeholder answer.
+static EMPTY: TileResult = TileResult::Empty;
+
 /// Where a method's tile answer comes from.
 enum Source {
     /// Its own setup (slot index).
@@ -647,7 +654,10 @@ impl Plan {
         let mut of = Vec::with_capacity(methods.len());
         for &m in methods {
             of.push(match m.conjunction() {
-                Some(c) if !c.parts.is_empty() && c.parts.iter().all(|p| p.conjunction().is_none()) => {
+                Some(c)
+                    if (1..=MAX_PARTS).contains(&c.parts.len())
+                        && c.parts.iter().all(|p| p.conjunction().is_none()) =>
+                {
                     Source::Conj(c, c.parts.iter().map(|p| slot(**p)).collect())
                 }
                 _ => Source::Own(slot(m)),
@@ -799,18 +809,21 @@ fn measure_triangle(
                             }
                         },
                         Source::Conj(conj, parts) => {
-                            let ans: Vec<&TileResult> = parts.iter().map(|&k| answer(k)).collect();
-                            match conj.meet(&ans) {
+                            let mut ans: [&TileResult; MAX_PARTS] = [&EMPTY; MAX_PARTS];
+                            for (a, &k) in ans.iter_mut().zip(parts) {
+                                *a = answer(k);
+                            }
+                            let ans = &ans[..parts.len()];
+                            match conj.meet(ans) {
                                 None => false,
                                 Some(mt) => {
-                                    let cons: Vec<&[Box<dyn SampleConstraint>]> = ans
-                                        .iter()
-                                        .map(|a| match a {
-                                            TileResult::Bounds(b) => &b.constraints[..],
-                                            TileResult::Empty => &[],
-                                        })
-                                        .collect();
-                                    count_admitted(&mut admit, (mt.u, mt.v, mt.t), &cons, &here, c);
+                                    let mut cons: [&[Box<dyn SampleConstraint>]; MAX_PARTS] = [&[]; MAX_PARTS];
+                                    for (c, a) in cons.iter_mut().zip(ans) {
+                                        if let TileResult::Bounds(b) = a {
+                                            *c = &b.constraints;
+                                        }
+                                    }
+                                    count_admitted(&mut admit, (mt.u, mt.v, mt.t), &cons[..ans.len()], &here, c);
                                     true
                                 }
                             }

@@ -375,7 +375,6 @@ fn prepare_safe(tri: &Triangle) -> SafePrep {
     SafePrep { finite, x, y, disabled }
 }
 
-
 /// The old answer for a tile.
 pub(super) fn answer(tri: &Triangle, tile: &Tile) -> TileResult {
     prepare_safe(tri).tile(tile)
