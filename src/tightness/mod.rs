@@ -983,8 +983,9 @@ fn count_admitted(
             hits += h_row as u64;
             continue;
         }
-        // The intervals first (side by side), then the constraints on the samples
-        // inside them (the whole row's columns when every sample is inside).
+        // The intervals first (side by side), then the constraints: on the whole row's
+        // columns when at least half of its samples are inside (the values of the others
+        // are not used), otherwise on the samples inside, gathered.
         sc.reserve(n);
         let mask = &mut sc.mask[..n];
         let mut m = 0usize;
@@ -996,8 +997,8 @@ fn count_admitted(
         if m == 0 {
             continue;
         }
-        let all = m == n;
-        if !all {
+        let whole_row = 2 * m >= n;
+        if !whole_row {
             // The indices of the inside samples (written branch-free), then their columns.
             let index = &mut sc.index[..n];
             let mut k = 0usize;
@@ -1012,14 +1013,18 @@ fn count_admitted(
                 }
             }
         }
-        let cols = if all {
-            table.cols(ts, n)
+        let (cols, len) = if whole_row {
+            (table.cols(ts, n), n)
         } else {
             let [x, y, u, v, t] = &sc.inside;
-            SampleCols::new(x, y, u, v, t, m)
+            (SampleCols::new(x, y, u, v, t, m), m)
         };
-        let (alive, values) = (&mut sc.alive[..m], &mut sc.values[..m]);
-        alive.fill(true);
+        let (alive, values) = (&mut sc.alive[..len], &mut sc.values[..len]);
+        if whole_row {
+            alive.copy_from_slice(mask);
+        } else {
+            alive.fill(true);
+        }
         for k in cons.iter().flat_map(|c| c.iter()) {
             k.eval_row(&cols, values);
             for (a, &g) in alive.iter_mut().zip(values.iter()) {
@@ -1029,7 +1034,7 @@ fn count_admitted(
             }
         }
         let (mut t_row, mut h_row) = (0u32, 0u32);
-        if all {
+        if whole_row {
             for (&a, &cv) in alive.iter().zip(cv) {
                 t_row += a as u32;
                 h_row += (a & cv) as u32;
