@@ -379,6 +379,63 @@ mod tests {
         }
     }
 
+    /// A method declared a conjunction answers, on every tile, the intervals
+    /// [`Conjunction::meet`] gives from its parts' answers (bit for bit) with the parts'
+    /// constraints in order, and is disabled exactly when every part is; a method
+    /// declared tile-independent answers the same on every tile.
+    #[test]
+    fn declared_conjunctions_and_tile_independence_hold() {
+        use rand::SeedableRng;
+        let bits = |m: &Meet| {
+            let mut v: Vec<u32> = m.u.iter().chain(&m.v).chain(&m.t).map(|x| x.to_bits()).collect();
+            v.extend(m.z.iter().flatten().map(|x| x.to_bits()));
+            v
+        };
+        let (mut conj, mut kept, mut with_constraints, mut fixed) = (0, 0, 0, 0);
+        for m in registry() {
+            let c = m.conjunction();
+            for n in 0..3000 {
+                let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(n as u64);
+                let (tri, tile) = testkit::random_dual_case(&mut rng, n);
+                let p = m.setup(&tri);
+                let own = p.tile(&tile);
+                if p.tile_independent() {
+                    let other = Tile::square(tile.x0 + 37.0, tile.y1 - 11.0, 3.0);
+                    assert_eq!(format!("{own:?}"), format!("{:?}", p.tile(&other)), "{}", m.info().id);
+                    fixed += 1;
+                }
+                let Some(c) = c else { continue };
+                conj += 1;
+                let preps: Vec<_> = c.parts.iter().map(|x| x.setup(&tri)).collect();
+                assert_eq!(p.disabled().is_some(), preps.iter().all(|x| x.disabled().is_some()), "{}", m.info().id);
+                let answers: Vec<TileResult> = preps.iter().map(|x| x.tile(&tile)).collect();
+                let refs: Vec<&TileResult> = answers.iter().collect();
+                match (c.meet(&refs), &own) {
+                    (None, TileResult::Empty) => {}
+                    (Some(mt), TileResult::Bounds(b)) => {
+                        assert_eq!(bits(&mt), bits(&Meet::of(b)), "{} case {n}", m.info().id);
+                        let parts: Vec<String> = answers
+                            .iter()
+                            .flat_map(|a| match a {
+                                TileResult::Bounds(b) => b.constraints.iter().map(|k| format!("{k:?}")).collect(),
+                                TileResult::Empty => Vec::new(),
+                            })
+                            .collect();
+                        let mine: Vec<String> = b.constraints.iter().map(|k| format!("{k:?}")).collect();
+                        assert_eq!(mine, parts, "{} case {n}", m.info().id);
+                        kept += 1;
+                        with_constraints += !mine.is_empty() as usize;
+                    }
+                    (a, b) => panic!("{} case {n}: met {a:?}, own {b:?}", m.info().id),
+                }
+            }
+        }
+        assert!(
+            conj >= 4 * 3000 && kept > 1000 && with_constraints > 500 && fixed >= 2 * 3000,
+            "{conj} {kept} {with_constraints} {fixed}"
+        );
+    }
+
     #[test]
     fn intersect_empties_on_disjoint_intervals() {
         let mut a = TileBounds::full();
