@@ -704,7 +704,15 @@ struct SafeAxis {
     v: [SafeVertex; 3],
 }
 
+/// Per vertex, [`SafeVertex::at_column`] at the tile's two columns (shared by stage 2's
+/// tile interval and its lines).
+type Columns = [[(Iv, Iv); 2]; 3];
+
 impl SafeAxis {
+    /// The vertices' column parts at columns `s0`, `s1`.
+    fn columns(&self, s0: f32, s1: f32) -> Columns {
+        self.v.map(|a| [a.at_column(s0), a.at_column(s1)])
+    }
     /// Stage 1, corrected: per vertex the enclosure of its lens crossings
     /// `u_k(X, t) = (X w_k(t) - p_k(t)) / c_k(t)` over the tile's columns and the shutter
     /// (the 4 corners X in {s0, s1}, t in {0, 1}), with the direction of `delta_k` in u
@@ -737,18 +745,17 @@ impl SafeAxis {
     }
 
     /// Stage 2, corrected (tile level): per vertex the enclosure of its crossing time
-    /// `t_k = N / D` over the rectangle of columns [s0, s1] and lens `l` (a linear
+    /// `t_k = N / D` over the rectangle of columns [s0, s1] (`cols`) and lens `l` (a linear
     /// fraction of (X, l) jointly: its extremes are at the 4 corners when D keeps one
     /// strict sign there), with the direction of `delta_k(t) = N - t D` in t (increasing
     /// iff D < 0). Vertices may cross in opposite directions. None (no time bound from
     /// this axis) when some D is not of one strict sign on the rectangle.
-    fn time_crossings(&self, s0: f32, s1: f32, l: [f32; 2]) -> Option<[Crossing; 3]> {
+    fn time_crossings(&self, cols: &Columns, l: [f32; 2]) -> Option<[Crossing; 3]> {
         let mut out = [(false, 0.0, 0.0); 3];
-        for (a, o) in self.v.iter().zip(out.iter_mut()) {
+        for ((a, o), ac) in self.v.iter().zip(out.iter_mut()).zip(cols) {
             let (mut pos, mut neg) = (false, false);
             let (mut m, mut h) = (f32::INFINITY, f32::NEG_INFINITY);
-            for s in [s0, s1] {
-                let col = a.at_column(s);
+            for &col in ac {
                 for lv in l {
                     let (n, d) = a.nd_from(col, lv);
                     pos |= d.pos();
@@ -770,14 +777,13 @@ impl SafeAxis {
     }
 
     /// Stage 2 as published (the green / red lines), enclosed: only when all three D
-    /// share one strict sign on columns [s0, s1] x lens [-1, 1] (the guarded condition).
+    /// share one strict sign on columns [s0, s1] (`cols`) x lens [-1, 1] (the guarded condition).
     /// Upper endpoints are upper ends of the enclosures, lower endpoints lower ends.
-    fn lines(&self, s0: f32, s1: f32) -> Option<Lines> {
+    fn lines(&self, cols: &Columns) -> Option<Lines> {
         let mut out = Lines { ul: f32::NEG_INFINITY, ur: f32::NEG_INFINITY, ll: f32::INFINITY, lr: f32::INFINITY };
         let (mut pos, mut neg) = (false, false);
-        for a in &self.v {
-            for s in [s0, s1] {
-                let col = a.at_column(s);
+        for (a, ac) in self.v.iter().zip(cols) {
+            for &col in ac {
                 let (n0, d0) = a.nd_from(col, 0.0);
                 let (nm, dm) = a.nd_from(col, -1.0);
                 let (np, dp) = a.nd_from(col, 1.0);
@@ -888,13 +894,14 @@ impl Prepared for SafePrep {
         for (axis, s0, s1, lens, l) in
             [(&self.x, tile.x0, tile.x1, Lens::U, b.u), (&self.y, tile.y0, tile.y1, Lens::V, b.v)]
         {
-            if let Some(cr) = axis.time_crossings(s0, s1, l) {
+            let cols = axis.columns(s0, s1);
+            if let Some(cr) = axis.time_crossings(&cols, l) {
                 match sign_hull(&cr, t) {
                     None => return TileResult::Empty,
                     Some(r) => t = r,
                 }
             }
-            if let Some(ln) = axis.lines(s0, s1) {
+            if let Some(ln) = axis.lines(&cols) {
                 apply_safe_lines(ln, lens, l, &mut t, &mut cons);
             }
         }
