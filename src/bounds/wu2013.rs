@@ -1890,7 +1890,7 @@ mod tests {
         };
         let (mut tiles, mut culled, mut lines, mut narrowed) = (0usize, 0usize, 0usize, 0usize);
         for n in 0..30_000usize {
-            let mut rng = rng_for(0x5afe_01d, n as u64);
+            let mut rng = rng_for(0x05af_e01d, n as u64);
             let (tri, ts) = match n % 3 {
                 0 => {
                     let case = physical_case(&mut rng, Regime::ALL[(n / 3) % Regime::ALL.len()]);

@@ -879,7 +879,9 @@ fn region_pass(
         for k in cons.iter().flat_map(|c| c.iter()) {
             k.eval_row(&cols, values);
             for (a, &g) in pass[ls..ls + n].iter_mut().zip(values.iter()) {
-                *a &= !(g < 0.0);
+                // Culled when negative (a NaN value culls nothing, as in `admits`).
+                let culled = g < 0.0;
+                *a &= !culled;
             }
         }
     }
