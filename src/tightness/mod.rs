@@ -18,7 +18,8 @@
 //!    screen** (every tile is traversed and tested), and is counted (`whole_screen`). A
 //!    footprint entirely off the screen is skipped and counted (`off_screen`).
 //! 3. **Tile test** per tile, then for each sample of the pattern (see [`pattern`]) in
-//!    the tile: *tested* if the tile was not culled and [`TileBounds::admits`] (intervals
+//!    the tile: *tested* if the tile was not culled and
+//!    [`TileBounds::admits`](crate::bounds::TileBounds::admits) (intervals
 //!    u^, v^, t^ and every per-sample constraint; a depth interval z^ is an occlusion
 //!    test, not a coverage test, and is not applied).
 //! 4. **Coverage** of each (triangle, sample) by the exact oracle
@@ -61,8 +62,19 @@
 //! row on the samples inside them, in columns
 //! ([`SampleConstraint::eval_row`](crate::bounds::SampleConstraint::eval_row): the
 //! values of `eval`, bit for bit, computed side by side by the constraints the methods
-//! use). Nothing per sample is stored but the triangle's coverage, in a buffer reused by
-//! each worker, and no buffer is allocated per tile. Exact coverage goes through one
+//! use). Nothing per sample is stored but the triangle's coverage (and the verdicts of a
+//! tile-independent answer's constraints, below), in buffers reused by each worker.
+//!
+//! No tile test is repeated and nothing that does not depend on the tile is recomputed
+//! per tile (`Plan`): each distinct method is set up and asked once per tile (a
+//! **slot**); a method that is by definition a conjunction of other registered methods
+//! ([`Method::conjunction`]: lc, mam2012-new and their -safe variants) is met from its
+//! parts' answers ([`Conjunction::meet`], the intervals of its own answer bit for bit,
+//! its constraints those of the parts); an answer that does not read the tile
+//! ([`Prepared::tile_independent`]: gdam2010 and gdam2010-safe) is asked once per
+//! triangle, and its constraints are evaluated once per sample of the triangle's region
+//! for every tile size (`region_pass`). The work counted ([`Work`]) is still each
+//! method's own: a conjunction's tile test counts once for it, whatever was shared. Exact coverage goes through one
 //! function ([`exact_coverage`]). Each count also feeds the cost model ([`Work`],
 //! [`cost`]).
 //!
