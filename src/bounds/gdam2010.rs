@@ -616,6 +616,11 @@ impl<S: SampleConstraint + Copy + 'static> Prepared for Prep<S> {
     fn disabled(&self) -> Option<&'static str> {
         self.spans.is_none().then_some(self.why)
     }
+    /// The answer never reads the tile: the full domain and the time set at the
+    /// sample's (x, y).
+    fn tile_independent(&self) -> bool {
+        true
+    }
 }
 
 struct Gdam2010;

@@ -442,7 +442,7 @@ fn neg_hull<R: Round, A: F32Arith>(
     let (ba, bb) = (bottom(0), bottom(1));
     let pos_ok = ar.and(&class.pos, &ar.not(&ar.or(&R::bad(ar, &ta), &R::bad(ar, &tb))));
     let neg_ok = ar.and(&class.neg, &ar.not(&ar.or(&R::bad(ar, &ba), &R::bad(ar, &bb))));
-    let bad_d: Vec<A::B> = d.iter().flatten().map(|x| R::bad(ar, x)).collect();
+    let bad_d = [R::bad(ar, &d[0][0]), R::bad(ar, &d[0][1]), R::bad(ar, &d[1][0]), R::bad(ar, &d[1][1])];
     let zero_some = ar.any(&[ar.lt(&d[0][0], &zero), ar.lt(&d[1][0], &zero), ar.any(&bad_d)]);
     let cross = ar.not(&ar.any(&[class.pos.clone(), class.neg.clone(), class.zero.clone()]));
     let some = ar.any(&[class.pos.clone(), class.neg.clone(), cross, ar.and(&class.zero, &zero_some)]);
@@ -489,7 +489,7 @@ pub fn tile_answer<R: Round, A: F32Arith>(ar: &A, s: &Setup<A::F, A::B>, tile: &
 /// Whether the tile gets the full domain before any arithmetic (`la2011-safe` on a
 /// non-finite triangle or tile).
 fn guard<R: Round, A: F32Arith>(ar: &A, s: &Setup<A::F, A::B>, tile: &[A::F; 4]) -> A::B {
-    let finite: Vec<A::B> = tile.iter().map(|v| ar.is_finite(v)).collect();
+    let finite = tile.each_ref().map(|v| ar.is_finite(v));
     ar.and(&ar.truth(R::GUARD), &ar.or(&s.full, &ar.not(&ar.all(&finite))))
 }
 

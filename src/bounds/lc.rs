@@ -27,31 +27,35 @@
 
 use super::*;
 
+/// Both parts' setups; the tile answer is [`Conjunction::combine`] over them (LA first:
+/// Empty there is the answer; otherwise LA's answer [`TileResult::and`] LB's).
 struct Prep {
-    la: Box<dyn Prepared>,
-    lb: Box<dyn Prepared>,
+    conj: Conjunction,
+    parts: [Box<dyn Prepared>; 2],
 }
 
 impl Prepared for Prep {
     fn tile(&self, tile: &Tile) -> TileResult {
-        match self.la.tile(tile) {
-            TileResult::Empty => TileResult::Empty,
-            la => la.and(self.lb.tile(tile)),
-        }
+        self.conj.combine(|i| self.parts[i].tile(tile))
     }
     fn disabled(&self) -> Option<&'static str> {
-        match (self.la.disabled(), self.lb.disabled()) {
+        match (self.parts[0].disabled(), self.parts[1].disabled()) {
             (Some(a), Some(_)) => Some(a),
             _ => None,
         }
     }
 }
 
-/// lc, or lc-safe: the same conjunction of two other registered methods.
+/// lc, or lc-safe: the same conjunction of two other registered methods (LA, then LB).
 struct Lc {
     info: &'static MethodInfo,
-    la: &'static &'static dyn Method,
-    lb: &'static &'static dyn Method,
+    parts: &'static [&'static &'static dyn Method; 2],
+}
+
+impl Lc {
+    fn conj(&self) -> Conjunction {
+        Conjunction { parts: self.parts, from_full: false }
+    }
 }
 
 static INFO: MethodInfo = MethodInfo {
@@ -70,11 +74,14 @@ impl Method for Lc {
         self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(Prep { la: self.la.setup(tri), lb: self.lb.setup(tri) })
+        Box::new(Prep { conj: self.conj(), parts: self.parts.map(|m| m.setup(tri)) })
+    }
+    fn conjunction(&self) -> Option<Conjunction> {
+        Some(self.conj())
     }
 }
 
-pub static METHOD: &dyn Method = &Lc { info: &INFO, la: &super::la2011::METHOD, lb: &super::lb2011::METHOD };
+pub static METHOD: &dyn Method = &Lc { info: &INFO, parts: &[&super::la2011::METHOD, &super::lb2011::METHOD] };
 
 static INFO_SAFE: MethodInfo = MethodInfo {
     id: "lc-safe",
@@ -85,7 +92,7 @@ static INFO_SAFE: MethodInfo = MethodInfo {
 /// `lc-safe`: the conjunction of `la2011-safe` and `lb2011-safe`. A conjunction of
 /// conservative tests is conservative, so nothing beyond the two parts is needed.
 pub static METHOD_SAFE: &dyn Method =
-    &Lc { info: &INFO_SAFE, la: &super::la2011::METHOD_SAFE, lb: &super::lb2011::METHOD_SAFE };
+    &Lc { info: &INFO_SAFE, parts: &[&super::la2011::METHOD_SAFE, &super::lb2011::METHOD_SAFE] };
 
 #[cfg(test)]
 mod tests {

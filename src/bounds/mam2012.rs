@@ -373,7 +373,7 @@ fn axis<A: F32Arith>(
     }
     let width = ar.sub(xb, xa);
     let patch = |c: [[A::F; 2]; 2]| -> Patch<A::F, A::B> {
-        let finite: Vec<A::B> = c.iter().flatten().map(|v| ar.is_finite(v)).collect();
+        let finite = [&c[0][0], &c[0][1], &c[1][0], &c[1][1]].map(|v| ar.is_finite(v));
         let wide = ar.gt(&width, &ar.lit(0.0));
         let slope = [0, 1].map(|k| ar.select(&wide, &ar.div(&ar.sub(&c[1][k], &c[0][k]), &width), &ar.lit(0.0)));
         let ok = ar.all(&[ar.all(&finite), ar.is_finite(&slope[0]), ar.is_finite(&slope[1])]);

@@ -834,7 +834,7 @@ impl Prepared for Prep {
 pub fn finish_of<A: F32Arith>(ar: &A, r: &Ranges<A::F>) -> (A::B, Ranges<A::F>) {
     let clamp = |r: &[A::F; 2], lo: f32, hi: f32| [ar.max(&r[0], &ar.lit(lo)), ar.min(&r[1], &ar.lit(hi))];
     let r = [clamp(&r[0], -1.0, 1.0), clamp(&r[1], -1.0, 1.0), clamp(&r[2], 0.0, 1.0)];
-    let ok: Vec<A::B> = r.iter().map(|x| ar.le(&x[0], &x[1])).collect();
+    let ok = r.each_ref().map(|x| ar.le(&x[0], &x[1]));
     (ar.all(&ok), r)
 }
 

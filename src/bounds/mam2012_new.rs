@@ -50,7 +50,14 @@ use super::*;
 /// registered methods (the published ones, or their -safe variants).
 struct Mam2012New {
     info: &'static MethodInfo,
-    parts: [&'static &'static dyn Method; 3],
+    parts: &'static [&'static &'static dyn Method; 3],
+}
+
+impl Mam2012New {
+    /// The full domain, then each part in order ([`Conjunction::combine`]).
+    fn conj(&self) -> Conjunction {
+        Conjunction { parts: self.parts, from_full: true }
+    }
 }
 
 static INFO: MethodInfo = MethodInfo {
@@ -63,7 +70,7 @@ static INFO: MethodInfo = MethodInfo {
 
 pub static METHOD: &dyn Method = &Mam2012New {
     info: &INFO,
-    parts: [&super::la2011::METHOD, &super::mam2012::METHOD, &super::mam2012_hyperplane::METHOD],
+    parts: &[&super::la2011::METHOD, &super::mam2012::METHOD, &super::mam2012_hyperplane::METHOD],
 };
 
 static INFO_SAFE: MethodInfo = MethodInfo {
@@ -77,10 +84,11 @@ static INFO_SAFE: MethodInfo = MethodInfo {
 /// conservative tests is conservative, so nothing beyond the parts is needed.
 pub static METHOD_SAFE: &dyn Method = &Mam2012New {
     info: &INFO_SAFE,
-    parts: [&super::la2011::METHOD_SAFE, &super::mam2012::METHOD_SAFE, &super::mam2012_hyperplane::METHOD_SAFE],
+    parts: &[&super::la2011::METHOD_SAFE, &super::mam2012::METHOD_SAFE, &super::mam2012_hyperplane::METHOD_SAFE],
 };
 
 struct Prep {
+    conj: Conjunction,
     parts: [Box<dyn Prepared>; 3],
 }
 
@@ -89,20 +97,16 @@ impl Method for Mam2012New {
         self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(Prep { parts: self.parts.map(|m| m.setup(tri)) })
+        Box::new(Prep { conj: self.conj(), parts: self.parts.map(|m| m.setup(tri)) })
+    }
+    fn conjunction(&self) -> Option<Conjunction> {
+        Some(self.conj())
     }
 }
 
 impl Prepared for Prep {
     fn tile(&self, tile: &Tile) -> TileResult {
-        let mut r = TileResult::Bounds(TileBounds::full());
-        for p in &self.parts {
-            r = r.and(p.tile(tile));
-            if matches!(r, TileResult::Empty) {
-                return r;
-            }
-        }
-        r
+        self.conj.combine(|i| self.parts[i].tile(tile))
     }
     fn disabled(&self) -> Option<&'static str> {
         self.parts

@@ -149,9 +149,38 @@ impl TileBounds {
             && inside(self.t, s.t)
             && !self.constraints.iter().any(|c| c.eval(s) < 0.0)
     }
-    /// Both tests at once: intervals intersected, constraints of both kept. Empty when
-    /// an interval becomes empty.
+    /// Both tests at once: intervals intersected ([`Meet::with`]), constraints of both
+    /// kept. Empty when an interval becomes empty.
     pub fn intersect(self, o: TileBounds) -> TileResult {
+        let Some(Meet { u, v, t, z }) = Meet::of(&self).with(&o) else {
+            return TileResult::Empty;
+        };
+        let mut constraints = self.constraints;
+        constraints.extend(o.constraints);
+        TileResult::Bounds(TileBounds { u, v, t, z, constraints })
+    }
+}
+
+/// The intervals of a conjunction of tile answers (what [`TileBounds::intersect`]
+/// computes besides gathering the constraints), met one answer at a time. A harness
+/// that holds the parts' answers computes a conjunction's intervals with it without
+/// taking the parts apart, bit for bit those of [`TileResult::and`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Meet {
+    pub u: [f32; 2],
+    pub v: [f32; 2],
+    pub t: [f32; 2],
+    pub z: Option<[f32; 2]>,
+}
+
+impl Meet {
+    /// The intervals of `b`.
+    pub fn of(b: &TileBounds) -> Meet {
+        Meet { u: b.u, v: b.v, t: b.t, z: b.z }
+    }
+    /// The intervals met with those of `o` (f32 max of the lower ends, min of the upper
+    /// ends; a depth interval on one side only is kept); None when one becomes empty.
+    pub fn with(self, o: &TileBounds) -> Option<Meet> {
         let cut = |a: [f32; 2], b: [f32; 2]| [a[0].max(b[0]), a[1].min(b[1])];
         let (u, v, t) = (cut(self.u, o.u), cut(self.v, o.v), cut(self.t, o.t));
         let z = match (self.z, o.z) {
@@ -159,11 +188,49 @@ impl TileBounds {
             (a, b) => a.or(b),
         };
         if u[0] > u[1] || v[0] > v[1] || t[0] > t[1] || z.is_some_and(|z| z[0] > z[1]) {
-            return TileResult::Empty;
+            return None;
         }
-        let mut constraints = self.constraints;
-        constraints.extend(o.constraints);
-        TileResult::Bounds(TileBounds { u, v, t, z, constraints })
+        Some(Meet { u, v, t, z })
+    }
+}
+
+/// How a method's tile answer is made of other registered methods' answers for the
+/// same triangle and tile ([`Method::conjunction`]): the answer of `parts[0]` (or of
+/// [`TileBounds::full`] when `from_full`) combined with [`TileResult::and`] with each
+/// following part's answer in order, Empty as soon as one is Empty. The method is
+/// disabled on a triangle exactly when every part is.
+#[derive(Clone, Copy)]
+pub struct Conjunction {
+    pub parts: &'static [&'static &'static dyn Method],
+    pub from_full: bool,
+}
+
+impl Conjunction {
+    /// The combined answer, asking `answer(i)` for part i (in order, stopping at the
+    /// first Empty).
+    pub fn combine(&self, mut answer: impl FnMut(usize) -> TileResult) -> TileResult {
+        let mut r = if self.from_full { TileResult::Bounds(TileBounds::full()) } else { answer(0) };
+        for i in (!self.from_full as usize)..self.parts.len() {
+            if matches!(r, TileResult::Empty) {
+                return r;
+            }
+            r = r.and(answer(i));
+        }
+        r
+    }
+    /// The intervals of [`combine`](Self::combine) from the parts' answers held by the
+    /// caller (bit for bit the same; None when it is Empty): its constraints are those of
+    /// the parts, in order.
+    pub fn meet(&self, answers: &[&TileResult]) -> Option<Meet> {
+        let mut m: Option<Meet> = if self.from_full { Some(Meet::of(&TileBounds::full())) } else { None };
+        for a in answers {
+            let TileResult::Bounds(b) = a else { return None };
+            m = Some(match m {
+                None => Meet::of(b),
+                Some(m) => m.with(b)?,
+            });
+        }
+        m
     }
 }
 
@@ -192,6 +259,12 @@ pub trait Prepared: Send + Sync {
     fn disabled(&self) -> Option<&'static str> {
         None
     }
+    /// True when [`tile`](Self::tile) gives the same answer for every tile (it does not
+    /// read the tile): a harness may ask once per triangle and reuse the answer, and the
+    /// values of its per-sample constraints, for every tile.
+    fn tile_independent(&self) -> bool {
+        false
+    }
 }
 
 /// A culling method.
@@ -199,6 +272,12 @@ pub trait Method: Send + Sync {
     fn info(&self) -> &'static MethodInfo;
     /// The per-triangle setup.
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared>;
+    /// Some when the tile answer is by definition a conjunction of other registered
+    /// methods' answers (its [`Prepared::tile`] is [`Conjunction::combine`] over their
+    /// setups): a harness that asks the parts anyway may derive it from their answers.
+    fn conjunction(&self) -> Option<Conjunction> {
+        None
+    }
 }
 
 /// Every method, in the order of `docs/model.md`, then those added with [`plug`].
@@ -298,6 +377,63 @@ mod tests {
         for id in ids {
             assert_eq!(by_id(id).unwrap().info().id, id);
         }
+    }
+
+    /// A method declared a conjunction answers, on every tile, the intervals
+    /// [`Conjunction::meet`] gives from its parts' answers (bit for bit) with the parts'
+    /// constraints in order, and is disabled exactly when every part is; a method
+    /// declared tile-independent answers the same on every tile.
+    #[test]
+    fn declared_conjunctions_and_tile_independence_hold() {
+        use rand::SeedableRng;
+        let bits = |m: &Meet| {
+            let mut v: Vec<u32> = m.u.iter().chain(&m.v).chain(&m.t).map(|x| x.to_bits()).collect();
+            v.extend(m.z.iter().flatten().map(|x| x.to_bits()));
+            v
+        };
+        let (mut conj, mut kept, mut with_constraints, mut fixed) = (0, 0, 0, 0);
+        for m in registry() {
+            let c = m.conjunction();
+            for n in 0..3000 {
+                let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(n as u64);
+                let (tri, tile) = testkit::random_dual_case(&mut rng, n);
+                let p = m.setup(&tri);
+                let own = p.tile(&tile);
+                if p.tile_independent() {
+                    let other = Tile::square(tile.x0 + 37.0, tile.y1 - 11.0, 3.0);
+                    assert_eq!(format!("{own:?}"), format!("{:?}", p.tile(&other)), "{}", m.info().id);
+                    fixed += 1;
+                }
+                let Some(c) = c else { continue };
+                conj += 1;
+                let preps: Vec<_> = c.parts.iter().map(|x| x.setup(&tri)).collect();
+                assert_eq!(p.disabled().is_some(), preps.iter().all(|x| x.disabled().is_some()), "{}", m.info().id);
+                let answers: Vec<TileResult> = preps.iter().map(|x| x.tile(&tile)).collect();
+                let refs: Vec<&TileResult> = answers.iter().collect();
+                match (c.meet(&refs), &own) {
+                    (None, TileResult::Empty) => {}
+                    (Some(mt), TileResult::Bounds(b)) => {
+                        assert_eq!(bits(&mt), bits(&Meet::of(b)), "{} case {n}", m.info().id);
+                        let parts: Vec<String> = answers
+                            .iter()
+                            .flat_map(|a| match a {
+                                TileResult::Bounds(b) => b.constraints.iter().map(|k| format!("{k:?}")).collect(),
+                                TileResult::Empty => Vec::new(),
+                            })
+                            .collect();
+                        let mine: Vec<String> = b.constraints.iter().map(|k| format!("{k:?}")).collect();
+                        assert_eq!(mine, parts, "{} case {n}", m.info().id);
+                        kept += 1;
+                        with_constraints += !mine.is_empty() as usize;
+                    }
+                    (a, b) => panic!("{} case {n}: met {a:?}, own {b:?}", m.info().id),
+                }
+            }
+        }
+        assert!(
+            conj >= 4 * 3000 && kept > 1000 && with_constraints > 500 && fixed >= 2 * 3000,
+            "{conj} {kept} {with_constraints} {fixed}"
+        );
     }
 
     #[test]

@@ -602,6 +602,23 @@ impl Iv {
     fn mul(self, o: Iv) -> Iv {
         Iv::hull4([self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi])
     }
+    /// `Iv::pt(a).mul(Iv::pt(b))`, the four equal products taken once: the product
+    /// stepped outward, [`BAD`] unless it is finite (then so are `a` and `b`).
+    fn pt_mul(a: f32, b: f32) -> Iv {
+        let p = a * b;
+        Iv::out(p, p)
+    }
+    /// `Iv::pt(a).mul(self)`, the two distinct products taken once: their hull stepped
+    /// outward, [`BAD`] unless both are finite (a non-finite `a`, or `self` [`BAD`],
+    /// gives a non-finite product). The order of two products equal in value but of
+    /// opposite zero signs does not matter: both ends are stepped off zero.
+    fn pt_scale(self, a: f32) -> Iv {
+        let (p, q) = (a * self.lo, a * self.hi);
+        if !(p.is_finite() && q.is_finite()) {
+            return BAD;
+        }
+        Iv::out(p.min(q), p.max(q))
+    }
     /// [`BAD`] unless the divisor has one strict sign.
     fn div(self, o: Iv) -> Iv {
         if !(o.pos() || o.neg()) {
@@ -621,18 +638,29 @@ struct SafeVertex {
     p1: f32,
     w1: f32,
     c1: Iv,
+    /// The enclosures of `p0 - p1`, `w0 - w1` and `c0 - c1` (they do not depend on the
+    /// tile: computed once, at setup).
+    dp: Iv,
+    dw: Iv,
+    dc: Iv,
 }
 
 impl SafeVertex {
+    fn new(p0: f32, w0: f32, c0: Iv, p1: f32, w1: f32, c1: Iv) -> Self {
+        let dp = Iv::pt(p0).sub(Iv::pt(p1));
+        let dw = Iv::pt(w0).sub(Iv::pt(w1));
+        SafeVertex { p0, w0, c0, p1, w1, c1, dp, dw, dc: c0.sub(c1) }
+    }
+    /// The parts of `N` and `D` at column `X = s` that do not depend on `l`:
+    /// `p0 - X w0` and `(p0 - p1) - X (w0 - w1)` (shared by the lens values of a column).
+    fn at_column(&self, s: f32) -> (Iv, Iv) {
+        (Iv::pt(self.p0).sub(Iv::pt_mul(s, self.w0)), self.dp.sub(self.dw.pt_scale(s)))
+    }
     /// `N(X, l) = p0 - X w0 + l c0 = delta(t = 0)` and
-    /// `D(X, l) = (p0 - p1) - X (w0 - w1) + l (c0 - c1) = delta(0) - delta(1)`.
-    fn nd(&self, s: f32, l: f32) -> (Iv, Iv) {
-        let (s, l) = (Iv::pt(s), Iv::pt(l));
-        let n = Iv::pt(self.p0).sub(s.mul(Iv::pt(self.w0))).add(l.mul(self.c0));
-        let dp = Iv::pt(self.p0).sub(Iv::pt(self.p1));
-        let dw = Iv::pt(self.w0).sub(Iv::pt(self.w1));
-        let d = dp.sub(s.mul(dw)).add(l.mul(self.c0.sub(self.c1)));
-        (n, d)
+    /// `D(X, l) = (p0 - p1) - X (w0 - w1) + l (c0 - c1) = delta(0) - delta(1)`, from the
+    /// column's parts ([`at_column`](Self::at_column)).
+    fn nd_from(&self, (ns, ds): (Iv, Iv), l: f32) -> (Iv, Iv) {
+        (ns.add(self.c0.pt_scale(l)), ds.add(self.dc.pt_scale(l)))
     }
 }
 
@@ -676,7 +704,15 @@ struct SafeAxis {
     v: [SafeVertex; 3],
 }
 
+/// Per vertex, [`SafeVertex::at_column`] at the tile's two columns (shared by stage 2's
+/// tile interval and its lines).
+type Columns = [[(Iv, Iv); 2]; 3];
+
 impl SafeAxis {
+    /// The vertices' column parts at columns `s0`, `s1`.
+    fn columns(&self, s0: f32, s1: f32) -> Columns {
+        self.v.map(|a| [a.at_column(s0), a.at_column(s1)])
+    }
     /// Stage 1, corrected: per vertex the enclosure of its lens crossings
     /// `u_k(X, t) = (X w_k(t) - p_k(t)) / c_k(t)` over the tile's columns and the shutter
     /// (the 4 corners X in {s0, s1}, t in {0, 1}), with the direction of `delta_k` in u
@@ -695,7 +731,7 @@ impl SafeAxis {
             let (mut m, mut h) = (f32::INFINITY, f32::NEG_INFINITY);
             for (p, w, c) in [(a.p0, a.w0, a.c0), (a.p1, a.w1, a.c1)] {
                 for s in [s0, s1] {
-                    let l = Iv::pt(s).mul(Iv::pt(w)).sub(Iv::pt(p)).div(c);
+                    let l = Iv::pt_mul(s, w).sub(Iv::pt(p)).div(c);
                     if !l.ok() {
                         return None;
                     }
@@ -709,19 +745,19 @@ impl SafeAxis {
     }
 
     /// Stage 2, corrected (tile level): per vertex the enclosure of its crossing time
-    /// `t_k = N / D` over the rectangle of columns [s0, s1] and lens `l` (a linear
+    /// `t_k = N / D` over the rectangle of columns [s0, s1] (`cols`) and lens `l` (a linear
     /// fraction of (X, l) jointly: its extremes are at the 4 corners when D keeps one
     /// strict sign there), with the direction of `delta_k(t) = N - t D` in t (increasing
     /// iff D < 0). Vertices may cross in opposite directions. None (no time bound from
     /// this axis) when some D is not of one strict sign on the rectangle.
-    fn time_crossings(&self, s0: f32, s1: f32, l: [f32; 2]) -> Option<[Crossing; 3]> {
+    fn time_crossings(&self, cols: &Columns, l: [f32; 2]) -> Option<[Crossing; 3]> {
         let mut out = [(false, 0.0, 0.0); 3];
-        for (a, o) in self.v.iter().zip(out.iter_mut()) {
+        for ((a, o), ac) in self.v.iter().zip(out.iter_mut()).zip(cols) {
             let (mut pos, mut neg) = (false, false);
             let (mut m, mut h) = (f32::INFINITY, f32::NEG_INFINITY);
-            for s in [s0, s1] {
+            for &col in ac {
                 for lv in l {
-                    let (n, d) = a.nd(s, lv);
+                    let (n, d) = a.nd_from(col, lv);
                     pos |= d.pos();
                     neg |= d.neg();
                     let t = n.div(d);
@@ -741,16 +777,16 @@ impl SafeAxis {
     }
 
     /// Stage 2 as published (the green / red lines), enclosed: only when all three D
-    /// share one strict sign on columns [s0, s1] x lens [-1, 1] (the guarded condition).
+    /// share one strict sign on columns [s0, s1] (`cols`) x lens [-1, 1] (the guarded condition).
     /// Upper endpoints are upper ends of the enclosures, lower endpoints lower ends.
-    fn lines(&self, s0: f32, s1: f32) -> Option<Lines> {
+    fn lines(&self, cols: &Columns) -> Option<Lines> {
         let mut out = Lines { ul: f32::NEG_INFINITY, ur: f32::NEG_INFINITY, ll: f32::INFINITY, lr: f32::INFINITY };
         let (mut pos, mut neg) = (false, false);
-        for a in &self.v {
-            for s in [s0, s1] {
-                let (n0, d0) = a.nd(s, 0.0);
-                let (nm, dm) = a.nd(s, -1.0);
-                let (np, dp) = a.nd(s, 1.0);
+        for (a, ac) in self.v.iter().zip(cols) {
+            for &col in ac {
+                let (n0, d0) = a.nd_from(col, 0.0);
+                let (nm, dm) = a.nd_from(col, -1.0);
+                let (np, dp) = a.nd_from(col, 1.0);
                 for d in [dm, dp] {
                     pos |= d.pos();
                     neg |= d.neg();
@@ -761,7 +797,7 @@ impl SafeAxis {
                 if pos && neg {
                     return None;
                 }
-                let (n1, d1) = (a.c0, a.c0.sub(a.c1));
+                let (n1, d1) = (a.c0, a.dc);
                 let tm = nm.div(dm);
                 let tp = np.div(dp);
                 let tz = n0.div(d0);
@@ -807,7 +843,7 @@ pub(crate) fn safe_line(lens: Lens, upper: bool, e_left: f32, e_right: f32) -> O
 /// The safe lines' time range over lens range `l` and the constraints worth keeping
 /// (the same choice as [`apply_lines`]).
 fn apply_safe_lines(ln: Lines, lens: Lens, l: [f32; 2], t: &mut [f32; 2], cons: &mut Vec<Box<dyn SampleConstraint>>) {
-    let at = |c: &TimeLine, x: f32| Iv::pt(c.a).mul(Iv::pt(x)).add(Iv::pt(c.b));
+    let at = |c: &TimeLine, x: f32| Iv::pt_mul(c.a, x).add(Iv::pt(c.b));
     if let Some(c) = safe_line(lens, true, ln.ul, ln.ur) {
         let (e0, e1) = (at(&c, l[0]), at(&c, l[1]));
         if e0.ok() && e1.ok() {
@@ -858,13 +894,14 @@ impl Prepared for SafePrep {
         for (axis, s0, s1, lens, l) in
             [(&self.x, tile.x0, tile.x1, Lens::U, b.u), (&self.y, tile.y0, tile.y1, Lens::V, b.v)]
         {
-            if let Some(cr) = axis.time_crossings(s0, s1, l) {
+            let cols = axis.columns(s0, s1);
+            if let Some(cr) = axis.time_crossings(&cols, l) {
                 match sign_hull(&cr, t) {
                     None => return TileResult::Empty,
                     Some(r) => t = r,
                 }
             }
-            if let Some(ln) = axis.lines(s0, s1) {
+            if let Some(ln) = axis.lines(&cols) {
                 apply_safe_lines(ln, lens, l, &mut t, &mut cons);
             }
         }
@@ -886,7 +923,7 @@ fn safe_axis(tri: &Triangle, j: usize, scale: f32) -> SafeAxis {
         v: std::array::from_fn(|i| {
             let (q, r) = (tri.q[i], tri.r[i]);
             let (c0, c1) = (k.mul(Iv::pt(tri.c0[i])), k.mul(Iv::pt(tri.c1[i])));
-            SafeVertex { p0: q[j], w0: q[3], c0, p1: r[j], w1: r[3], c1 }
+            SafeVertex::new(q[j], q[3], c0, r[j], r[3], c1)
         }),
     }
 }
@@ -931,6 +968,9 @@ impl Method for Wu2013Safe {
 
 /// `wu2013-safe`: outward-rounded and corrected (see the module doc).
 pub static METHOD_SAFE: &dyn Method = &Wu2013Safe;
+
+#[cfg(test)]
+mod safe_old;
 
 #[cfg(test)]
 mod tests {
@@ -1785,5 +1825,119 @@ mod tests {
             }
         }
         assert!(k > 0);
+    }
+
+    /// The answer bit for bit: interval ends' bits and the constraints' debug form
+    /// (each f32 printed so that it reads back to the same bits); None for Empty.
+    fn answer_bits(r: &TileResult) -> Option<(Vec<u32>, String)> {
+        match r {
+            TileResult::Empty => None,
+            TileResult::Bounds(b) => {
+                let mut v: Vec<u32> = b.u.iter().chain(&b.v).chain(&b.t).map(|x| x.to_bits()).collect();
+                v.extend(b.z.iter().flatten().map(|x| x.to_bits()));
+                Some((v, format!("{:?}", b.constraints)))
+            }
+        }
+    }
+
+    /// A wild triangle: coordinates from subnormal to 1e30, w of either sign, exactly 0
+    /// or tiny, CoC of one sign or mixed, shears including 0 and negative.
+    fn wild_triangle(rng: &mut ChaCha8Rng, n: usize) -> Triangle {
+        let scale = [1e-40f32, 1e-20, 1e-3, 1.0, 30.0, 1e3, 1e6, 1e15, 1e30][n % 9];
+        let val = |rng: &mut ChaCha8Rng| -> f32 {
+            match rng.gen_range(0..10) {
+                0 => 0.0,
+                1 => scale * rng.gen_range(-1..=1) as f32,
+                _ => rng.gen_range(-1.0f32..1.0) * scale,
+            }
+        };
+        let mut tri = Triangle::fixed([[0.0, 0.0, 0.5, 1.0]; 3]);
+        for p in tri.q.iter_mut().chain(tri.r.iter_mut()) {
+            p[0] = val(rng);
+            p[1] = val(rng);
+            p[3] = match rng.gen_range(0..6) {
+                0 => 0.0,
+                1 => rng.gen_range(-1e-6f32..1e-6),
+                2 => rng.gen_range(-3.0f32..3.0),
+                _ => rng.gen_range(0.01f32..4.0) * 10f32.powi(rng.gen_range(-3..4)),
+            };
+        }
+        let one_sign = rng.gen_bool(0.5);
+        for c in tri.c0.iter_mut().chain(tri.c1.iter_mut()) {
+            *c = val(rng);
+            if one_sign {
+                *c = c.abs().max(1e-30);
+            }
+        }
+        tri.k = [1.0f32, 0.7, 1.3, 1e-3, 0.0, -1.0][n % 6];
+        tri
+    }
+
+    /// `wu2013-safe` answers bit for bit as its old code (`safe_old`, kept verbatim) on
+    /// physical cases of every regime (a tile on the footprint's boundary and one
+    /// beside it), wild triangles near and far from the origin, and the same with NaN,
+    /// an infinity, a signed zero, f32::MAX or a subnormal planted in the triangle or the
+    /// tile, or a w set to +-0.
+    #[test]
+    fn safe_is_its_old_code_bit_for_bit() {
+        use crate::gen::{boundary_tile, physical_case, rng_for, tile_size, Regime};
+        const SPECIAL: [f32; 8] = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 0.0, -0.0, f32::MAX, 1e-45, -1.0];
+        let near = |rng: &mut ChaCha8Rng, n: usize| {
+            let far = [0.0f32, 1.0, 1e2, 1e4, 1e6];
+            let x = rng.gen_range(-1.0f32..1.0) * far[n % 5];
+            let y = rng.gen_range(-1.0f32..1.0) * far[(n / 5) % 5];
+            Tile::square(x, y, [1e-3f32, 1.0, 4.0, 16.0][n % 4])
+        };
+        let (mut tiles, mut culled, mut lines, mut narrowed) = (0usize, 0usize, 0usize, 0usize);
+        for n in 0..30_000usize {
+            let mut rng = rng_for(0x05af_e01d, n as u64);
+            let (tri, ts) = match n % 3 {
+                0 => {
+                    let case = physical_case(&mut rng, Regime::ALL[(n / 3) % Regime::ALL.len()]);
+                    let size = tile_size(None, &mut rng);
+                    let t = boundary_tile(&case, &mut rng, size);
+                    let beside = Tile::square(t.x0 + size * rng.gen_range(-3..=3) as f32, t.y0 + size, size);
+                    (case.triangle, vec![t, beside])
+                }
+                1 => {
+                    let tri = wild_triangle(&mut rng, n / 3);
+                    (tri, vec![near(&mut rng, n / 3), near(&mut rng, n / 3 + 7)])
+                }
+                _ => {
+                    let mut tri = wild_triangle(&mut rng, n / 3);
+                    let mut tile = near(&mut rng, n / 3);
+                    let v = SPECIAL[rng.gen_range(0..SPECIAL.len())];
+                    match rng.gen_range(0..8) {
+                        0 => tri.q[rng.gen_range(0..3)][rng.gen_range(0..4)] = v,
+                        1 => tri.r[rng.gen_range(0..3)][rng.gen_range(0..4)] = v,
+                        2 => tri.c0[rng.gen_range(0..3)] = v,
+                        3 => tri.c1[rng.gen_range(0..3)] = v,
+                        4 => tri.k = v,
+                        5 => tile.x0 = v,
+                        6 => tile.y1 = v,
+                        _ => tri.q[rng.gen_range(0..3)][3] = if rng.gen_bool(0.5) { 0.0 } else { -0.0 },
+                    }
+                    (tri, vec![tile, near(&mut rng, n / 3 + 3)])
+                }
+            };
+            let p = METHOD_SAFE.setup(&tri);
+            for tile in &ts {
+                let (new, old) = (answer_bits(&p.tile(tile)), answer_bits(&safe_old::answer(&tri, tile)));
+                assert_eq!(new, old, "case {n}: {tri:?} {tile:?}");
+                tiles += 1;
+                match &new {
+                    None => culled += 1,
+                    Some((v, c)) => {
+                        lines += (c != "[]") as usize;
+                        narrowed += (v[..6] != [-1.0f32, 1.0, -1.0, 1.0, 0.0, 1.0].map(f32::to_bits)) as usize;
+                    }
+                }
+            }
+        }
+        // Every kind of answer was compared: culled, narrowed, with lines.
+        assert!(
+            culled > 1000 && narrowed > 1000 && lines > 500,
+            "{tiles} tiles: {culled} culled, {narrowed} narrowed, {lines} with lines"
+        );
     }
 }

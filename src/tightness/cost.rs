@@ -12,8 +12,10 @@
 //!   triangles: the method's setup, its tile test over those triangles' tiles, its
 //!   per-sample test ([`TileBounds::admits`]) over the samples of the tiles it keeps,
 //!   and, once per setting for every method, the f32 coverage test and Gouraud shade of
-//!   a sample ([`super::raster`]). Each operation is timed over at least
-//!   [`MIN_TIMED`] of calls, in `rounds` rounds run round robin over the methods (a slow
+//!   a sample ([`super::raster`]). The tile tests and sample tests timed are spread
+//!   evenly over those of the subset and capped ([`MAX_TIMED_TILES`],
+//!   [`MAX_TIMED_SAMPLES`]: a cost per operation needs no more). Each operation is timed
+//!   over at least [`MIN_TIMED`] of calls, in `rounds` rounds run round robin over the methods (a slow
 //!   spell of the machine hits them all); within a round the methods are timed side by
 //!   side on the run's threads (`--jobs`), each operation on one thread, so every cost
 //!   is a cost per thread with the other threads busy alike.
@@ -44,6 +46,21 @@ use std::time::{Duration, Instant};
 
 /// The least time over which each operation is timed per round (calls are repeated).
 pub const MIN_TIMED: Duration = Duration::from_micros(600);
+
+/// The most tile tests a method's tile cost is timed on per call (evenly spread over
+/// its tiles of the subset): enough for [`MIN_TIMED`], no more.
+pub const MAX_TIMED_TILES: usize = 1024;
+
+/// The most samples a method's per-sample cost is timed on per call (the samples of
+/// kept tiles evenly spread over those of the subset).
+pub const MAX_TIMED_SAMPLES: usize = 16384;
+
+/// Every `ceil(len / max)`-th item, from the first: at most `max` items spread evenly
+/// over the list (all of them when there are no more than `max`).
+fn spread<T>(v: Vec<T>, max: usize) -> Vec<T> {
+    let k = v.len().div_ceil(max.max(1)).max(1);
+    v.into_iter().step_by(k).collect()
+}
 
 /// A timed quantity: median over the rounds and the range of the rounds.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -159,6 +176,7 @@ fn rect(fp: Footprint, w: u32, h: u32) -> Option<PixelRect> {
 fn job<'a>(m: &dyn Method, tris: &[&'a Triangle], fps: &[Footprint], table: &SampleTable, tile: u32) -> Job<'a> {
     let (w, h) = (table.width, table.height);
     let mut j = Job { tris: Vec::new(), preps: Vec::new(), tiles: Vec::new(), kept: Vec::new(), samples: 0 };
+    let mut pixels = Vec::new();
     for (t, &fp) in tris.iter().zip(fps) {
         let Some(r) = rect(fp, w, h) else { continue };
         let prep = m.setup(t);
@@ -170,14 +188,28 @@ fn job<'a>(m: &dyn Method, tris: &[&'a Triangle], fps: &[Footprint], table: &Sam
             for tx in tx0..=tx1 {
                 let p = tile_pixels(tx, ty, tile, w, h);
                 j.tiles.push((j.preps.len(), tile_of(&p)));
-                if let TileResult::Bounds(b) = prep.tile(&tile_of(&p)) {
-                    j.samples += p.pixels() as usize * table.spp;
-                    j.kept.push((b, p));
-                }
+                pixels.push(p);
             }
         }
         j.tris.push(t);
         j.preps.push(prep);
+    }
+    // The timed tiles, evenly spread; the kept ones among them give the timed samples.
+    let k = j.tiles.len().div_ceil(MAX_TIMED_TILES).max(1);
+    j.tiles = spread(std::mem::take(&mut j.tiles), MAX_TIMED_TILES);
+    let pixels: Vec<PixelRect> = pixels.into_iter().step_by(k).collect();
+    for ((i, t), p) in j.tiles.iter().zip(pixels) {
+        if let TileResult::Bounds(b) = j.preps[*i].tile(t) {
+            j.samples += p.pixels() as usize * table.spp;
+            j.kept.push((b, p));
+        }
+    }
+    // Kept tiles evenly spread, as many as hold about MAX_TIMED_SAMPLES samples.
+    if j.samples > MAX_TIMED_SAMPLES {
+        let per = j.samples as f64 / j.kept.len() as f64;
+        let n = ((MAX_TIMED_SAMPLES as f64 / per).ceil() as usize).max(1);
+        j.kept = spread(std::mem::take(&mut j.kept), n);
+        j.samples = j.kept.iter().map(|(_, p)| p.pixels() as usize * table.spp).sum();
     }
     j
 }
@@ -254,6 +286,13 @@ pub fn time_ops(
                 }
             }
             v
+        };
+        let shade_n: usize = shade_jobs.iter().map(|(_, p)| p.pixels() as usize * table.spp).sum();
+        let shade_jobs = if shade_n > MAX_TIMED_SAMPLES {
+            let n = ((MAX_TIMED_SAMPLES as f64 * shade_jobs.len() as f64 / shade_n as f64).ceil() as usize).max(1);
+            spread(shade_jobs, n)
+        } else {
+            shade_jobs
         };
         let shade_n: usize = shade_jobs.iter().map(|(_, p)| p.pixels() as usize * table.spp).sum();
         let first = out.ops.len();

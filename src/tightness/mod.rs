@@ -18,7 +18,8 @@
 //!    screen** (every tile is traversed and tested), and is counted (`whole_screen`). A
 //!    footprint entirely off the screen is skipped and counted (`off_screen`).
 //! 3. **Tile test** per tile, then for each sample of the pattern (see [`pattern`]) in
-//!    the tile: *tested* if the tile was not culled and [`TileBounds::admits`] (intervals
+//!    the tile: *tested* if the tile was not culled and
+//!    [`TileBounds::admits`](crate::bounds::TileBounds::admits) (intervals
 //!    u^, v^, t^ and every per-sample constraint; a depth interval z^ is an occlusion
 //!    test, not a coverage test, and is not applied).
 //! 4. **Coverage** of each (triangle, sample) by the exact oracle
@@ -62,8 +63,19 @@
 //! row on the samples inside them, in columns
 //! ([`SampleConstraint::eval_row`](crate::bounds::SampleConstraint::eval_row): the
 //! values of `eval`, bit for bit, computed side by side by the constraints the methods
-//! use). Nothing per sample is stored but the triangle's coverage, in a buffer reused by
-//! each worker, and no buffer is allocated per tile. Exact coverage goes through one
+//! use). Nothing per sample is stored but the triangle's coverage (and the verdicts of a
+//! tile-independent answer's constraints, below), in buffers reused by each worker.
+//!
+//! No tile test is repeated and nothing that does not depend on the tile is recomputed
+//! per tile (`Plan`): each distinct method is set up and asked once per tile (a
+//! **slot**); a method that is by definition a conjunction of other registered methods
+//! ([`Method::conjunction`]: lc, mam2012-new and their -safe variants) is met from its
+//! parts' answers ([`Conjunction::meet`], the intervals of its own answer bit for bit,
+//! its constraints those of the parts); an answer that does not read the tile
+//! ([`Prepared::tile_independent`]: gdam2010 and gdam2010-safe) is asked once per
+//! triangle, and its constraints are evaluated once per sample of the triangle's region
+//! for every tile size (`region_pass`). The work counted ([`Work`]) is still each
+//! method's own: a conjunction's tile test counts once for it, whatever was shared. Exact coverage goes through one
 //! function ([`exact_coverage`]). Each count also feeds the cost model ([`Work`],
 //! [`cost`]).
 //!
@@ -72,6 +84,7 @@
 pub mod chart;
 mod cli;
 pub mod cost;
+mod count;
 pub mod mesh;
 pub mod obj;
 pub mod pattern;
@@ -80,8 +93,9 @@ pub mod scene;
 
 pub use cli::{run_cli, TightnessArgs};
 
-use crate::bounds::{Method, Prepared, SampleCols, TileBounds, TileResult};
+use crate::bounds::{Conjunction, Method, Prepared, SampleCols, SampleConstraint, TileResult};
 use crate::model::{Dims, Sample, Tile, Triangle};
+use count::{count_admitted, count_passing, region_pass, AdmitScratch, Here};
 use indicatif::ProgressBar;
 use oracles::batch::Batch;
 use oracles::extents::{Extent, ExtentsConfig, Occupancy, TileSolver};
@@ -610,9 +624,63 @@ pub(crate) fn exact_coverage_scalar(tri: &oracles::Tri, samples: &[Sample], out:
 /// What every triangle of one setting shares.
 struct Ctx<'a> {
     methods: &'a [&'static dyn Method],
+    plan: &'a Plan,
     cfg: &'a Config,
     table: &'a SampleTable,
     setting: Setting,
+}
+
+/// The most parts of a conjunction met from its parts' answers (one with more is asked
+/// itself).
+const MAX_PARTS: usize = 4;
+
+/// A placeholder answer.
+static EMPTY: TileResult = TileResult::Empty;
+
+/// Where a method's tile answer comes from.
+enum Source {
+    /// Its own setup (slot index).
+    Own(usize),
+    /// A conjunction of other methods' answers ([`Method::conjunction`]), their slots in
+    /// order: derived from the answers the slots give anyway.
+    Conj(Conjunction, Vec<usize>),
+}
+
+/// The methods the measurement sets up and asks per tile (**slots**: each distinct
+/// method once), and per method of the run where its answer comes from. A method that
+/// is by definition a conjunction of other registered methods (lc, mam2012-new and
+/// their -safe variants) is not asked itself: its parts are (once, when they are also
+/// in the run) and its answer is met from theirs ([`Conjunction::meet`], bit for bit
+/// its own answer), so no tile test is repeated for the same tile.
+struct Plan {
+    slots: Vec<&'static dyn Method>,
+    of: Vec<Source>,
+}
+
+impl Plan {
+    fn new(methods: &[&'static dyn Method]) -> Plan {
+        let mut slots: Vec<&'static dyn Method> = Vec::new();
+        let mut slot = |m: &'static dyn Method| -> usize {
+            let id = m.info().id;
+            slots.iter().position(|x| x.info().id == id).unwrap_or_else(|| {
+                slots.push(m);
+                slots.len() - 1
+            })
+        };
+        let mut of = Vec::with_capacity(methods.len());
+        for &m in methods {
+            of.push(match m.conjunction() {
+                Some(c)
+                    if (1..=MAX_PARTS).contains(&c.parts.len())
+                        && c.parts.iter().all(|p| p.conjunction().is_none()) =>
+                {
+                    Source::Conj(c, c.parts.iter().map(|p| slot(**p)).collect())
+                }
+                _ => Source::Own(slot(m)),
+            });
+        }
+        Plan { slots, of }
+    }
 }
 
 /// Buffers reused from triangle to triangle (one per worker).
@@ -631,7 +699,7 @@ fn measure_triangle(
     fp: Footprint,
     chosen: &[(usize, u64)],
 ) -> TriCounts {
-    let Ctx { methods, cfg, table, setting } = *ctx;
+    let Ctx { methods, plan, cfg, table, setting } = *ctx;
     let (width, height) = (table.width, table.height);
     let nt = cfg.tiles.len();
     let mut out = TriCounts {
@@ -683,12 +751,37 @@ fn measure_triangle(
         out.exact += e;
     }
     let dims = tri.dims();
-    let preps: Vec<Box<dyn Prepared>> = methods.iter().map(|m| m.setup(tri)).collect();
-    for (d, p) in out.disabled.iter_mut().zip(&preps) {
-        *d = p.disabled().is_some();
+    let preps: Vec<Box<dyn Prepared>> = plan.slots.iter().map(|m| m.setup(tri)).collect();
+    let slot_disabled: Vec<bool> = preps.iter().map(|p| p.disabled().is_some()).collect();
+    for (d, src) in out.disabled.iter_mut().zip(&plan.of) {
+        *d = match src {
+            Source::Own(k) => slot_disabled[*k],
+            Source::Conj(_, parts) => parts.iter().all(|&k| slot_disabled[k]),
+        };
+    }
+    // The slots whose answer does not read the tile: asked once, and the values of their
+    // per-sample constraints taken once per sample of the region (`pass`).
+    let mut fixed: Vec<Option<TileResult>> = Vec::with_capacity(preps.len());
+    let mut pass: Vec<Option<Vec<bool>>> = Vec::with_capacity(preps.len());
+    let any_tile = tile_of(&tile_pixels(r.x0 / cfg.tiles[0], r.y0 / cfg.tiles[0], cfg.tiles[0], width, height));
+    for p in &preps {
+        if p.tile_independent() {
+            let a = p.tile(&any_tile);
+            pass.push(match &a {
+                TileResult::Bounds(b) if !b.constraints.is_empty() => {
+                    Some(region_pass(&mut scratch.admit, &[&b.constraints], table, &local))
+                }
+                _ => None,
+            });
+            fixed.push(Some(a));
+        } else {
+            fixed.push(None);
+            pass.push(None);
+        }
     }
     let mut rows = std::mem::take(&mut scratch.rows);
     let mut admit = std::mem::take(&mut scratch.admit);
+    let mut asked: Vec<Option<TileResult>> = Vec::with_capacity(preps.len());
     for (ti, &s) in cfg.tiles.iter().enumerate() {
         for (mi, w) in out.work[ti].iter_mut().enumerate() {
             w.add_setup(out.disabled[mi]);
@@ -712,18 +805,51 @@ fn measure_triangle(
                         out.ceiling[ti].1 += cov_here;
                     }
                 }
-                for (mi, prep) in preps.iter().enumerate() {
+                asked.clear();
+                asked.extend(preps.iter().zip(&fixed).map(|(p, f)| f.is_none().then(|| p.tile(&tile))));
+                let answer = |k: usize| -> &TileResult { fixed[k].as_ref().or(asked[k].as_ref()).expect("asked") };
+                for (mi, src) in plan.of.iter().enumerate() {
                     let c = &mut out.counts[ti][mi];
                     let w = &mut out.work[ti][mi];
-                    match prep.tile(&tile) {
-                        TileResult::Empty => {
-                            w.add_tile(out.disabled[mi], 0);
-                            c.missed += cov_here
+                    let here = Here { table, local: &local, rows: &rows, n: n_here, cov: cov_here };
+                    let kept = match src {
+                        Source::Own(k) => match answer(*k) {
+                            TileResult::Empty => false,
+                            TileResult::Bounds(b) => {
+                                let iv = (b.u, b.v, b.t);
+                                match &pass[*k] {
+                                    Some(ps) => count_passing(iv, ps, &here, c),
+                                    None => count_admitted(&mut admit, iv, &[&b.constraints], &here, c),
+                                }
+                                true
+                            }
+                        },
+                        Source::Conj(conj, parts) => {
+                            let mut ans: [&TileResult; MAX_PARTS] = [&EMPTY; MAX_PARTS];
+                            for (a, &k) in ans.iter_mut().zip(parts) {
+                                *a = answer(k);
+                            }
+                            let ans = &ans[..parts.len()];
+                            match conj.meet(ans) {
+                                None => false,
+                                Some(mt) => {
+                                    let mut cons: [&[Box<dyn SampleConstraint>]; MAX_PARTS] = [&[]; MAX_PARTS];
+                                    for (c, a) in cons.iter_mut().zip(ans) {
+                                        if let TileResult::Bounds(b) = a {
+                                            *c = &b.constraints;
+                                        }
+                                    }
+                                    count_admitted(&mut admit, (mt.u, mt.v, mt.t), &cons[..ans.len()], &here, c);
+                                    true
+                                }
+                            }
                         }
-                        TileResult::Bounds(b) => {
-                            w.add_tile(out.disabled[mi], n_here);
-                            count_admitted(&mut admit, &b, table, &local, &rows, n_here, cov_here, c)
-                        }
+                    };
+                    if kept {
+                        w.add_tile(out.disabled[mi], n_here);
+                    } else {
+                        w.add_tile(out.disabled[mi], 0);
+                        c.missed += cov_here;
                     }
                 }
                 let l = (ty - ty0) as u64 * ntx + (tx - tx0) as u64;
@@ -738,143 +864,6 @@ fn measure_triangle(
     scratch.admit = admit;
     scratch.covered = local.covered;
     out
-}
-
-/// Buffers of [`count_admitted`], reused from tile to tile.
-#[derive(Default)]
-struct AdmitScratch {
-    /// Per sample of a row: inside the intervals.
-    mask: Vec<bool>,
-    /// The row's samples inside the intervals, side by side (x, y, u, v, t), and
-    /// their index in the row.
-    inside: [Vec<f32>; 5],
-    index: Vec<u32>,
-    /// Per inside sample: no constraint culled it so far.
-    alive: Vec<bool>,
-    /// One constraint's values on the inside samples.
-    values: Vec<f32>,
-}
-
-impl AdmitScratch {
-    /// Room for a row of `n` samples in every buffer.
-    fn reserve(&mut self, n: usize) {
-        if self.mask.len() < n {
-            self.mask.resize(n, false);
-            self.index.resize(n, 0);
-            for c in &mut self.inside {
-                c.resize(n, 0.0);
-            }
-            self.alive.resize(n, false);
-            self.values.resize(n, 0.0);
-        }
-    }
-}
-
-/// Count the samples of a tile that `b` admits (`n` samples, `cov` of them covered).
-/// An answer with the whole (u, v, t) domain and no per-sample constraint admits every
-/// sample ([`TileBounds::admits`] would say so sample by sample). Otherwise, row by
-/// row, the samples inside the intervals are found side by side, and each per-sample
-/// constraint is evaluated once on each of them ([`SampleConstraint::eval_row`], the
-/// same values as `eval`): a sample passes when no value is negative, as in `admits`.
-///
-/// [`SampleConstraint::eval_row`]: crate::bounds::SampleConstraint::eval_row
-#[allow(clippy::too_many_arguments)]
-fn count_admitted(
-    sc: &mut AdmitScratch,
-    b: &TileBounds,
-    table: &SampleTable,
-    local: &Local,
-    rows: &[(usize, usize, usize)],
-    n: u64,
-    cov: u64,
-    c: &mut Counts,
-) {
-    let whole = b.u[0] <= -1.0 && b.u[1] >= 1.0 && b.v[0] <= -1.0 && b.v[1] >= 1.0 && b.t[0] <= 0.0 && b.t[1] >= 1.0;
-    if whole && b.constraints.is_empty() {
-        c.tested += n;
-        c.hits += cov;
-        return;
-    }
-    let (mut tested, mut hits) = (0u64, 0u64);
-    let ([u0, u1], [v0, v1], [t0, t1]) = (b.u, b.v, b.t);
-    for &(ts, ls, n) in rows {
-        let (us, vs, tv) = (&table.cols[2][ts..ts + n], &table.cols[3][ts..ts + n], &table.cols[4][ts..ts + n]);
-        let cv = &local.covered[ls..ls + n];
-        if b.constraints.is_empty() {
-            // The interval test of `TileBounds::admits`, side by side (vectorised).
-            let (mut t_row, mut h_row) = (0u32, 0u32);
-            for i in 0..n {
-                let a = (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1);
-                t_row += a as u32;
-                h_row += (a & cv[i]) as u32;
-            }
-            tested += t_row as u64;
-            hits += h_row as u64;
-            continue;
-        }
-        // The intervals first (side by side), then the constraints on the samples
-        // inside them (the whole row's columns when every sample is inside).
-        sc.reserve(n);
-        let mask = &mut sc.mask[..n];
-        let mut m = 0usize;
-        for i in 0..n {
-            let a = (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1);
-            mask[i] = a;
-            m += a as usize;
-        }
-        if m == 0 {
-            continue;
-        }
-        let all = m == n;
-        if !all {
-            // The indices of the inside samples (written branch-free), then their columns.
-            let index = &mut sc.index[..n];
-            let mut k = 0usize;
-            for (i, &a) in mask.iter().enumerate() {
-                index[k] = i as u32;
-                k += a as usize;
-            }
-            for (col, src) in sc.inside.iter_mut().zip(&table.cols) {
-                let src = &src[ts..ts + n];
-                for (d, &i) in col[..m].iter_mut().zip(&index[..m]) {
-                    *d = src[i as usize];
-                }
-            }
-        }
-        let cols = if all {
-            table.cols(ts, n)
-        } else {
-            let [x, y, u, v, t] = &sc.inside;
-            SampleCols::new(x, y, u, v, t, m)
-        };
-        let (alive, values) = (&mut sc.alive[..m], &mut sc.values[..m]);
-        alive.fill(true);
-        for k in &b.constraints {
-            k.eval_row(&cols, values);
-            for (a, &g) in alive.iter_mut().zip(values.iter()) {
-                // Culled when negative (a NaN value culls nothing, as in `admits`).
-                let culled = g < 0.0;
-                *a &= !culled;
-            }
-        }
-        let (mut t_row, mut h_row) = (0u32, 0u32);
-        if all {
-            for (&a, &cv) in alive.iter().zip(cv) {
-                t_row += a as u32;
-                h_row += (a & cv) as u32;
-            }
-        } else {
-            for (&a, &i) in alive.iter().zip(&sc.index[..m]) {
-                t_row += a as u32;
-                h_row += (a & cv[i as usize]) as u32;
-            }
-        }
-        tested += t_row as u64;
-        hits += h_row as u64;
-    }
-    c.tested += tested;
-    c.hits += hits;
-    c.missed += cov - hits;
 }
 
 /// The number of tiles of each size traversed for a footprint.
@@ -963,11 +952,12 @@ pub fn measure_with(
     let (w, h) = (scene.width, scene.height);
     assert_eq!((table.width, table.height, table.spp), (w, h, cfg.pattern.spp as usize), "sample table mismatch");
     let mut m = Measurement::default();
+    let plan = Plan::new(methods);
     for &setting in settings {
         let tris = scene.triangles(setting);
         let fps: Vec<Footprint> = tris.iter().map(|t| footprint(t, w, h)).collect();
         let chosen = choose_certified(&fps, cfg, setting, w, h);
-        let ctx = Ctx { methods, cfg, table, setting };
+        let ctx = Ctx { methods, plan: &plan, cfg, table, setting };
         let per: Vec<TriCounts> = tris
             .par_iter()
             .zip(fps.par_iter())
