@@ -113,6 +113,10 @@ pub struct Search {
     pub eliminate: bool,
 }
 
+/// The share of the largest smear the objective's own coordinate is given when splitting
+/// with elimination (without it: one half).
+const OBJ_SHARE: f64 = 0.02;
+
 /// True while some active lens or time coordinate of the box can still be split.
 fn uvt_open(b: &Box5, init: &Box5, min_w: &[f64; 5], active: &[bool; 5]) -> bool {
     (2..5).any(|i| active[i] && init[i].width() > 0.0 && b[i].width() > min_w[i])
@@ -321,7 +325,10 @@ impl Problem for ExtentSearch<'_> {
                 continue;
             }
             if matches!(obj, Objective::Coord { index, .. } if i == index) && b[i].width() > cfg.resolution * 0.5 {
-                score = score.max(0.5 * max_smear);
+                // (with elimination, less often: a thin slab of the objective's
+                // coordinate is no easier to rule out, and the band cut below settles
+                // the part next to a witness)
+                score = score.max(if opts.eliminate { OBJ_SHARE } else { 0.5 } * max_smear);
             }
             if !score.is_finite() {
                 score = f64::MAX;
