@@ -22,7 +22,7 @@ pub struct ExtentsConfig {
     /// dimension is not split further.
     pub min_fraction: f64,
     /// When a side or occupancy search on the enclosures alone leaves a gap, search
-    /// again with (x, y) eliminated per (u, v, t) box ([`super::elimination`]); both
+    /// again with (x, y) eliminated per (u, v, t) box (the module `elimination`); both
     /// are certified, so the better stands. It decides more cases (behind the lens
     /// above all) at the price of more boxes. Objective searches always eliminate.
     pub second_chance: bool,
