@@ -172,8 +172,7 @@ fn multipliers(a: &[f64; 16], b: &[[f64; 16]; 3], inv: &[f64; 16]) -> [f64; 3] {
     }
     for k in 0..3 {
         for j in k + 1..3 {
-            for skip in 0..4 {
-                let cs = OTHERS[skip];
+            for cs in OTHERS {
                 // Corners cs[0], cs[1], cs[2] tie: two equations in (l_k, l_j).
                 let row = |p: usize| {
                     let (c0, c1) = (cs[0], cs[p]);

@@ -23,17 +23,26 @@
 //! are evaluated side by side in lanes (`LPoly`), each lane doing exactly what a
 //! corner-by-corner loop would (a test holds the two to the same bits).
 //!
-//! For the hit depth a box has two enclosures: the corner quotients `N / D` (over every
-//! sample of the box, covered or not) and the hull of the vertex depths `z_k / w_k`
+//! For the hit depth a box has three enclosures: the corner quotients `N / D` (over
+//! every sample of the box, covered or not), the hull of the vertex depths `z_k / w_k`
 //! over the box's times, which holds every covered sample in front of the lens (see
-//! [`BoxValues::vertex_depth`]); a depth search keys a box by the tighter of the two.
+//! [`BoxValues::vertex_depth`]), and the bound over the covered polygon
+//! ([`BoxValues::covered_depth`], module `depth`): `(N +- sum lambda_k E_k) / D` with
+//! multipliers from the linear programme at the box's middle (u, v, t), exact there
+//! and first-order tight around it, whatever the signs of the `w_i`. A depth search
+//! keys a box by the tightest.
 //!
 //! For a minimum (say of u) the search always splits the live box of smallest lower
 //! bound `u_lo`; that `u_lo` is a certified lower bound of the infimum. Each undecided or
-//! full box proposes a witness sample (its `u_lo` corner, then its centre) that the
-//! exact classifier ([`crate::coverage::classify`]) must confirm as interior; the best
-//! witness is a certified upper bound. The search stops when the two meet within the
-//! resolution. Boxes that reach the minimum size undecided, or remain when the box
+//! full box proposes witness samples (for an extent search: points of the covered
+//! polygon at the box's middle (u, v, t), the depth's extreme vertex nudged inside, and
+//! the box's (u, v, t) corners when those miss) that the exact classifier
+//! ([`crate::coverage::classify`]) must confirm as interior; the best witness is a
+//! certified upper bound. The search stops when the two meet within the resolution.
+//! The extent searches eliminate (x, y) ([`Search::eliminate`]) and split only (u, v, t)
+//! while they can; there, once a witness is known, a box across the resolution band
+//! below it is cut at the band's edge, so only the part beyond the band needs ruling
+//! out. (The side searches of the gate judge by the enclosures alone unless asked.) Boxes that reach the minimum size undecided, or remain when the box
 //! budget runs out, are counted and reported, never dropped: the enclosure then runs
 //! from the smallest lower bound among them.
 //!
@@ -46,6 +55,8 @@
 //! - `lanes`: the same polynomials for all corners of a box side by side;
 //! - [`enclosure`]: the enclosures of the coverage values over a box and the judgement
 //!   empty / full / undecided;
+//! - `depth`: the bounds on the hit depth of the covered samples of a box by a
+//!   combination of the depth with the edge values;
 //! - `elimination`: (x, y) decided exactly for a box of (u, v, t) (the covered pixels at
 //!   a fixed lens position and time are a convex polygon), and witnesses from it;
 //! - [`bnb`]: the best-first branch-and-bound engine (also used by the constraint

@@ -22,7 +22,7 @@ pub struct ExtentsConfig {
     /// dimension is not split further.
     pub min_fraction: f64,
     /// When a side or occupancy search on the enclosures alone leaves a gap, search
-    /// again with (x, y) eliminated per (u, v, t) box ([`super::elimination`]); both
+    /// again with (x, y) eliminated per (u, v, t) box (the module `elimination`); both
     /// are certified, so the better stands. It decides more cases (behind the lens
     /// above all) at the price of more boxes. Objective searches always eliminate.
     pub second_chance: bool,
@@ -124,6 +124,10 @@ pub struct Search {
     /// is split like the rest behind the lens.
     pub eliminate: bool,
 }
+
+/// The share of the largest smear the objective's own coordinate is given when splitting
+/// with elimination (without it: one half).
+const OBJ_SHARE: f64 = 0.02;
 
 /// True while some active lens or time coordinate of the box can still be split.
 fn uvt_open(b: &Box5, init: &Box5, min_w: &[f64; 5], active: &[bool; 5]) -> bool {
@@ -333,7 +337,10 @@ impl Problem for ExtentSearch<'_> {
                 continue;
             }
             if matches!(obj, Objective::Coord { index, .. } if i == index) && b[i].width() > cfg.resolution * 0.5 {
-                score = score.max(0.5 * max_smear);
+                // (with elimination, less often: a thin slab of the objective's
+                // coordinate is no easier to rule out, and the band cut below settles
+                // the part next to a witness)
+                score = score.max(if opts.eliminate { OBJ_SHARE } else { 0.5 } * max_smear);
             }
             if !score.is_finite() {
                 score = f64::MAX;
