@@ -395,6 +395,42 @@ fn degenerate(rng: &mut impl Source, q: &mut [[f32; 3]; 3]) {
     }
 }
 
+/// A wild triangle for robustness tests of the bounds (not a physical case): vertex
+/// coordinates at one of nine scales from subnormal to 1e30 (`n % 9`), some exactly 0
+/// or a whole multiple of the scale; `w` of either sign, exactly 0, tiny or spread over
+/// seven decades; circles of confusion of one sign or mixed; the aspect factor from
+/// `[1, 0.7, 1.3, 1e-3, 0, -1]` (`n % 6`), so zero and negative shears too.
+pub fn wild_triangle(rng: &mut ChaCha8Rng, n: usize) -> Triangle {
+    let scale = [1e-40f32, 1e-20, 1e-3, 1.0, 30.0, 1e3, 1e6, 1e15, 1e30][n % 9];
+    let val = |rng: &mut ChaCha8Rng| -> f32 {
+        match rng.gen_range(0..10) {
+            0 => 0.0,
+            1 => scale * rng.gen_range(-1..=1) as f32,
+            _ => rng.gen_range(-1.0f32..1.0) * scale,
+        }
+    };
+    let mut tri = Triangle::fixed([[0.0, 0.0, 0.5, 1.0]; 3]);
+    for p in tri.q.iter_mut().chain(tri.r.iter_mut()) {
+        p[0] = val(rng);
+        p[1] = val(rng);
+        p[3] = match rng.gen_range(0..6) {
+            0 => 0.0,
+            1 => rng.gen_range(-1e-6f32..1e-6),
+            2 => rng.gen_range(-3.0f32..3.0),
+            _ => rng.gen_range(0.01f32..4.0) * 10f32.powi(rng.gen_range(-3..4)),
+        };
+    }
+    let one_sign = rng.gen_bool(0.5);
+    for c in tri.c0.iter_mut().chain(tri.c1.iter_mut()) {
+        *c = val(rng);
+        if one_sign {
+            *c = c.abs().max(1e-30);
+        }
+    }
+    tri.k = [1.0f32, 0.7, 1.3, 1e-3, 0.0, -1.0][n % 6];
+    tri
+}
+
 /// A uniform sample with (x, y) in the tile, over the whole lens and shutter.
 pub fn tile_sample(rng: &mut ChaCha8Rng, tile: &Tile) -> Sample {
     Sample::new(

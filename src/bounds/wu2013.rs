@@ -976,6 +976,7 @@ mod safe_old;
 mod tests {
     use super::super::testkit::{assert_spot, bounds_of, random_lens, random_sample, spot};
     use super::*;
+    use crate::gen::wild_triangle;
     use crate::model::ThinLens;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
@@ -1838,39 +1839,6 @@ mod tests {
                 Some((v, format!("{:?}", b.constraints)))
             }
         }
-    }
-
-    /// A wild triangle: coordinates from subnormal to 1e30, w of either sign, exactly 0
-    /// or tiny, CoC of one sign or mixed, shears including 0 and negative.
-    fn wild_triangle(rng: &mut ChaCha8Rng, n: usize) -> Triangle {
-        let scale = [1e-40f32, 1e-20, 1e-3, 1.0, 30.0, 1e3, 1e6, 1e15, 1e30][n % 9];
-        let val = |rng: &mut ChaCha8Rng| -> f32 {
-            match rng.gen_range(0..10) {
-                0 => 0.0,
-                1 => scale * rng.gen_range(-1..=1) as f32,
-                _ => rng.gen_range(-1.0f32..1.0) * scale,
-            }
-        };
-        let mut tri = Triangle::fixed([[0.0, 0.0, 0.5, 1.0]; 3]);
-        for p in tri.q.iter_mut().chain(tri.r.iter_mut()) {
-            p[0] = val(rng);
-            p[1] = val(rng);
-            p[3] = match rng.gen_range(0..6) {
-                0 => 0.0,
-                1 => rng.gen_range(-1e-6f32..1e-6),
-                2 => rng.gen_range(-3.0f32..3.0),
-                _ => rng.gen_range(0.01f32..4.0) * 10f32.powi(rng.gen_range(-3..4)),
-            };
-        }
-        let one_sign = rng.gen_bool(0.5);
-        for c in tri.c0.iter_mut().chain(tri.c1.iter_mut()) {
-            *c = val(rng);
-            if one_sign {
-                *c = c.abs().max(1e-30);
-            }
-        }
-        tri.k = [1.0f32, 0.7, 1.3, 1e-3, 0.0, -1.0][n % 6];
-        tri
     }
 
     /// `wu2013-safe` answers bit for bit as its old code (`safe_old`, kept verbatim) on

@@ -4,44 +4,13 @@
 //! touching 0) and the same with a NaN, an infinity or a signed zero planted in one
 //! number of the triangle or the tile.
 
-use cullproof::gen::{boundary_tile, physical_case, rng_for, tile_size, Regime};
+use cullproof::gen::{boundary_tile, physical_case, rng_for, tile_size, wild_triangle, Regime};
 use cullproof::{Tile, Triangle};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 /// The special values planted into inputs.
 const SPECIAL: [f32; 8] = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 0.0, -0.0, f32::MAX, 1e-45, -1.0];
-
-fn wild(rng: &mut ChaCha8Rng, n: usize) -> Triangle {
-    let scale = [1e-40f32, 1e-20, 1e-3, 1.0, 30.0, 1e3, 1e6, 1e15, 1e30][n % 9];
-    let val = |rng: &mut ChaCha8Rng| -> f32 {
-        match rng.gen_range(0..10) {
-            0 => 0.0,
-            1 => scale * rng.gen_range(-1..=1) as f32,
-            _ => rng.gen_range(-1.0f32..1.0) * scale,
-        }
-    };
-    let mut tri = Triangle::fixed([[0.0, 0.0, 0.5, 1.0]; 3]);
-    for p in tri.q.iter_mut().chain(tri.r.iter_mut()) {
-        p[0] = val(rng);
-        p[1] = val(rng);
-        p[3] = match rng.gen_range(0..6) {
-            0 => 0.0,
-            1 => rng.gen_range(-1e-6f32..1e-6),
-            2 => rng.gen_range(-3.0f32..3.0),
-            _ => rng.gen_range(0.01f32..4.0) * 10f32.powi(rng.gen_range(-3..4)),
-        };
-    }
-    let one_sign = rng.gen_bool(0.5);
-    for c in tri.c0.iter_mut().chain(tri.c1.iter_mut()) {
-        *c = val(rng);
-        if one_sign {
-            *c = c.abs().max(1e-30);
-        }
-    }
-    tri.k = [1.0f32, 0.7, 1.3, 1e-3, 0.0, -1.0][n % 6];
-    tri
-}
 
 fn near(rng: &mut ChaCha8Rng, n: usize) -> Tile {
     let far = [0.0f32, 1.0, 1e2, 1e4, 1e6];
@@ -80,11 +49,11 @@ pub fn case(seed: u64, n: usize) -> (Triangle, Vec<Tile>) {
             (case.triangle, vec![t, beside])
         }
         1 => {
-            let tri = wild(&mut rng, n / 3);
+            let tri = wild_triangle(&mut rng, n / 3);
             (tri, vec![near(&mut rng, n / 3), near(&mut rng, n / 3 + 7)])
         }
         _ => {
-            let mut tri = wild(&mut rng, n / 3);
+            let mut tri = wild_triangle(&mut rng, n / 3);
             let mut tile = near(&mut rng, n / 3);
             plant(&mut rng, &mut tri, &mut tile);
             let other = near(&mut rng, n / 3 + 3);

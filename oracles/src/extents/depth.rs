@@ -197,42 +197,8 @@ fn multipliers(a: &[f64; 16], b: &[[f64; 16]; 3], inv: &[f64; 16]) -> [f64; 3] {
 mod tests {
     use crate::coverage::{classify, depth_enclosure, Coverage};
     use crate::extents::enclosure::{box_values_eliminating, Box5};
+    use crate::extents::testgen::{random_sliver, random_tri, unit_stream};
     use crate::interval::Interval;
-    use crate::tri::Tri;
-
-    fn unit_stream(mut seed: u64) -> impl FnMut() -> f64 {
-        move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
-    /// A moving, defocused triangle whose `w` may be negative or cross 0 during the
-    /// shutter; with `sliver`, two vertices a fraction of a pixel apart and the third
-    /// possibly behind the lens (the nearly degenerate case the depth bound is for).
-    fn random_tri(next: &mut impl FnMut() -> f64, sliver: bool) -> Tri {
-        let mut v = |lo: f64, hi: f64| lo + (hi - lo) * next();
-        let mut q = [[0.0; 4]; 3];
-        let mut r = [[0.0; 4]; 3];
-        let (mut c0, mut c1) = ([0.0; 3], [0.0; 3]);
-        for i in 0..3 {
-            q[i] = [v(-12.0, 12.0), v(-12.0, 12.0), v(-1.0, 1.0), v(-1.0, 2.5)];
-            r[i] = [v(-12.0, 12.0), v(-12.0, 12.0), v(-1.0, 1.0), v(-1.0, 2.5)];
-            c0[i] = v(-3.0, 3.0);
-            c1[i] = v(-3.0, 3.0);
-        }
-        if sliver {
-            let (dq, dr) = ([v(-0.3, 0.3), v(-0.3, 0.3)], [v(-0.3, 0.3), v(-0.3, 0.3)]);
-            for j in 0..2 {
-                q[2][j] = q[1][j] + dq[j];
-                r[2][j] = r[1][j] + dr[j];
-            }
-            (q[2][3], r[2][3]) = (q[1][3] + v(-0.01, 0.01), r[1][3] + v(-0.01, 0.01));
-        }
-        Tri { q, r, c0, c1, k: v(0.5, 2.0) }
-    }
 
     /// The certified depth bounds of a box hold the exact depth of every covered sample
     /// drawn in it, on random boxes of random triangles (behind the lens and slivers
@@ -243,7 +209,7 @@ mod tests {
         let mut next = unit_stream(0x3C6E_F372_FE94_F82B);
         let (mut checked, mut boxes, mut bounded, mut tighter) = (0, 0, 0, 0);
         for round in 0..800 {
-            let tri = random_tri(&mut next, round % 2 == 1);
+            let tri = if round % 2 == 1 { random_sliver(&mut next, true) } else { random_tri(&mut next) };
             for _ in 0..12 {
                 let s = [next() * 8.0 - 4.0, next() * 8.0 - 4.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0, next()];
                 if classify(&tri, s) != Coverage::Interior {

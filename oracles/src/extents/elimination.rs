@@ -338,32 +338,7 @@ mod tests {
     use super::*;
     use crate::coverage::{classify, Coverage};
     use crate::extents::enclosure::{box_values_eliminating, box_values_with, classify_values, BoxClass};
-
-    /// Uniform numbers in [0, 1) from a xorshift stream (reproducible test inputs).
-    fn unit_stream(mut seed: u64) -> impl FnMut() -> f64 {
-        move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
-    /// A moving, defocused triangle in clip space whose `w` may be negative or cross 0
-    /// during the shutter (one vertex in three on average behind the lens at some time).
-    fn random_tri(next: &mut impl FnMut() -> f64) -> Tri {
-        let mut v = |lo: f64, hi: f64| lo + (hi - lo) * next();
-        let mut q = [[0.0; 4]; 3];
-        let mut r = [[0.0; 4]; 3];
-        let (mut c0, mut c1) = ([0.0; 3], [0.0; 3]);
-        for i in 0..3 {
-            q[i] = [v(-12.0, 12.0), v(-12.0, 12.0), v(-1.0, 1.0), v(-1.0, 2.5)];
-            r[i] = [v(-12.0, 12.0), v(-12.0, 12.0), v(-1.0, 1.0), v(-1.0, 2.5)];
-            c0[i] = v(-3.0, 3.0);
-            c1[i] = v(-3.0, 3.0);
-        }
-        Tri { q, r, c0, c1, k: v(0.5, 2.0) }
-    }
+    use crate::extents::testgen::{random_tri, unit_stream};
 
     /// A box around `s`: (x, y) a rectangle of 1/64 to 4 pixels (as a tile), (u, v, t)
     /// each of a random width from 1 down to 2^-20 of its range.

@@ -75,6 +75,8 @@ pub mod objective;
 mod reference;
 pub mod search;
 pub mod solver;
+#[cfg(test)]
+mod testgen;
 pub mod tpoly;
 
 pub use enclosure::{box_values, box_values_eliminating, box_values_with, classify_values, Box5, BoxClass, BoxValues};

@@ -198,16 +198,7 @@ pub(super) fn box_values_with(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValue
 mod tests {
     use super::super::enclosure::box_values_with;
     use super::*;
-
-    /// Uniform numbers in [0, 1) from a xorshift stream (reproducible test inputs).
-    fn unit_stream(mut seed: u64) -> impl FnMut() -> f64 {
-        move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::extents::testgen::unit_stream;
 
     /// The vectorised corner loop returns exactly (bit for bit) what the corner-by-corner
     /// loop returns, on triangles of every kind (static, moving, defocused, behind the

@@ -348,6 +348,7 @@ pub fn tile_extents(tri: &Tri, tile: [f64; 4], uvt: [[f64; 2]; 3], cfg: &Extents
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::extents::testgen::{behind_lens_sliver, random_sliver, random_tri, unit_stream};
 
     fn flat(v: [[f64; 2]; 3]) -> Tri {
         let mk = |p: [f64; 2]| [p[0], p[1], 0.5, 1.0];
@@ -449,16 +450,6 @@ mod tests {
         }
     }
 
-    /// Uniform numbers in [0, 1) from a xorshift stream (reproducible test inputs).
-    fn unit_stream(mut seed: u64) -> impl FnMut() -> f64 {
-        move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
     /// A triangle right of the vertical edge x = -10 + 20 t: on the tile [0, 4]^2 the
     /// covered times are t < (x + 10) / 20, so t max over the tile is 0.7 (at x = 4).
     fn sweeping_edge() -> Tri {
@@ -553,21 +544,7 @@ mod tests {
     /// (boxing the wedge in five dimensions ran out of its 20,000 for u min and v max).
     #[test]
     fn behind_lens_sliver_lens_extents_are_certified() {
-        let tri = Tri {
-            q: [
-                [68.79700469970703, -11.174562454223633, -0.5078836679458618, -0.40783292055130005],
-                [45.81073760986328, -51.95940399169922, 1.1483010053634644, 1.2481861114501953],
-                [45.172698974609375, -51.340232849121094, 1.1456304788589478, 1.2455159425735474],
-            ],
-            r: [
-                [71.16487884521484, -12.409738540649414, -0.5066049098968506, -0.40655428171157837],
-                [47.85801696777344, -53.194580078125, 1.149579644203186, 1.249464750289917],
-                [47.219970703125, -52.575408935546875, 1.146909236907959, 1.246794581413269],
-            ],
-            c0: [-11.117255210876465, -10.203001976013184, -10.204476356506348],
-            c1: [-11.116549491882324, -10.202296257019043, -10.20376968383789],
-            k: 1.0,
-        };
+        let tri = behind_lens_sliver();
         let cfg = ExtentsConfig::default();
         let mut s = TileSolver::new(&tri, [39.0, 41.0, -46.0, -44.0], WHOLE, &cfg);
         for ext in [Extent::UMin, Extent::UMax, Extent::VMin, Extent::VMax, Extent::TMin, Extent::TMax] {
@@ -590,21 +567,7 @@ mod tests {
     /// settle both ends in a few dozen boxes each.
     #[test]
     fn behind_lens_sliver_depth_extents_are_certified() {
-        let tri = Tri {
-            q: [
-                [68.79700469970703, -11.174562454223633, -0.5078836679458618, -0.40783292055130005],
-                [45.81073760986328, -51.95940399169922, 1.1483010053634644, 1.2481861114501953],
-                [45.172698974609375, -51.340232849121094, 1.1456304788589478, 1.2455159425735474],
-            ],
-            r: [
-                [71.16487884521484, -12.409738540649414, -0.5066049098968506, -0.40655428171157837],
-                [47.85801696777344, -53.194580078125, 1.149579644203186, 1.249464750289917],
-                [47.219970703125, -52.575408935546875, 1.146909236907959, 1.246794581413269],
-            ],
-            c0: [-11.117255210876465, -10.203001976013184, -10.204476356506348],
-            c1: [-11.116549491882324, -10.202296257019043, -10.20376968383789],
-            k: 1.0,
-        };
+        let tri = behind_lens_sliver();
         let cfg = ExtentsConfig::default();
         let mut s = TileSolver::new(&tri, [39.0, 41.0, -46.0, -44.0], WHOLE, &cfg);
         for ext in [Extent::ZMin, Extent::ZMax] {
@@ -619,28 +582,6 @@ mod tests {
         assert!(lo.lo > 0.89 && lo.hi < 0.9 && hi.lo > 0.915 && hi.hi < 0.925, "{lo:?} {hi:?}");
     }
 
-    /// A moving, defocused triangle whose `w` may be negative or cross 0 during the
-    /// shutter; with `sliver`, two vertices a fraction of a pixel apart.
-    fn random_tri(next: &mut impl FnMut() -> f64, sliver: bool) -> Tri {
-        let mut v = |lo: f64, hi: f64| lo + (hi - lo) * next();
-        let mut q = [[0.0; 4]; 3];
-        let mut r = [[0.0; 4]; 3];
-        let (mut c0, mut c1) = ([0.0; 3], [0.0; 3]);
-        for i in 0..3 {
-            q[i] = [v(-12.0, 12.0), v(-12.0, 12.0), v(-1.0, 1.0), v(-1.0, 2.5)];
-            r[i] = [v(-12.0, 12.0), v(-12.0, 12.0), v(-1.0, 1.0), v(-1.0, 2.5)];
-            c0[i] = v(-3.0, 3.0);
-            c1[i] = v(-3.0, 3.0);
-        }
-        if sliver {
-            for j in 0..2 {
-                q[2][j] = q[1][j] + v(-0.3, 0.3);
-                r[2][j] = r[1][j] + v(-0.3, 0.3);
-            }
-        }
-        Tri { q, r, c0, c1, k: v(0.5, 2.0) }
-    }
-
     /// Every extent of random tiles of random triangles (behind the lens, crossing it,
     /// slivers) holds what a dense sampling of the tile finds: no interior sample lies
     /// beyond an enclosure, every witness is interior and at the witnessed end, and a
@@ -653,7 +594,7 @@ mod tests {
         let cfg = ExtentsConfig { max_boxes: 3000, ..ExtentsConfig::default() };
         let (mut tiles, mut decided, mut samples) = (0, 0, 0);
         while tiles < 24 {
-            let tri = random_tri(&mut next, tiles % 3 == 2);
+            let tri = if tiles % 3 == 2 { random_sliver(&mut next, false) } else { random_tri(&mut next) };
             let s = [next() * 8.0 - 4.0, next() * 8.0 - 4.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0, next()];
             if classify(&tri, s) != Coverage::Interior {
                 continue;
