@@ -431,6 +431,64 @@ pub fn wild_triangle(rng: &mut ChaCha8Rng, n: usize) -> Triangle {
     tri
 }
 
+/// The special values [`bit_compare_case`] plants: NaN, both infinities, both zeros,
+/// f32::MAX, the smallest subnormal and -1.
+const SPECIAL: [f32; 8] = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 0.0, -0.0, f32::MAX, 1e-45, -1.0];
+
+/// A square tile near the origin or far from it (up to 1e6 px, by `n`), 1e-3 to 16 px.
+fn stress_tile(rng: &mut ChaCha8Rng, n: usize) -> Tile {
+    let far = [0.0f32, 1.0, 1e2, 1e4, 1e6];
+    let x = rng.gen_range(-1.0f32..1.0) * far[n % 5];
+    let y = rng.gen_range(-1.0f32..1.0) * far[(n / 5) % 5];
+    Tile::square(x, y, [1e-3f32, 1.0, 4.0, 16.0][n % 4])
+}
+
+/// Plant a special value into one number of the triangle or the tile (or set a w to
+/// a signed zero).
+fn plant(rng: &mut ChaCha8Rng, tri: &mut Triangle, tile: &mut Tile) {
+    let v = SPECIAL[rng.gen_range(0..SPECIAL.len())];
+    match rng.gen_range(0..8) {
+        0 => tri.q[rng.gen_range(0..3)][rng.gen_range(0..4)] = v,
+        1 => tri.r[rng.gen_range(0..3)][rng.gen_range(0..4)] = v,
+        2 => tri.c0[rng.gen_range(0..3)] = v,
+        3 => tri.c1[rng.gen_range(0..3)] = v,
+        4 => tri.k = v,
+        5 => tile.x0 = v,
+        6 => tile.y1 = v,
+        _ => tri.q[rng.gen_range(0..3)][3] = if rng.gen_bool(0.5) { 0.0 } else { -0.0 },
+    }
+}
+
+/// Case `n` of a stress stream for comparing two implementations of a bound bit for
+/// bit: a triangle and two tiles. A third are physical cases (regime `n / 3` in turn)
+/// with a tile on the footprint's boundary and one beside it, a third wild triangles
+/// ([`wild_triangle`]) with two tiles near the origin or far from it, and a third the
+/// same with a special value (NaN, an infinity, a signed zero, f32::MAX, a subnormal)
+/// planted in one number of the triangle or the tile.
+pub fn bit_compare_case(seed: u64, n: usize) -> (Triangle, Vec<Tile>) {
+    let mut rng = rng_for(seed, n as u64);
+    match n % 3 {
+        0 => {
+            let case = physical_case(&mut rng, Regime::ALL[(n / 3) % Regime::ALL.len()]);
+            let size = tile_size(None, &mut rng);
+            let t = boundary_tile(&case, &mut rng, size);
+            let beside = Tile::square(t.x0 + size * rng.gen_range(-3..=3) as f32, t.y0 + size, size);
+            (case.triangle, vec![t, beside])
+        }
+        1 => {
+            let tri = wild_triangle(&mut rng, n / 3);
+            (tri, vec![stress_tile(&mut rng, n / 3), stress_tile(&mut rng, n / 3 + 7)])
+        }
+        _ => {
+            let mut tri = wild_triangle(&mut rng, n / 3);
+            let mut tile = stress_tile(&mut rng, n / 3);
+            plant(&mut rng, &mut tri, &mut tile);
+            let other = stress_tile(&mut rng, n / 3 + 3);
+            (tri, vec![tile, other])
+        }
+    }
+}
+
 /// A uniform sample with (x, y) in the tile, over the whole lens and shutter.
 pub fn tile_sample(rng: &mut ChaCha8Rng, tile: &Tile) -> Sample {
     Sample::new(

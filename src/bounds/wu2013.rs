@@ -976,7 +976,6 @@ mod safe_old;
 mod tests {
     use super::super::testkit::{assert_spot, bounds_of, random_lens, random_sample, spot};
     use super::*;
-    use crate::gen::wild_triangle;
     use crate::model::ThinLens;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
@@ -1848,46 +1847,9 @@ mod tests {
     /// tile, or a w set to +-0.
     #[test]
     fn safe_is_its_old_code_bit_for_bit() {
-        use crate::gen::{boundary_tile, physical_case, rng_for, tile_size, Regime};
-        const SPECIAL: [f32; 8] = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 0.0, -0.0, f32::MAX, 1e-45, -1.0];
-        let near = |rng: &mut ChaCha8Rng, n: usize| {
-            let far = [0.0f32, 1.0, 1e2, 1e4, 1e6];
-            let x = rng.gen_range(-1.0f32..1.0) * far[n % 5];
-            let y = rng.gen_range(-1.0f32..1.0) * far[(n / 5) % 5];
-            Tile::square(x, y, [1e-3f32, 1.0, 4.0, 16.0][n % 4])
-        };
         let (mut tiles, mut culled, mut lines, mut narrowed) = (0usize, 0usize, 0usize, 0usize);
         for n in 0..30_000usize {
-            let mut rng = rng_for(0x05af_e01d, n as u64);
-            let (tri, ts) = match n % 3 {
-                0 => {
-                    let case = physical_case(&mut rng, Regime::ALL[(n / 3) % Regime::ALL.len()]);
-                    let size = tile_size(None, &mut rng);
-                    let t = boundary_tile(&case, &mut rng, size);
-                    let beside = Tile::square(t.x0 + size * rng.gen_range(-3..=3) as f32, t.y0 + size, size);
-                    (case.triangle, vec![t, beside])
-                }
-                1 => {
-                    let tri = wild_triangle(&mut rng, n / 3);
-                    (tri, vec![near(&mut rng, n / 3), near(&mut rng, n / 3 + 7)])
-                }
-                _ => {
-                    let mut tri = wild_triangle(&mut rng, n / 3);
-                    let mut tile = near(&mut rng, n / 3);
-                    let v = SPECIAL[rng.gen_range(0..SPECIAL.len())];
-                    match rng.gen_range(0..8) {
-                        0 => tri.q[rng.gen_range(0..3)][rng.gen_range(0..4)] = v,
-                        1 => tri.r[rng.gen_range(0..3)][rng.gen_range(0..4)] = v,
-                        2 => tri.c0[rng.gen_range(0..3)] = v,
-                        3 => tri.c1[rng.gen_range(0..3)] = v,
-                        4 => tri.k = v,
-                        5 => tile.x0 = v,
-                        6 => tile.y1 = v,
-                        _ => tri.q[rng.gen_range(0..3)][3] = if rng.gen_bool(0.5) { 0.0 } else { -0.0 },
-                    }
-                    (tri, vec![tile, near(&mut rng, n / 3 + 3)])
-                }
-            };
+            let (tri, ts) = crate::gen::bit_compare_case(0x05af_e01d, n);
             let p = METHOD_SAFE.setup(&tri);
             for tile in &ts {
                 let (new, old) = (answer_bits(&p.tile(tile)), answer_bits(&safe_old::answer(&tri, tile)));
