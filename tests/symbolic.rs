@@ -43,6 +43,16 @@ fn eval(smt: &Smt, floats: &[String], bools: &[String]) -> (Vec<f32>, Vec<bool>)
     (f, b)
 }
 
+/// Evaluate the terms with z3 and require the f32 values bit for bit (any NaN for a
+/// NaN) and the truth values.
+fn assert_evaluates_to(smt: &Smt, floats: &[String], bools: &[String], want_f: &[f32], want_b: &[bool]) {
+    let (f, b) = eval(smt, floats, bools);
+    for (k, (w, g)) in want_f.iter().zip(&f).enumerate() {
+        assert!(same_bits(*w, *g), "value {k} ({}): f32 {w:e}, z3 {g:e}", floats[k]);
+    }
+    assert_eq!(want_b, b);
+}
+
 #[test]
 fn every_operation_means_the_same_bits_in_both_instances() {
     let specials =
@@ -160,11 +170,7 @@ fn the_emitted_method_evaluates_to_the_f32_bits() {
             want_b.extend([en, rej]);
         }
     }
-    let (f, b) = eval(&smt, &floats, &bools);
-    for (k, (w, g)) in want_f.iter().zip(&f).enumerate() {
-        assert!(same_bits(*w, *g), "box value {k}: f32 {w:e}, z3 {g:e}");
-    }
-    assert_eq!(want_b, b);
+    assert_evaluates_to(&smt, &floats, &bools, &want_f, &want_b);
     assert!(culled > 0, "no culled tile among the inputs: the reject went untested");
     assert!(by_id("bbox").is_some());
 }
@@ -357,11 +363,7 @@ fn the_emitted_la2011_evaluates_to_the_f32_bits() {
             want_b.push(ok);
         }
     }
-    let (f, b) = eval(&smt, &floats, &bools);
-    for (k, (w, g)) in want_f.iter().zip(&f).enumerate() {
-        assert!(same_bits(*w, *g), "value {k}: f32 {w:e}, z3 {g:e}");
-    }
-    assert_eq!(want_b, b);
+    assert_evaluates_to(&smt, &floats, &bools, &want_f, &want_b);
 }
 
 /// The anti-drift test for mam2012: its setup (the enabling conditions, the screen
@@ -427,11 +429,7 @@ fn the_emitted_mam2012_evaluates_to_the_f32_bits() {
         }
     }
     assert!(culled >= 2 && enabled >= culled + 2, "culled {culled}, enabled {enabled}");
-    let (f, b) = eval(&smt, &floats, &bools);
-    for (k, (w, g)) in want_f.iter().zip(&f).enumerate() {
-        assert!(same_bits(*w, *g), "value {k}: f32 {w:e}, z3 {g:e}");
-    }
-    assert_eq!(want_b, b);
+    assert_evaluates_to(&smt, &floats, &bools, &want_f, &want_b);
 }
 
 /// The anti-drift test for mam2012-hyperplane's tile path: from the f32 setup's edges,
@@ -474,11 +472,7 @@ fn the_emitted_mam2012_hyperplane_tile_path_evaluates_to_the_f32_bits() {
         }
     }
     assert!(culled >= 2, "culled {culled}");
-    let (f, b) = eval(&smt, &floats, &bools);
-    for (k, (w, g)) in want_f.iter().zip(&f).enumerate() {
-        assert!(same_bits(*w, *g), "value {k}: f32 {w:e}, z3 {g:e}");
-    }
-    assert_eq!(want_b, b);
+    assert_evaluates_to(&smt, &floats, &bools, &want_f, &want_b);
 }
 
 /// The la2011 query pinned to a model z3 found (x-min, `prove --method la2011 --symbolic
