@@ -18,6 +18,10 @@ use serde::Serialize;
 pub mod bbox;
 pub mod broken;
 pub mod gdam2010;
+mod grid;
+#[cfg(test)]
+mod grid_tests;
+pub use grid::{Grid, PerTile, TileGrid};
 pub mod la2011;
 pub mod lb2011;
 pub mod lc;
@@ -264,6 +268,13 @@ pub trait Prepared: Send + Sync {
     /// values of its per-sample constraints, for every tile.
     fn tile_independent(&self) -> bool {
         false
+    }
+    /// The answers for every tile of `grid`, [`TileGrid::tile`]`(i, j)` being exactly
+    /// [`tile`](Self::tile) of [`Grid::tile`]`(i, j)`, bit for bit. The default asks
+    /// `tile` tile by tile; a test that splits into a part per column and a part per row
+    /// overrides it to compute each part once for the whole grid (see [`grid`](mod@grid)).
+    fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
+        Box::new(PerTile { prep: self, grid })
     }
 }
 

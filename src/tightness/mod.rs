@@ -93,7 +93,7 @@ pub mod scene;
 
 pub use cli::{run_cli, TightnessArgs};
 
-use crate::bounds::{Conjunction, Method, Prepared, SampleCols, SampleConstraint, TileResult};
+use crate::bounds::{Conjunction, Grid, Method, Prepared, SampleCols, SampleConstraint, TileGrid, TileResult};
 use crate::model::{Dims, Sample, Tile, Triangle};
 use count::{count_admitted, count_passing, region_pass, AdmitScratch, Here};
 use indicatif::ProgressBar;
@@ -788,6 +788,13 @@ fn measure_triangle(
         }
         let (tx0, ty0, tx1, ty1) = tile_range(&r, s);
         let ntx = (tx1 - tx0 + 1) as u64;
+        // The tiles' boundaries (`tile_of(tile_pixels(..))`: the last one clipped to the
+        // screen), and each asked method's answers over that grid.
+        let xs: Vec<f32> = (tx0..=tx1).map(|t| (t * s) as f32).chain([((tx1 + 1) * s).min(width) as f32]).collect();
+        let ys: Vec<f32> = (ty0..=ty1).map(|t| (t * s) as f32).chain([((ty1 + 1) * s).min(height) as f32]).collect();
+        let grid = Grid::new(&xs, &ys);
+        let grids: Vec<Option<Box<dyn TileGrid>>> =
+            preps.iter().zip(&fixed).map(|(p, f)| f.is_none().then(|| p.grid(grid))).collect();
         for ty in ty0..=ty1 {
             for tx in tx0..=tx1 {
                 let p = tile_pixels(tx, ty, s, width, height);
@@ -806,7 +813,9 @@ fn measure_triangle(
                     }
                 }
                 asked.clear();
-                asked.extend(preps.iter().zip(&fixed).map(|(p, f)| f.is_none().then(|| p.tile(&tile))));
+                let (i, j) = ((tx - tx0) as usize, (ty - ty0) as usize);
+                debug_assert_eq!(format!("{:?}", grid.tile(i, j)), format!("{tile:?}"));
+                asked.extend(grids.iter().map(|g| g.as_ref().map(|g| g.tile(i, j))));
                 let answer = |k: usize| -> &TileResult { fixed[k].as_ref().or(asked[k].as_ref()).expect("asked") };
                 for (mi, src) in plan.of.iter().enumerate() {
                     let c = &mut out.counts[ti][mi];
