@@ -522,6 +522,40 @@ impl<R: Round> Prepared for Prep<R> {
         }
         TileResult::Bounds(TileBounds { u, v, t, z: None, constraints: Vec::new() })
     }
+    /// Each axis's ranges depend on its own tile edges only: computed once per column and
+    /// once per row, then met per tile exactly as [`tile`](Self::tile) meets them.
+    fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
+        let cols = (0..grid.columns()).map(|i| bounds_f32::<R>(&self.s.x, &grid.column(i))).collect();
+        let rows = (0..grid.rows()).map(|j| bounds_f32::<R>(&self.s.y, &grid.row(j))).collect();
+        Box::new(AxisGrid { prep: self, grid, cols, rows })
+    }
+}
+
+/// [`Prep::grid`]: each column's and each row's [`bounds_f32`].
+struct AxisGrid<'a, R> {
+    prep: &'a Prep<R>,
+    grid: Grid<'a>,
+    cols: Vec<Option<(Iv, Iv)>>,
+    rows: Vec<Option<(Iv, Iv)>>,
+}
+
+impl<R: Round> TileGrid for AxisGrid<'_, R> {
+    fn tile(&self, i: usize, j: usize) -> TileResult {
+        if guard::<R, Plain>(&Plain, &self.prep.s, &tile_of(&self.grid.tile(i, j))) {
+            return TileResult::Bounds(TileBounds::full());
+        }
+        let Some((tx, u)) = self.cols[i] else {
+            return TileResult::Empty;
+        };
+        let Some((ty, v)) = self.rows[j] else {
+            return TileResult::Empty;
+        };
+        let (ok, t) = meet(&Plain, &tx, &ty);
+        if !ok {
+            return TileResult::Empty;
+        }
+        TileResult::Bounds(TileBounds { u, v, t, z: None, constraints: Vec::new() })
+    }
 }
 
 /// la2011 (`R = Nearest`) or la2011-safe (`R = Outward`): one algorithm, two arithmetics.
