@@ -490,20 +490,45 @@ impl SafeTimeSpans {
                 [ai[i][0].add(tt.mul(di[i][0])), ai[i][1].add(tt.mul(di[i][1]))]
             }
         };
-        let cuts = self.cuts(a, b);
+        // The vertices and each edge's value at the end of a piece.
+        let end = |t: f32| -> PieceEnd {
+            let p = [at(0, t), at(1, t), at(2, t)];
+            PieceEnd { t, p, e: EDGES.map(|(i, j)| cross_iv(p[i], p[j])) }
+        };
+        let mut buf = [0.0f32; MAX_CUTS];
+        let n = self.cuts(a, b, &mut buf);
+        let cuts = &buf[..n];
         // Classify each piece between consecutive cuts (splitting open ones while the
-        // budget lasts), left to right; keep all but the certified-uncovered pieces.
-        let mut stack: Vec<(f32, f32)> = cuts.windows(2).rev().map(|w| (w[0], w[1])).collect();
+        // budget lasts), left to right; keep all but the certified-uncovered pieces. The
+        // next piece starts where the last one started (after a split) or ended: both
+        // ends of the last piece are kept, so each end is evaluated once.
+        let mut stack = [(0.0f32, 0.0f32); MAX_CUTS + SPLITS];
+        let mut top = 0;
+        for w in cuts.windows(2).rev() {
+            stack[top] = (w[0], w[1]);
+            top += 1;
+        }
         let mut splits = SPLITS;
-        while let Some((l, h)) = stack.pop() {
-            let (pl, ph) = ([at(0, l), at(1, l), at(2, l)], [at(0, h), at(1, h), at(2, h)]);
-            let kind = classify_piece(pl, ph);
+        let mut last: Option<(PieceEnd, PieceEnd)> = None;
+        while top > 0 {
+            top -= 1;
+            let (l, h) = stack[top];
+            let same = |e: &PieceEnd, t: f32| e.t.to_bits() == t.to_bits();
+            let el = match &last {
+                Some((p, _)) if same(p, l) => *p,
+                Some((_, q)) if same(q, l) => *q,
+                _ => end(l),
+            };
+            let eh = end(h);
+            last = Some((el, eh));
+            let kind = classify_piece(&el, &eh);
             if kind == Piece::Open && splits > 0 && h - l > MIN_SPLIT {
                 let m = l + 0.5 * (h - l);
                 if m > l && m < h {
                     splits -= 1;
-                    stack.push((m, h));
-                    stack.push((l, m));
+                    stack[top] = (m, h);
+                    stack[top + 1] = (l, m);
+                    top += 2;
                     continue;
                 }
             }
@@ -522,11 +547,21 @@ impl SafeTimeSpans {
         out
     }
 
-    /// The cut points, sorted, from 0 to 1: around each edge's roots and the vertex of
-    /// its parabola, computed in f32 from the rounded relative vertices (`a` at t = 0,
-    /// `b` at t = 1). They only decide where pieces end: any cut points give a superset.
-    fn cuts(&self, a: [[f32; 2]; 3], b: [[f32; 2]; 3]) -> Vec<f32> {
-        let mut cuts = vec![0.0f32, 1.0];
+    /// The cut points, sorted, from 0 to 1, written to the front of `out` (their number
+    /// returned): around each edge's roots and the vertex of its parabola, computed in
+    /// f32 from the rounded relative vertices (`a` at t = 0, `b` at t = 1). They only
+    /// decide where pieces end: any cut points give a superset.
+    fn cuts(&self, a: [[f32; 2]; 3], b: [[f32; 2]; 3], out: &mut [f32; MAX_CUTS]) -> usize {
+        out[0] = 0.0;
+        out[1] = 1.0;
+        let mut n = 2;
+        let mut put = |c: f32| {
+            // Only the cuts within [0, 1] are kept (NaN is not).
+            if (0.0..=1.0).contains(&c) {
+                out[n] = c;
+                n += 1;
+            }
+        };
         let d: [[f32; 2]; 3] = std::array::from_fn(|i| [b[i][0] - a[i][0], b[i][1] - a[i][1]]);
         for (i, j) in EDGES {
             let alpha = cross2(d[i], d[j]);
@@ -536,36 +571,62 @@ impl SafeTimeSpans {
             let mag = |p: [f32; 2], q: [f32; 2]| p[0].abs() + p[1].abs() + q[0].abs() + q[1].abs();
             let err = 2f32.powi(-21) * mag(a[i], d[i]) * mag(a[j], d[j]) + f32::MIN_POSITIVE;
             let mut roots = [0.0f32; 8];
-            let mut n = 0;
-            roots_in_unit(alpha, beta, gamma, &mut roots, &mut n);
-            for &r in &roots[..n] {
+            let mut nr = 0;
+            roots_in_unit(alpha, beta, gamma, &mut roots, &mut nr);
+            for &r in &roots[..nr] {
                 let slope = (2.0 * alpha * r + beta).abs();
                 let delta = (err / slope).min(0.5) + 2f32.powi(-21);
-                cuts.extend([r - delta, r - delta / 16.0, r + delta / 16.0, r + delta]);
+                for c in [r - delta, r - delta / 16.0, r + delta / 16.0, r + delta] {
+                    put(c);
+                }
             }
             if alpha != 0.0 {
                 let tv = -beta / (2.0 * alpha);
                 if tv > 0.0 && tv < 1.0 {
                     let delta = (err / alpha.abs()).sqrt().min(0.5) + 2f32.powi(-21);
-                    cuts.extend([tv - delta, tv - delta / 16.0, tv, tv + delta / 16.0, tv + delta]);
+                    for c in [tv - delta, tv - delta / 16.0, tv, tv + delta / 16.0, tv + delta] {
+                        put(c);
+                    }
                 }
             }
         }
-        cuts.retain(|c| (0.0..=1.0).contains(c));
+        // A stable sort, then the first of each run of equal values kept (as
+        // `Vec::dedup`: -0 and 0 are equal, the first one stays).
+        let cuts = &mut out[..n];
         cuts.sort_by(|p, q| p.partial_cmp(q).unwrap());
-        cuts.dedup();
-        cuts
+        let mut k = 1;
+        for i in 1..n {
+            if cuts[i] != cuts[k - 1] {
+                cuts[k] = cuts[i];
+                k += 1;
+            }
+        }
+        k
     }
 }
 
-/// The piece between `pl` (the vertices at its start) and `ph` (at its end): each edge
-/// is the cross product of two vertices linear in t, so on the piece it is a quadratic
-/// with Bernstein coefficients `P_i(l) x P_j(l)`, `(P_i(l) x P_j(h) + P_i(h) x P_j(l)) / 2`,
+/// At most this many cut points: 0, 1, and per edge 4 around each of 2 roots and 5
+/// around its parabola's vertex.
+const MAX_CUTS: usize = 2 + 3 * (2 * 4 + 5);
+
+/// One end `t` of a piece of the shutter: the vertices relative to the pixel there
+/// (enclosed) and each edge's value, `P_i(t) x P_j(t)`.
+#[derive(Clone, Copy)]
+struct PieceEnd {
+    t: f32,
+    p: [Rel; 3],
+    e: [Iv; 3],
+}
+
+/// The piece between `l` and `h` (the values at its two ends): each edge is the cross
+/// product of two vertices linear in t, so on the piece it is a quadratic with Bernstein
+/// coefficients `P_i(l) x P_j(l)`, `(P_i(l) x P_j(h) + P_i(h) x P_j(l)) / 2`,
 /// `P_i(h) x P_j(h)`, and its values lie between the least and the greatest of them.
-fn classify_piece(pl: [Rel; 3], ph: [Rel; 3]) -> Piece {
+fn classify_piece(l: &PieceEnd, h: &PieceEnd) -> Piece {
+    let (pl, ph) = (l.p, h.p);
     let (mut some_le, mut some_ge, mut all_gt, mut all_lt) = (false, false, true, true);
-    for (i, j) in EDGES {
-        let b = [cross_iv(pl[i], pl[j]), cross_iv(pl[i], ph[j]).add(cross_iv(ph[i], pl[j])), cross_iv(ph[i], ph[j])];
+    for (k, (i, j)) in EDGES.into_iter().enumerate() {
+        let b = [l.e[k], cross_iv(pl[i], ph[j]).add(cross_iv(ph[i], pl[j])), h.e[k]];
         // (the middle one doubled: only its sign matters)
         some_le |= b.iter().all(|v| v.hi <= 0.0);
         some_ge |= b.iter().all(|v| v.lo >= 0.0);
@@ -682,6 +743,9 @@ impl Method for Gdam2010Safe {
 
 /// `gdam2010-safe`: a certified superset of the covered time set (see the module doc).
 pub static METHOD_SAFE: &dyn Method = &Gdam2010Safe;
+
+#[cfg(test)]
+mod safe_old;
 
 #[cfg(test)]
 mod tests {
@@ -918,6 +982,36 @@ mod tests {
     #[test]
     fn eval_box_encloses_eval() {
         assert_eval_box_encloses_eval(&TimeSpans::new(&moving()), 11, 2000);
+    }
+
+    /// The time sets of `gdam2010-safe` are those of its old code (`safe_old.rs`), bit
+    /// for bit, on the stress stream of the bit-identity tests, at positions in the
+    /// case's tiles and at odd ones (infinities, NaN, huge, subnormal, -0).
+    #[test]
+    fn safe_spans_are_their_old_code_bit_for_bit() {
+        let odd = [f32::NAN, f32::INFINITY, -f32::INFINITY, 3.0e38, -0.0, 1.0e-40, f32::MAX];
+        let (mut n_all, mut partial, mut split) = (0, 0, 0);
+        for n in 0..20_000 {
+            let (tri, tiles) = crate::gen::bit_compare_case(91, n);
+            let s = SafeTimeSpans::new(&tri);
+            let mut rng = crate::gen::rng_for(92, n as u64);
+            for tile in &tiles {
+                for k in 0..4 {
+                    let (fx, fy): (f32, f32) = (rng.gen(), rng.gen());
+                    let y = tile.y0 + fy * (tile.y1 - tile.y0);
+                    let x = match k {
+                        3 => odd[rng.gen_range(0..odd.len())],
+                        _ => tile.x0 + fx * (tile.x1 - tile.x0),
+                    };
+                    let (new, old) = (s.spans_at(x, y), s.spans_at_old(x, y));
+                    assert_eq!(format!("{new:?}"), format!("{old:?}"), "case {n} at ({x}, {y}): {tri:?}");
+                    n_all += 1;
+                    partial += (new.n > 0 && new.as_slice() != [[0.0, 1.0]]) as usize;
+                    split += (new.n > 1) as usize;
+                }
+            }
+        }
+        assert!(n_all >= 160_000 && partial > 5_000 && split > 100, "{n_all} {partial} {split}");
     }
 
     #[test]

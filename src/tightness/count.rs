@@ -16,18 +16,20 @@ pub(super) struct Here<'a> {
     pub(super) cov: u64,
 }
 
-/// Per sample of the [`Local`] region: no constraint of `cons` culls it (`g < 0` for
-/// none; a NaN value culls nothing), the values computed row by row
+/// Into `pass`, per sample of the [`Local`] region: no constraint of `cons` culls it
+/// (`g < 0` for none; a NaN value culls nothing), the values computed row by row
 /// ([`SampleConstraint::eval_row`]).
 pub(super) fn region_pass(
     sc: &mut AdmitScratch,
     cons: &[&[Box<dyn SampleConstraint>]],
     table: &SampleTable,
     local: &Local,
-) -> Vec<bool> {
+    pass: &mut Vec<bool>,
+) {
     let rect = local.rect;
     let n = (rect.x1 - rect.x0 + 1) as usize * table.spp;
-    let mut pass = vec![true; local.covered.len()];
+    pass.clear();
+    pass.resize(local.covered.len(), true);
     sc.reserve(n);
     for py in rect.y0..=rect.y1 {
         let (ts, ls) = (table.start(rect.x0, py), local.start(rect.x0, py));
@@ -42,7 +44,6 @@ pub(super) fn region_pass(
             }
         }
     }
-    pass
 }
 
 /// [`count_admitted`] for an answer whose constraints' verdicts per sample are `pass`
@@ -68,6 +69,10 @@ pub(super) fn count_passing(iv: ([f32; 2], [f32; 2], [f32; 2]), pass: &[bool], h
     c.hits += hits;
     c.missed += h.cov - hits;
 }
+
+/// Rows of at most this many samples are evaluated whole: gathering a few samples of a
+/// short row costs more than evaluating the constraints on all of it.
+const WHOLE_ROW_BELOW: usize = 32;
 
 /// Buffers of [`count_admitted`], reused from tile to tile.
 #[derive(Default)]
@@ -143,8 +148,8 @@ pub(super) fn count_admitted(
             continue;
         }
         // The intervals first (side by side), then the constraints: on the whole row's
-        // columns when at least half of its samples are inside (the values of the others
-        // are not used), otherwise on the samples inside, gathered.
+        // columns when the row is short or at least half of its samples are inside (the
+        // values of the others are not used), otherwise on the samples inside, gathered.
         sc.reserve(n);
         let mask = &mut sc.mask[..n];
         let mut m = 0usize;
@@ -156,7 +161,7 @@ pub(super) fn count_admitted(
         if m == 0 {
             continue;
         }
-        let whole_row = 2 * m >= n;
+        let whole_row = 2 * m >= n || n <= WHOLE_ROW_BELOW;
         if !whole_row {
             // The indices of the inside samples (written branch-free), then their columns.
             let index = &mut sc.index[..n];

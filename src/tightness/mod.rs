@@ -423,6 +423,127 @@ struct TriCounts {
     disabled: Vec<bool>,
 }
 
+impl TriCounts {
+    /// Zero, for `nt` tile sizes and `nm` methods (the buffers kept from triangle to
+    /// triangle).
+    fn reset(&mut self, nt: usize, nm: usize) {
+        self.whole_screen = false;
+        self.off_screen = false;
+        (self.classified, self.covered, self.boundary, self.exact) = (0, 0, 0, 0);
+        self.counts.resize_with(nt, Vec::new);
+        self.counts.iter_mut().for_each(|c| {
+            c.clear();
+            c.resize(nm, Counts::default());
+        });
+        self.work.resize_with(nt, Vec::new);
+        self.work.iter_mut().for_each(|w| {
+            w.clear();
+            w.resize(nm, Work::default());
+        });
+        self.ceiling.clear();
+        self.ceiling.resize(nt, (0, 0));
+        self.certified.clear();
+        self.disabled.clear();
+        self.disabled.resize(nm, false);
+    }
+}
+
+/// The sums over a setting's triangles (integers: the same in any order, so at any
+/// thread count).
+struct Sums {
+    summary: SettingSummary,
+    /// [tile index][method index]
+    counts: Vec<Vec<Counts>>,
+    work: Vec<Vec<Work>>,
+    ceiling: Vec<(u64, u64)>,
+    disabled: Vec<u64>,
+    /// [tile index]
+    certified: Vec<CertifiedRow>,
+}
+
+impl Sums {
+    fn new(setting: Setting, tiles: &[u32], nm: usize) -> Self {
+        let nt = tiles.len();
+        Sums {
+            summary: SettingSummary { setting, ..Default::default() },
+            counts: vec![vec![Counts::default(); nm]; nt],
+            work: vec![vec![Work::default(); nm]; nt],
+            ceiling: vec![(0, 0); nt],
+            disabled: vec![0; nm],
+            certified: tiles.iter().map(|&s| CertifiedRow { setting, tile: s, ..Default::default() }).collect(),
+        }
+    }
+    /// One triangle's contribution added.
+    fn add(&mut self, r: &TriCounts, tiles: &[u32]) {
+        let sum = &mut self.summary;
+        sum.triangles += 1;
+        sum.whole_screen += r.whole_screen as u64;
+        sum.off_screen += r.off_screen as u64;
+        sum.samples_classified += r.classified;
+        sum.covered += r.covered;
+        sum.boundary += r.boundary;
+        sum.exact_fallbacks += r.exact;
+        if r.off_screen {
+            return;
+        }
+        for ti in 0..tiles.len() {
+            for (acc, x) in self.counts[ti].iter_mut().zip(&r.counts[ti]) {
+                acc.add(x);
+            }
+            for (acc, x) in self.work[ti].iter_mut().zip(&r.work[ti]) {
+                acc.add(x);
+            }
+            self.ceiling[ti].0 += r.ceiling[ti].0;
+            self.ceiling[ti].1 += r.ceiling[ti].1;
+        }
+        for (d, &x) in self.disabled.iter_mut().zip(&r.disabled) {
+            *d += x as u64;
+        }
+        for c in &r.certified {
+            let ti = tiles.iter().position(|&s| s == c.tile).unwrap();
+            self.certified[ti].add(c);
+        }
+    }
+    /// Two partial sums added.
+    fn merge(mut self, o: Sums) -> Sums {
+        let (a, b) = (&mut self.summary, &o.summary);
+        a.triangles += b.triangles;
+        a.whole_screen += b.whole_screen;
+        a.off_screen += b.off_screen;
+        a.samples_classified += b.samples_classified;
+        a.covered += b.covered;
+        a.boundary += b.boundary;
+        a.exact_fallbacks += b.exact_fallbacks;
+        for ti in 0..self.counts.len() {
+            for (acc, x) in self.counts[ti].iter_mut().zip(&o.counts[ti]) {
+                acc.add(x);
+            }
+            for (acc, x) in self.work[ti].iter_mut().zip(&o.work[ti]) {
+                acc.add(x);
+            }
+            self.ceiling[ti].0 += o.ceiling[ti].0;
+            self.ceiling[ti].1 += o.ceiling[ti].1;
+            self.certified[ti].add(&o.certified[ti]);
+        }
+        for (d, &x) in self.disabled.iter_mut().zip(&o.disabled) {
+            *d += x;
+        }
+        self
+    }
+}
+
+impl CertifiedRow {
+    /// The counts of `c` added (the STE bounds are computed from the sums at the end).
+    fn add(&mut self, c: &CertifiedRow) {
+        self.tiles += c.tiles;
+        self.undecided_tiles += c.undecided_tiles;
+        self.covered += c.covered;
+        self.tested_certified += c.tested_certified;
+        self.tested_sample_box += c.tested_sample_box;
+        self.boxes += c.boxes;
+    }
+}
+
 /// The coverage of the samples of a region (the union of a triangle's tiles of every
 /// size), pixel-major like the [`SampleTable`]; the pixels outside the footprint are
 /// not covered.
@@ -690,6 +811,8 @@ struct Scratch {
     rows: Vec<(usize, usize, usize)>,
     coverage: CoverageScratch,
     admit: AdmitScratch,
+    /// Buffers of [`region_pass`], kept from triangle to triangle.
+    passes: Vec<Vec<bool>>,
 }
 
 fn measure_triangle(
@@ -698,21 +821,16 @@ fn measure_triangle(
     tri: &Triangle,
     fp: Footprint,
     chosen: &[(usize, u64)],
-) -> TriCounts {
+    out: &mut TriCounts,
+) {
     let Ctx { methods, plan, cfg, table, setting } = *ctx;
     let (width, height) = (table.width, table.height);
     let nt = cfg.tiles.len();
-    let mut out = TriCounts {
-        counts: vec![vec![Counts::default(); methods.len()]; nt],
-        work: vec![vec![Work::default(); methods.len()]; nt],
-        ceiling: vec![(0, 0); nt],
-        disabled: vec![false; methods.len()],
-        ..Default::default()
-    };
+    out.reset(nt, methods.len());
     let r = match fp {
         Footprint::OffScreen => {
             out.off_screen = true;
-            return out;
+            return;
         }
         Footprint::WholeScreen => {
             out.whole_screen = true;
@@ -763,13 +881,16 @@ fn measure_triangle(
     // per-sample constraints taken once per sample of the region (`pass`).
     let mut fixed: Vec<Option<TileResult>> = Vec::with_capacity(preps.len());
     let mut pass: Vec<Option<Vec<bool>>> = Vec::with_capacity(preps.len());
+    let mut pool = std::mem::take(&mut scratch.passes);
     let any_tile = tile_of(&tile_pixels(r.x0 / cfg.tiles[0], r.y0 / cfg.tiles[0], cfg.tiles[0], width, height));
     for p in &preps {
         if p.tile_independent() {
             let a = p.tile(&any_tile);
             pass.push(match &a {
                 TileResult::Bounds(b) if !b.constraints.is_empty() => {
-                    Some(region_pass(&mut scratch.admit, &[&b.constraints], table, &local))
+                    let mut ps = pool.pop().unwrap_or_default();
+                    region_pass(&mut scratch.admit, &[&b.constraints], table, &local, &mut ps);
+                    Some(ps)
                 }
                 _ => None,
             });
@@ -872,7 +993,8 @@ fn measure_triangle(
     scratch.rows = rows;
     scratch.admit = admit;
     scratch.covered = local.covered;
-    out
+    pool.extend(pass.into_iter().flatten());
+    scratch.passes = pool;
 }
 
 /// The number of tiles of each size traversed for a footprint.
@@ -967,59 +1089,24 @@ pub fn measure_with(
         let fps: Vec<Footprint> = tris.iter().map(|t| footprint(t, w, h)).collect();
         let chosen = choose_certified(&fps, cfg, setting, w, h);
         let ctx = Ctx { methods, plan: &plan, cfg, table, setting };
-        let per: Vec<TriCounts> = tris
+        let nm = methods.len();
+        // Each worker keeps its buffers and its partial sums from triangle to triangle.
+        let sums = tris
             .par_iter()
             .zip(fps.par_iter())
             .zip(chosen.par_iter())
-            .map_init(Scratch::default, |scratch, ((t, &fp), ch)| {
-                let r = measure_triangle(&ctx, scratch, t, fp, ch);
-                pb.inc(1);
-                r
-            })
-            .collect();
-        // Merge in triangle order.
-        let nt = cfg.tiles.len();
-        let mut counts = vec![vec![Counts::default(); methods.len()]; nt];
-        let mut work = vec![vec![Work::default(); methods.len()]; nt];
-        let mut ceiling = vec![(0u64, 0u64); nt];
-        let mut disabled = vec![0u64; methods.len()];
-        let mut certified: Vec<CertifiedRow> =
-            cfg.tiles.iter().map(|&s| CertifiedRow { setting, tile: s, ..Default::default() }).collect();
-        let mut sum = SettingSummary { setting, triangles: tris.len() as u64, ..Default::default() };
-        for r in &per {
-            sum.whole_screen += r.whole_screen as u64;
-            sum.off_screen += r.off_screen as u64;
-            sum.samples_classified += r.classified;
-            sum.covered += r.covered;
-            sum.boundary += r.boundary;
-            sum.exact_fallbacks += r.exact;
-            if r.off_screen {
-                continue;
-            }
-            for ti in 0..nt {
-                for (acc, x) in counts[ti].iter_mut().zip(&r.counts[ti]) {
-                    acc.add(x);
-                }
-                for (acc, x) in work[ti].iter_mut().zip(&r.work[ti]) {
-                    acc.add(x);
-                }
-                ceiling[ti].0 += r.ceiling[ti].0;
-                ceiling[ti].1 += r.ceiling[ti].1;
-            }
-            for (d, &x) in disabled.iter_mut().zip(&r.disabled) {
-                *d += x as u64;
-            }
-            for c in &r.certified {
-                let ti = cfg.tiles.iter().position(|&s| s == c.tile).unwrap();
-                let acc = &mut certified[ti];
-                acc.tiles += c.tiles;
-                acc.undecided_tiles += c.undecided_tiles;
-                acc.covered += c.covered;
-                acc.tested_certified += c.tested_certified;
-                acc.tested_sample_box += c.tested_sample_box;
-                acc.boxes += c.boxes;
-            }
-        }
+            .fold(
+                || (Scratch::default(), TriCounts::default(), Sums::new(setting, &cfg.tiles, nm)),
+                |(mut scratch, mut tc, mut acc), ((t, &fp), ch)| {
+                    measure_triangle(&ctx, &mut scratch, t, fp, ch, &mut tc);
+                    acc.add(&tc, &cfg.tiles);
+                    pb.inc(1);
+                    (scratch, tc, acc)
+                },
+            )
+            .map(|(_, _, acc)| acc)
+            .reduce(|| Sums::new(setting, &cfg.tiles, nm), Sums::merge);
+        let Sums { summary: sum, counts, work, ceiling, disabled, certified } = sums;
         for (ti, &s) in cfg.tiles.iter().enumerate() {
             for (mi, meth) in methods.iter().enumerate() {
                 let info = meth.info();
