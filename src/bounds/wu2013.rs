@@ -229,6 +229,12 @@
 //! no STE figure sees. The real loss is the fallbacks: no lines where the vertices cross
 //! in opposite directions (the hull still gives t^), and no lens bound on an axis where
 //! a CoC changes sign in the shutter.
+//! Over a grid of tiles (`grid.rs`, [`Prepared::grid`]) both methods share the axis
+//! work: `wu2013-safe` computes the vertices' column parts, lens crossings and line ends
+//! once per column (row) boundary, the lens range, crossing hull parts and lines once per
+//! column (row), and per tile only meets the row's hull and lines with the column's time
+//! range (`wu2013`: lens ranges and lines per column and row, the lines' time ranges per
+//! tile).
 
 use super::*;
 
