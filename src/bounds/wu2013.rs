@@ -229,6 +229,12 @@
 //! no STE figure sees. The real loss is the fallbacks: no lines where the vertices cross
 //! in opposite directions (the hull still gives t^), and no lens bound on an axis where
 //! a CoC changes sign in the shutter.
+//! Over a grid of tiles (`grid.rs`, [`Prepared::grid`]) both methods share the axis
+//! work: `wu2013-safe` computes the vertices' column parts, lens crossings and line ends
+//! once per column (row) boundary, the lens range, crossing hull parts and lines once per
+//! column (row), and per tile only meets the row's hull and lines with the column's time
+//! range (`wu2013`: lens ranges and lines per column and row, the lines' time ranges per
+//! tile).
 
 use super::*;
 
@@ -475,6 +481,11 @@ impl Prepared for Prep {
         b.constraints = cons;
         TileResult::Bounds(b)
     }
+    /// Each axis's lens range and lines read its own tile edges only: computed once per
+    /// column and once per row ([`grid::PublishedGrid`]).
+    fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
+        Box::new(grid::PublishedGrid::new(self, grid))
+    }
     fn disabled(&self) -> Option<&'static str> {
         self.disabled
     }
@@ -676,6 +687,12 @@ type Crossing = (bool, f32, f32);
 /// z in `[min_I m, inf) u (-inf, max_J hi]`; the intersection is the union of the four
 /// intervals below (exact comparisons, no rounding).
 fn sign_hull(items: &[Crossing], dom: [f32; 2]) -> Option<[f32; 2]> {
+    hull_within(&sign_parts(items), dom)
+}
+
+/// The four intervals of [`sign_hull`] before they meet the domain (they depend on the
+/// crossings only: a grid computes them once per column or row).
+fn sign_parts(items: &[Crossing]) -> [[f32; 2]; 4] {
     let inf = f32::INFINITY;
     let (mut mi, mut hi_i, mut mj, mut hi_j) = (inf, -inf, inf, -inf);
     for &(inc, m, h) in items {
@@ -687,9 +704,13 @@ fn sign_hull(items: &[Crossing], dom: [f32; 2]) -> Option<[f32; 2]> {
             hi_j = hi_j.max(h);
         }
     }
-    let parts = [[mi, hi_i], [-inf, hi_i.min(hi_j)], [mj.max(mi), inf], [mj, hi_j]];
+    [[mi, hi_i], [-inf, hi_i.min(hi_j)], [mj.max(mi), inf], [mj, hi_j]]
+}
+
+/// The hull of the parts of [`sign_parts`] within `dom`, or `None` if none meets it.
+fn hull_within(parts: &[[f32; 2]; 4], dom: [f32; 2]) -> Option<[f32; 2]> {
     let mut out: Option<[f32; 2]> = None;
-    for [a, b] in parts {
+    for &[a, b] in parts {
         let (a, b) = (a.max(dom[0]), b.min(dom[1]));
         if a <= b {
             out = Some(out.map_or([a, b], |o| [o[0].min(a), o[1].max(b)]));
@@ -719,19 +740,44 @@ impl SafeAxis {
     /// (the sign of `c_k`). None (no lens bound) when a CoC is not of one strict sign
     /// over the shutter, or a value is not finite.
     fn lens_crossings(&self, s0: f32, s1: f32) -> Option<[Crossing; 3]> {
-        let mut out = [(false, 0.0, 0.0); 3];
+        let inc = self.lens_directions()?;
+        let at = [s0, s1].map(|s| self.lens_at(s));
+        Self::lens_crossings_from(inc, [&at[0], &at[1]])
+    }
+
+    /// Per vertex, the direction of `delta_k` in the lens coordinate (true: increasing,
+    /// `c_k > 0`), or None when some CoC is not of one strict sign over the shutter
+    /// (stage 1 then gives no lens bound on this axis, for every tile).
+    fn lens_directions(&self) -> Option<[bool; 3]> {
+        let mut out = [false; 3];
         for (a, o) in self.v.iter().zip(out.iter_mut()) {
-            let inc = if a.c0.pos() && a.c1.pos() {
+            *o = if a.c0.pos() && a.c1.pos() {
                 true
             } else if a.c0.neg() && a.c1.neg() {
                 false
             } else {
                 return None;
             };
+        }
+        Some(out)
+    }
+
+    /// Per vertex, the enclosures of its lens crossing `u_k(X, t)` at column `X = s`,
+    /// at t = 0 and t = 1 (they read one column boundary only).
+    fn lens_at(&self, s: f32) -> [[Iv; 2]; 3] {
+        self.v.map(|a| [(a.p0, a.w0, a.c0), (a.p1, a.w1, a.c1)].map(|(p, w, c)| Iv::pt_mul(s, w).sub(Iv::pt(p)).div(c)))
+    }
+
+    /// [`lens_crossings`](Self::lens_crossings) from the directions and the values at
+    /// the two boundaries `at` (left, right): per vertex the extremes over the shutter
+    /// ends and the two columns, None if a value is not finite.
+    fn lens_crossings_from(inc: [bool; 3], at: [&[[Iv; 2]; 3]; 2]) -> Option<[Crossing; 3]> {
+        let mut out = [(false, 0.0, 0.0); 3];
+        for (k, o) in out.iter_mut().enumerate() {
             let (mut m, mut h) = (f32::INFINITY, f32::NEG_INFINITY);
-            for (p, w, c) in [(a.p0, a.w0, a.c0), (a.p1, a.w1, a.c1)] {
-                for s in [s0, s1] {
-                    let l = Iv::pt_mul(s, w).sub(Iv::pt(p)).div(c);
+            for end in 0..2 {
+                for side in at {
+                    let l = side[k][end];
                     if !l.ok() {
                         return None;
                     }
@@ -739,7 +785,7 @@ impl SafeAxis {
                     h = h.max(l.hi);
                 }
             }
-            *o = (inc, m, h);
+            *o = (inc[k], m, h);
         }
         Some(out)
     }
@@ -780,39 +826,65 @@ impl SafeAxis {
     /// share one strict sign on columns [s0, s1] (`cols`) x lens [-1, 1] (the guarded condition).
     /// Upper endpoints are upper ends of the enclosures, lower endpoints lower ends.
     fn lines(&self, cols: &Columns) -> Option<Lines> {
+        let mut ends = [[None; 2]; 3];
+        for ((a, ac), e) in self.v.iter().zip(cols).zip(ends.iter_mut()) {
+            *e = ac.map(|col| a.line_ends(col));
+        }
+        Self::lines_from(&ends)
+    }
+
+    /// [`lines`](Self::lines) from each vertex's [`SafeVertex::line_ends`] at the two
+    /// columns (`ends[vertex][side]`): None unless every one is there and all share
+    /// one sign of D; the upper endpoints are their maxima, the lower ones their minima.
+    fn lines_from(ends: &[[Option<LineEnds>; 2]; 3]) -> Option<Lines> {
         let mut out = Lines { ul: f32::NEG_INFINITY, ur: f32::NEG_INFINITY, ll: f32::INFINITY, lr: f32::INFINITY };
         let (mut pos, mut neg) = (false, false);
-        for (a, ac) in self.v.iter().zip(cols) {
-            for &col in ac {
-                let (n0, d0) = a.nd_from(col, 0.0);
-                let (nm, dm) = a.nd_from(col, -1.0);
-                let (np, dp) = a.nd_from(col, 1.0);
-                for d in [dm, dp] {
-                    pos |= d.pos();
-                    neg |= d.neg();
-                    if !(d.pos() || d.neg()) {
-                        return None;
-                    }
-                }
+        for ve in ends {
+            for e in ve {
+                let (d_pos, [ul, ur, ll, lr]) = (*e)?;
+                pos |= d_pos;
+                neg |= !d_pos;
                 if pos && neg {
                     return None;
                 }
-                let (n1, d1) = (a.c0, a.dc);
-                let tm = nm.div(dm);
-                let tp = np.div(dp);
-                let tz = n0.div(d0);
-                let slope = n1.sub(tz.mul(d1)).div(d0);
-                let (gm, gp) = (tz.sub(slope), tz.add(slope));
-                if !(tm.ok() && tp.ok() && gm.ok() && gp.ok()) {
-                    return None;
-                }
-                out.ul = out.ul.max(tm.hi.max(gm.hi));
-                out.ur = out.ur.max(tp.hi.max(gp.hi));
-                out.ll = out.ll.min(tm.lo.min(gm.lo));
-                out.lr = out.lr.min(tp.lo.min(gp.lo));
+                out.ul = out.ul.max(ul);
+                out.ur = out.ur.max(ur);
+                out.ll = out.ll.min(ll);
+                out.lr = out.lr.min(lr);
             }
         }
         Some(out)
+    }
+}
+
+/// One vertex's part of the published lines at one column ([`SafeVertex::line_ends`]):
+/// the sign of D there (true: D > 0) and the upper ends at l = -1, +1, then the lower
+/// ends at l = -1, +1.
+type LineEnds = (bool, [f32; 4]);
+
+impl SafeVertex {
+    /// The vertex's chord and tangent enclosures at column `col` (its
+    /// [`at_column`](Self::at_column) parts) and l = -1, +1: the upper ends' maxima and
+    /// the lower ends' minima, with the sign of D. None when D is not of one strict sign
+    /// at l = -1 and +1, or a value is not finite. It reads one column boundary only.
+    fn line_ends(&self, col: (Iv, Iv)) -> Option<LineEnds> {
+        let (n0, d0) = self.nd_from(col, 0.0);
+        let (nm, dm) = self.nd_from(col, -1.0);
+        let (np, dp) = self.nd_from(col, 1.0);
+        let d_pos = dm.pos() && dp.pos();
+        if !(d_pos || (dm.neg() && dp.neg())) {
+            return None;
+        }
+        let (n1, d1) = (self.c0, self.dc);
+        let tm = nm.div(dm);
+        let tp = np.div(dp);
+        let tz = n0.div(d0);
+        let slope = n1.sub(tz.mul(d1)).div(d0);
+        let (gm, gp) = (tz.sub(slope), tz.add(slope));
+        if !(tm.ok() && tp.ok() && gm.ok() && gp.ok()) {
+            return None;
+        }
+        Some((d_pos, [tm.hi.max(gm.hi), tp.hi.max(gp.hi), tm.lo.min(gm.lo), tp.lo.min(gp.lo)]))
     }
 }
 
@@ -843,24 +915,67 @@ pub(crate) fn safe_line(lens: Lens, upper: bool, e_left: f32, e_right: f32) -> O
 /// The safe lines' time range over lens range `l` and the constraints worth keeping
 /// (the same choice as [`apply_lines`]).
 fn apply_safe_lines(ln: Lines, lens: Lens, l: [f32; 2], t: &mut [f32; 2], cons: &mut Vec<Box<dyn SampleConstraint>>) {
+    let cut = safe_line_cut(ln, lens, l);
+    cut.bound(t);
+    cut.push(cons);
+}
+
+/// What one axis's safe lines do to a tile over lens range `l` ([`apply_safe_lines`]):
+/// the bound each puts on t and the constraint it keeps. It reads the axis only (the
+/// lines, and the lens range of stage 1): a grid computes it once per column or row.
+#[derive(Clone, Copy, Debug, Default)]
+struct LineCut {
+    /// The upper line's maximum over `l` (t is at most that), and its constraint.
+    below: Option<f32>,
+    upper: Option<TimeLine>,
+    /// The lower line's minimum over `l` (t is at least that), and its constraint.
+    above: Option<f32>,
+    lower: Option<TimeLine>,
+}
+
+fn safe_line_cut(ln: Lines, lens: Lens, l: [f32; 2]) -> LineCut {
     let at = |c: &TimeLine, x: f32| Iv::pt_mul(c.a, x).add(Iv::pt(c.b));
+    let mut cut = LineCut::default();
     if let Some(c) = safe_line(lens, true, ln.ul, ln.ur) {
         let (e0, e1) = (at(&c, l[0]), at(&c, l[1]));
         if e0.ok() && e1.ok() {
-            t[1] = t[1].min(e0.hi.max(e1.hi));
+            cut.below = Some(e0.hi.max(e1.hi));
             if c.a != 0.0 && e0.lo.min(e1.lo) < 1.0 {
-                cons.push(Box::new(c));
+                cut.upper = Some(c);
             }
         }
     }
     if let Some(c) = safe_line(lens, false, ln.ll, ln.lr) {
         let (e0, e1) = (at(&c, l[0]), at(&c, l[1]));
         if e0.ok() && e1.ok() {
-            t[0] = t[0].max(e0.lo.min(e1.lo));
+            cut.above = Some(e0.lo.min(e1.lo));
             if c.a != 0.0 && e0.hi.max(e1.hi) > 0.0 {
-                cons.push(Box::new(c));
+                cut.lower = Some(c);
             }
         }
+    }
+    cut
+}
+
+impl LineCut {
+    /// Narrow the time range `t` by the lines.
+    fn bound(&self, t: &mut [f32; 2]) {
+        if let Some(h) = self.below {
+            t[1] = t[1].min(h);
+        }
+        if let Some(l) = self.above {
+            t[0] = t[0].max(l);
+        }
+    }
+    /// Append the kept constraints (upper line first).
+    fn push(&self, cons: &mut Vec<Box<dyn SampleConstraint>>) {
+        for c in [self.upper, self.lower].into_iter().flatten() {
+            cons.push(Box::new(c));
+        }
+    }
+    /// How many constraints [`push`](Self::push) appends.
+    fn count(&self) -> usize {
+        self.upper.is_some() as usize + self.lower.is_some() as usize
     }
 }
 
@@ -911,6 +1026,12 @@ impl Prepared for SafePrep {
         b.t = t;
         b.constraints = cons;
         TileResult::Bounds(b)
+    }
+    /// Everything but the meeting of the axes' time ranges reads one axis only:
+    /// computed once per column boundary, column, row boundary and row
+    /// ([`grid::SafeGrid`]).
+    fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
+        Box::new(grid::SafeGrid::new(self, grid))
     }
     fn disabled(&self) -> Option<&'static str> {
         self.disabled
@@ -968,6 +1089,8 @@ impl Method for Wu2013Safe {
 
 /// `wu2013-safe`: outward-rounded and corrected (see the module doc).
 pub static METHOD_SAFE: &dyn Method = &Wu2013Safe;
+
+mod grid;
 
 #[cfg(test)]
 mod safe_old;
