@@ -272,7 +272,7 @@ pub trait Prepared: Send + Sync {
     /// The answers for every tile of `grid`, [`TileGrid::tile`]`(i, j)` being exactly
     /// [`tile`](Self::tile) of [`Grid::tile`]`(i, j)`, bit for bit. The default asks
     /// `tile` tile by tile; a test that splits into a part per column and a part per row
-    /// overrides it to compute each part once for the whole grid (see [`grid`](mod@grid)).
+    /// overrides it to compute each part once for the whole grid.
     fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
         Box::new(PerTile { prep: self, grid })
     }
