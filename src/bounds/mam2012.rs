@@ -592,6 +592,61 @@ impl Prepared for Prep {
     fn disabled(&self) -> Option<&'static str> {
         self.0.as_ref().err().copied()
     }
+    /// The u answer reads only the tile's x sides (the u patches at the column's centre
+    /// and half width), the v answer only its y sides: each is computed once per column
+    /// and once per row (by [`axis_tile`], as [`tile`](Self::tile) does), and a tile
+    /// joins its column's and its row's. A disabled test answers full bounds tile by tile.
+    fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
+        let Ok(s) = &self.0 else {
+            return Box::new(PerTile { prep: self, grid });
+        };
+        let cols = (0..grid.columns()).map(|i| AxisLines::of(&s.u, false, grid.column(i))).collect();
+        let rows = (0..grid.rows()).map(|j| AxisLines::of(&s.v, true, grid.row(j))).collect();
+        Box::new(LinesGrid { cols, rows })
+    }
+}
+
+/// One axis's part of a `mam2012` tile answer: the lens range and the lines that are
+/// emitted, in the order [`tile`](Prep::tile) pushes them (lower, upper).
+#[derive(Clone, Copy)]
+struct AxisLines {
+    range: [f32; 2],
+    lines: [Option<Line>; 2],
+}
+
+impl AxisLines {
+    /// The answer of the axis's patches over the tile sides `[a0, a1]` (x for u, y for
+    /// v), or None when its lens range is empty (the tile is Empty). The centre and half
+    /// width come from [`centre`], which reads only the sides of their own axis.
+    fn of(ax: &Axis<f32, bool>, is_v: bool, [a0, a1]: [f32; 2]) -> Option<AxisLines> {
+        let k = is_v as usize;
+        let mut sides = [0.0; 4];
+        (sides[k], sides[k + 2]) = (a0, a1);
+        let (c, h) = centre(&Plain, &sides);
+        let (nonempty, range, lines) = axis_tile(&Plain, ax, &c[k], &h[k]);
+        let line = |upper: bool, (ok, a, b): LineOf<f32, bool>| ok.then_some(Line { is_v, upper, a, b });
+        let [lo, hi] = lines;
+        nonempty.then_some(AxisLines { range, lines: [line(false, lo), line(true, hi)] })
+    }
+}
+
+/// [`Prep::grid`]: per column the u part of the answer, per row the v part; per tile
+/// only the check of both and the tile's own constraints (u lines, then v lines).
+struct LinesGrid {
+    cols: Vec<Option<AxisLines>>,
+    rows: Vec<Option<AxisLines>>,
+}
+
+impl TileGrid for LinesGrid {
+    fn tile(&self, i: usize, j: usize) -> TileResult {
+        // `tile` answers Empty on the u axis before it looks at v.
+        let (Some(u), Some(v)) = (&self.cols[i], &self.rows[j]) else {
+            return TileResult::Empty;
+        };
+        let lines = u.lines.iter().chain(&v.lines).flatten();
+        let constraints = lines.map(|&l| Box::new(l) as Box<dyn SampleConstraint>).collect();
+        TileResult::Bounds(TileBounds { u: u.range, v: v.range, constraints, ..TileBounds::full() })
+    }
 }
 
 /// A closed f32 interval `[lo, hi]` holding an exact real value: every operation rounds
@@ -892,70 +947,128 @@ impl SampleConstraint for SafeLine {
     }
 }
 
+/// One axis's part of a `mam2012-safe` tile answer, from that axis's tile sides only.
+#[derive(Clone, Copy, Debug)]
+enum SafeAxisAnswer {
+    /// A NaN or reversed pair of sides: the tile answers the whole domain.
+    Full,
+    /// No covered sample (beside the enclosed extent, or an empty lens range).
+    Empty,
+    /// The lens range and the lines emitted (lower, upper).
+    Kept([f32; 2], [Option<SafeLine>; 2]),
+}
+
+impl SafeAxis {
+    /// The answer of this axis's patches (`is_v`: the v axis) over the tile sides
+    /// `[t0, t1]` on that axis (x for u, y for v).
+    fn answer(&self, is_v: bool, t0: f32, t1: f32) -> SafeAxisAnswer {
+        // A NaN or reversed tile: answer the whole domain.
+        if t0.partial_cmp(&t1).is_none_or(|o| o == std::cmp::Ordering::Greater) {
+            return SafeAxisAnswer::Full;
+        }
+        // Covered columns lie in the enclosed extent: clamp the tile to it; a tile
+        // beside it holds no covered sample.
+        let (x0, x1) = (t0.max(self.dom[0]), t1.min(self.dom[1]));
+        if x0 > x1 {
+            return SafeAxisAnswer::Empty;
+        }
+        let ends = |p: Option<SafePatch>, upper: bool| {
+            let p = p?;
+            let e = |k: usize| {
+                let r = p.range(x0, x1, k);
+                if upper {
+                    r.hi
+                } else {
+                    r.lo
+                }
+            };
+            let l = [e(0), e(1)];
+            (l[0].is_finite() && l[1].is_finite()).then_some(l)
+        };
+        let (lo, hi) = (ends(self.lo, false), ends(self.hi, true));
+        let r_lo = lo.map_or(-1.0, |l| l[0].min(l[1]).max(-1.0));
+        let r_hi = hi.map_or(1.0, |l| l[0].max(l[1]).min(1.0));
+        if r_lo > r_hi {
+            return SafeAxisAnswer::Empty;
+        }
+        let line = |upper: bool, l: Option<[f32; 2]>| {
+            let l = l?;
+            // The slope rounded outward (the line then lies outside the exact one on t in
+            // [0, 1]) and the intercept moved out by LINE_PAD (a rounded difference with a
+            // representable l[0] never crosses l[0]).
+            let (a, b) = if upper {
+                ((l[1] - l[0]).next_up(), l[0] + LINE_PAD)
+            } else {
+                ((l[1] - l[0]).next_down(), l[0] - LINE_PAD)
+            };
+            (a.is_finite() && b.is_finite()).then_some(SafeLine(Line { is_v, upper, a, b }))
+        };
+        SafeAxisAnswer::Kept([r_lo, r_hi], [line(false, lo), line(true, hi)])
+    }
+}
+
+/// A tile's answer from its u part and its v part (the u part first: a u part that is
+/// Full or Empty decides before the v part is looked at).
+fn join_safe(u: &SafeAxisAnswer, v: &SafeAxisAnswer) -> TileResult {
+    let mut out = TileBounds::full();
+    for (is_v, part) in [(false, u), (true, v)] {
+        let (range, lines) = match part {
+            SafeAxisAnswer::Full => return TileResult::Bounds(TileBounds::full()),
+            SafeAxisAnswer::Empty => return TileResult::Empty,
+            SafeAxisAnswer::Kept(range, lines) => (range, lines),
+        };
+        if is_v {
+            out.v = *range;
+        } else {
+            out.u = *range;
+        }
+        for l in lines.iter().flatten() {
+            out.constraints.push(Box::new(*l));
+        }
+    }
+    TileResult::Bounds(out)
+}
+
 impl Prepared for PrepSafe {
     fn tile(&self, tile: &Tile) -> TileResult {
         let axes = match &self.0 {
             Ok(s) => s,
             Err(_) => return TileResult::Bounds(TileBounds::full()),
         };
-        let mut out = TileBounds::full();
-        for (is_v, ax, t0, t1) in [(false, &axes[0], tile.x0, tile.x1), (true, &axes[1], tile.y0, tile.y1)] {
-            // A NaN or reversed tile: answer the whole domain.
-            if t0.partial_cmp(&t1).is_none_or(|o| o == std::cmp::Ordering::Greater) {
-                return TileResult::Bounds(TileBounds::full());
-            }
-            // Covered columns lie in the enclosed extent: clamp the tile to it; a tile
-            // beside it holds no covered sample.
-            let (x0, x1) = (t0.max(ax.dom[0]), t1.min(ax.dom[1]));
-            if x0 > x1 {
-                return TileResult::Empty;
-            }
-            let ends = |p: Option<SafePatch>, upper: bool| {
-                let p = p?;
-                let e = |k: usize| {
-                    let r = p.range(x0, x1, k);
-                    if upper {
-                        r.hi
-                    } else {
-                        r.lo
-                    }
-                };
-                let l = [e(0), e(1)];
-                (l[0].is_finite() && l[1].is_finite()).then_some(l)
-            };
-            let (lo, hi) = (ends(ax.lo, false), ends(ax.hi, true));
-            let r_lo = lo.map_or(-1.0, |l| l[0].min(l[1]).max(-1.0));
-            let r_hi = hi.map_or(1.0, |l| l[0].max(l[1]).min(1.0));
-            if r_lo > r_hi {
-                return TileResult::Empty;
-            }
-            if is_v {
-                out.v = [r_lo, r_hi];
-            } else {
-                out.u = [r_lo, r_hi];
-            }
-            for (upper, l) in [(false, lo), (true, hi)] {
-                if let Some(l) = l {
-                    // The slope rounded outward (the line then lies outside the exact one
-                    // on t in [0, 1]) and the intercept moved out by LINE_PAD (a rounded
-                    // difference with a representable l[0] never crosses l[0]).
-                    let (a, b) = if upper {
-                        ((l[1] - l[0]).next_up(), l[0] + LINE_PAD)
-                    } else {
-                        ((l[1] - l[0]).next_down(), l[0] - LINE_PAD)
-                    };
-                    if a.is_finite() && b.is_finite() {
-                        out.constraints.push(Box::new(SafeLine(Line { is_v, upper, a, b })));
-                    }
-                }
-            }
-        }
-        TileResult::Bounds(out)
+        join_safe(&axes[0].answer(false, tile.x0, tile.x1), &axes[1].answer(true, tile.y0, tile.y1))
     }
     fn disabled(&self) -> Option<&'static str> {
         self.0.as_ref().err().copied()
     }
+    /// The u part of the answer reads only the tile's x sides, the v part only its y
+    /// sides ([`SafeAxis::answer`]): each is computed once per column and once per row,
+    /// and a tile joins its column's and its row's as [`tile`](Self::tile) does. A
+    /// disabled test answers full bounds tile by tile.
+    fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
+        let Ok([u, v]) = &self.0 else {
+            return Box::new(PerTile { prep: self, grid });
+        };
+        let cols = (0..grid.columns()).map(|i| u.answer(false, grid.xs[i], grid.xs[i + 1])).collect();
+        let rows = (0..grid.rows()).map(|j| v.answer(true, grid.ys[j], grid.ys[j + 1])).collect();
+        Box::new(SafeGrid { cols, rows })
+    }
 }
+
+/// [`PrepSafe::grid`]: per column the u part of the answer, per row the v part; per tile
+/// only their join ([`join_safe`]: the check of both and the tile's own constraints).
+struct SafeGrid {
+    cols: Vec<SafeAxisAnswer>,
+    rows: Vec<SafeAxisAnswer>,
+}
+
+impl TileGrid for SafeGrid {
+    fn tile(&self, i: usize, j: usize) -> TileResult {
+        join_safe(&self.cols[i], &self.rows[j])
+    }
+}
+
+#[cfg(test)]
+mod safe_old;
 
 #[cfg(test)]
 mod tests {
@@ -1573,5 +1686,57 @@ mod tests {
         };
         assert_eq!(b.constraints.len(), 4);
         super::super::testkit::assert_eval_box_encloses(&b, &Tile::square(0.0, 0.0, 1.0), 6);
+    }
+
+    // ---- grids ----
+
+    /// `mam2012-safe`'s tile answer is its old code's (`safe_old`, kept verbatim from
+    /// before the per-axis part became [`SafeAxis::answer`]) bit for bit, on the stress
+    /// stream (physical cases on boundary tiles, wild triangles, planted NaN, infinities,
+    /// signed zeros, f32::MAX and subnormals).
+    #[test]
+    fn safe_tile_is_its_old_code_bit_for_bit() {
+        let (mut culled, mut kept, mut lines) = (0, 0, 0);
+        for n in 0..20_000usize {
+            let (tri, tiles) = crate::gen::bit_compare_case(0x3a3_2012, n);
+            let (p, setup) = (METHOD_SAFE.setup(&tri), setup_safe(&tri));
+            for tile in &tiles {
+                let (new, old) = (p.tile(tile), safe_old::answer(&setup, tile));
+                assert_eq!(format!("{new:?}"), format!("{old:?}"), "case {n}: {tri:?} {tile:?}");
+                match new {
+                    TileResult::Empty => culled += 1,
+                    TileResult::Bounds(b) => {
+                        kept += (b.u != [-1.0, 1.0] || b.v != [-1.0, 1.0]) as usize;
+                        lines += !b.constraints.is_empty() as usize;
+                    }
+                }
+            }
+        }
+        assert!(culled > 1000 && kept > 1000 && lines > 500, "{culled} culled, {kept} narrowed, {lines} with lines");
+    }
+
+    /// Over 1-px grids covering the spot-check cases' footprints (as the tightness
+    /// harness asks), both methods' grid answers are their tile answers, lines included.
+    #[test]
+    fn grid_of_footprints_is_the_tile_answers() {
+        let mut lines = 0;
+        for (tri, tiles) in cases() {
+            let t = tiles[0];
+            let xs: Vec<f32> = (-24..=24).map(|k| t.x0 + k as f32).collect();
+            let ys: Vec<f32> = (-16..=16).map(|k| t.y0 + k as f32).collect();
+            let grid = Grid::new(&xs, &ys);
+            for m in [METHOD, METHOD_SAFE] {
+                let p = m.setup(&tri);
+                let g = p.grid(grid);
+                for j in 0..grid.rows() {
+                    for i in 0..grid.columns() {
+                        let (want, got) = (p.tile(&grid.tile(i, j)), g.tile(i, j));
+                        assert_eq!(format!("{got:?}"), format!("{want:?}"), "{} tile ({i}, {j})", m.info().id);
+                        lines += matches!(want, TileResult::Bounds(b) if !b.constraints.is_empty()) as usize;
+                    }
+                }
+            }
+        }
+        assert!(lines > 1000, "{lines}");
     }
 }
