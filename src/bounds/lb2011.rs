@@ -181,6 +181,13 @@
 //! fractions of tile samples admitted agree with `lb2011` to 1e-5 in every regime (far
 //! from the origin `lb2011-safe` admits slightly fewer: the FMA is more accurate than
 //! `lb2011`'s rounded product).
+//!
+//! # Grids
+//! Each axis's corner values, patch ranges and patches read only that axis's two tile
+//! edges, so over a grid of tiles ([`Prepared::grid`]) they are computed once per column
+//! (x, u) and once per row (y, v); a tile meets its column's t with its row's two t
+//! ranges in the order `tile` uses and boxes the two axes' patches (`PatchGrid`). Both
+//! variants; the answers are `tile`'s bit for bit (`grid_tests.rs`).
 
 use super::la2011::chord_nonpos;
 use super::*;

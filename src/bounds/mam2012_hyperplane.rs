@@ -223,6 +223,16 @@
 //! (0.735 -> 0.789, where the original culls covered samples in 148 of 600 cases) and on
 //! degenerate triangles (0.897 -> 0.912: zero area at a shutter end, where the original's
 //! f32 facing "proves" a sign that intervals cannot).
+//!
+//! # Grids
+//! Over a grid of tiles ([`Prepared::grid`]) the terms of the plane and of the tile
+//! tests that read one axis of the tile only are computed once per column and once per
+//! row: for the published variants the products with the tile's centre and half extent
+//! of that axis (`PlainGrid`), for `-safe` the interval products of `plane_safe` with
+//! that axis's range, kept as the one end each later sum reads, `alpha` or `beta` with
+//! its radius, and the axis's corner term of `m_xy` (`SafeGrid`). A tile forms the sums
+//! that mix x and y with the same operations in the same order as `tile`, so the answers
+//! are `tile`'s bit for bit (`grid_tests.rs`).
 
 use super::*;
 use crate::symbolic::arith::{tile_of, F32Arith, Plain};
