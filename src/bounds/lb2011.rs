@@ -614,6 +614,9 @@ static INFO_SAFE: MethodInfo = MethodInfo {
 pub static METHOD_SAFE: &dyn Method = &Lb2011 { info: &INFO_SAFE, arith: &SAFE };
 
 #[cfg(test)]
+mod grid_cases;
+
+#[cfg(test)]
 mod tests {
     use super::super::la2011::{cases, figure1};
     use super::super::testkit::{

@@ -1388,6 +1388,9 @@ impl TileGrid for SafeGrid<'_> {
 }
 
 #[cfg(test)]
+mod grid_cases;
+
+#[cfg(test)]
 mod tests {
     use super::super::testkit::{assert_keeps_covered, near_miss_check, random_sample, spot_check};
     use super::*;
