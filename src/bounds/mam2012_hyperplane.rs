@@ -846,6 +846,7 @@ impl Prepared for Prep {
         Box::new(PlainGrid {
             s,
             per_sample: self.per_sample,
+            // `plane_of`'s third dot-product terms (times the centre's literal 1, as there).
             z: s.edges.map(|e| [e.n12[2] * 1.0, e.n2[2] * 1.0]),
             cols: (0..grid.columns()).map(|i| PlainGrid::axis(s, 0, grid.column(i))).collect(),
             rows: (0..grid.rows()).map(|j| PlainGrid::axis(s, 1, grid.row(j))).collect(),
