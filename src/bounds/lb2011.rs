@@ -181,6 +181,13 @@
 //! fractions of tile samples admitted agree with `lb2011` to 1e-5 in every regime (far
 //! from the origin `lb2011-safe` admits slightly fewer: the FMA is more accurate than
 //! `lb2011`'s rounded product).
+//!
+//! # Grids
+//! Each axis's corner values, patch ranges and patches read only that axis's two tile
+//! edges, so over a grid of tiles ([`Prepared::grid`]) they are computed once per column
+//! (x, u) and once per row (y, v); a tile meets its column's t with its row's two t
+//! ranges in the order `tile` uses and boxes the two axes' patches (`PatchGrid`). Both
+//! variants; the answers are `tile`'s bit for bit (`grid_tests.rs`).
 
 use super::la2011::chord_nonpos;
 use super::*;
@@ -482,6 +489,86 @@ impl Prepared for Prep {
         }
         TileResult::Bounds(out)
     }
+    /// Each axis's corners, patch ranges and patches read only its own two tile edges:
+    /// computed once per column (x) and once per row (y), then met per tile in
+    /// [`tile`](Self::tile)'s order (see [`PatchGrid`]).
+    fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
+        let x = ["x1 patch (min delta, u-t)", "x0 patch (max delta, u-t)"];
+        let y = ["y1 patch (min eps, v-t)", "y0 patch (max eps, v-t)"];
+        let cols = (0..grid.columns()).map(|i| self.axis_part(&self.x, grid.column(i), Lens::U, x)).collect();
+        let rows = (0..grid.rows()).map(|j| self.axis_part(&self.y, grid.row(j), Lens::V, y)).collect();
+        Box::new(PatchGrid { cols, rows })
+    }
+}
+
+impl Prep {
+    /// One axis's part of [`tile`](Prepared::tile) for the edges `[lo, hi]` of a column
+    /// (or row), in the same operations: None when a patch proves the tile Empty.
+    fn axis_part(&self, ax: &Axis, [lo, hi]: [f32; 2], lens: Lens, names: [&'static str; 2]) -> Option<AxisPart> {
+        let ar = self.arith;
+        let full = TileBounds::full();
+        let mut part = AxisPart { t: full.t, ts: None, l: full.u, patches: Vec::new() };
+        let Some([mn, mx]) = (ar.corners)(ax, lo, hi) else {
+            return Some(part);
+        };
+        let gs = [mn.map(|r| r.map(|v| -v)), mx];
+        let mut ts = [[0.0; 2]; 2];
+        for ((g, name), tr) in gs.into_iter().zip(names).zip(&mut ts) {
+            let (t, l) = patch_ranges(ar, g)?;
+            *tr = t;
+            part.t = [part.t[0].max(t[0]), part.t[1].min(t[1])];
+            part.l = [part.l[0].max(l[0]), part.l[1].min(l[1])];
+            part.patches.extend((ar.patch)(name, lens, g));
+        }
+        part.ts = Some(ts);
+        Some(part)
+    }
+}
+
+/// One column's (x, u) or one row's (y, v) part of a tile answer ([`Prep::axis_part`]).
+struct AxisPart {
+    /// `[0, 1]` met with the axis's two patches' t ranges, in order (a column's share of
+    /// the tile's t: x comes first).
+    t: [f32; 2],
+    /// The two patches' t ranges themselves (a row's share, met after x's), or None when
+    /// the axis's corners are None (it gives nothing).
+    ts: Option<[[f32; 2]; 2]>,
+    /// `[-1, 1]` met with the two patches' lens ranges, in order: the tile's u (column)
+    /// or v (row).
+    l: [f32; 2],
+    /// The patches the axis emits, in order.
+    patches: Vec<Patch>,
+}
+
+/// [`Prep::grid`]: per column the x part and per row the y part ([`AxisPart`]; None:
+/// that axis proves every tile of its column / row Empty, as [`tile`](Prepared::tile)'s
+/// early return does whichever axis it comes from). Per tile only: the column's t met
+/// with the row's two t ranges (f32 `max` / `min` in [`tile`](Prepared::tile)'s order:
+/// x's ranges, then y's), the emptiness check and the boxed patches (x's, then y's).
+struct PatchGrid {
+    cols: Vec<Option<AxisPart>>,
+    rows: Vec<Option<AxisPart>>,
+}
+
+impl TileGrid for PatchGrid {
+    fn tile(&self, i: usize, j: usize) -> TileResult {
+        let (Some(x), Some(y)) = (&self.cols[i], &self.rows[j]) else {
+            return TileResult::Empty;
+        };
+        let mut t = x.t;
+        for r in y.ts.iter().flatten() {
+            t = [t[0].max(r[0]), t[1].min(r[1])];
+        }
+        let (u, v) = (x.l, y.l);
+        if t[0] > t[1] || u[0] > u[1] || v[0] > v[1] {
+            return TileResult::Empty;
+        }
+        let mut constraints: Vec<Box<dyn SampleConstraint>> = Vec::with_capacity(x.patches.len() + y.patches.len());
+        for &p in x.patches.iter().chain(&y.patches) {
+            constraints.push(Box::new(p));
+        }
+        TileResult::Bounds(TileBounds { u, v, t, z: None, constraints })
+    }
 }
 
 /// lb2011 or lb2011-safe: the same algorithm in another arithmetic.
@@ -525,6 +612,9 @@ static INFO_SAFE: MethodInfo = MethodInfo {
 
 /// `lb2011-safe`: lb2011 rounded outward (see the module's error analysis).
 pub static METHOD_SAFE: &dyn Method = &Lb2011 { info: &INFO_SAFE, arith: &SAFE };
+
+#[cfg(test)]
+mod grid_cases;
 
 #[cfg(test)]
 mod tests {

@@ -223,6 +223,16 @@
 //! (0.735 -> 0.789, where the original culls covered samples in 148 of 600 cases) and on
 //! degenerate triangles (0.897 -> 0.912: zero area at a shutter end, where the original's
 //! f32 facing "proves" a sign that intervals cannot).
+//!
+//! # Grids
+//! Over a grid of tiles ([`Prepared::grid`]) the terms of the plane and of the tile
+//! tests that read one axis of the tile only are computed once per column and once per
+//! row: for the published variants the products with the tile's centre and half extent
+//! of that axis (`PlainGrid`), for `-safe` the interval products of `plane_safe` with
+//! that axis's range, kept as the one end each later sum reads, `alpha` or `beta` with
+//! its radius, and the axis's corner term of `m_xy` (`SafeGrid`). A tile forms the sums
+//! that mix x and y with the same operations in the same order as `tile`, so the answers
+//! are `tile`'s bit for bit (`grid_tests.rs`).
 
 use super::*;
 use crate::symbolic::arith::{tile_of, F32Arith, Plain};
@@ -827,6 +837,21 @@ impl Prepared for Prep {
     fn disabled(&self) -> Option<&'static str> {
         self.s.as_ref().err().copied()
     }
+    /// The plane's terms that read one axis of the tile, once per column and per row
+    /// ([`PlainGrid`]).
+    fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
+        let Ok(s) = &self.s else {
+            return Box::new(PerTile { prep: self, grid });
+        };
+        Box::new(PlainGrid {
+            s,
+            per_sample: self.per_sample,
+            // `plane_of`'s third dot-product terms (times the centre's literal 1, as there).
+            z: s.edges.map(|e| [e.n12[2] * 1.0, e.n2[2] * 1.0]),
+            cols: (0..grid.columns()).map(|i| PlainGrid::axis(s, 0, grid.column(i))).collect(),
+            rows: (0..grid.rows()).map(|j| PlainGrid::axis(s, 1, grid.row(j))).collect(),
+        })
+    }
 }
 
 /// The refined ranges clamped to the domain over any [`F32Arith`]; false when one is
@@ -1065,7 +1090,306 @@ impl Prepared for SafePrep {
     fn disabled(&self) -> Option<&'static str> {
         self.s.as_ref().err().copied()
     }
+    /// The interval products that read one axis of the tile, once per column and per
+    /// row ([`SafeGrid`]).
+    fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
+        let Ok(edges) = &self.s else {
+            return Box::new(PerTile { prep: self, grid });
+        };
+        let consts = edges.map(|e| {
+            e.map(|e| {
+                let (ax, ay) = (e.n0[0].mid(), e.n0[1].mid());
+                let one = Iv::point(1.0);
+                SafeConst {
+                    ax,
+                    ay,
+                    rx: e.n0[0] - Iv::point(ax),
+                    ry: e.n0[1] - Iv::point(ay),
+                    n12z: e.n12[2] * one,
+                    n2z: e.n2[2] * one,
+                }
+            })
+        });
+        let axis = |a: usize, r: [f32; 2]| SafeGrid::axis(edges, &consts, self.k, a, r);
+        let cols = (0..grid.columns()).map(|i| axis(0, grid.column(i))).collect();
+        let rows = (0..grid.rows()).map(|j| axis(1, grid.row(j))).collect();
+        Box::new(SafeGrid { prep: self, edges, consts, cols, rows })
+    }
 }
+
+// ---------------------------------------------------------------------------------
+// Grids: the parts of the plane that read one axis of the tile, once per column / row.
+// ---------------------------------------------------------------------------------
+
+/// The f32 `a + b` of two low ends of [`Iv`]s: `Iv::add`'s low end (rounded, one step
+/// down, NaN -> -inf), which reads the operands' low ends only.
+fn lo_add(a: f32, b: f32) -> f32 {
+    Iv::new((a + b).next_down(), 0.0).lo
+}
+
+/// [`lo_add`] for high ends: `Iv::add`'s high end.
+fn hi_add(a: f32, b: f32) -> f32 {
+    Iv::new(0.0, (a + b).next_up()).hi
+}
+
+/// One edge's share of [`Prep::tile`] for one column (`x`) or one row (`y`) of a grid:
+/// the terms of [`plane_of`] and [`edge_tile`] that read only that axis's centre and
+/// half extent, as f32 values computed by the same operations.
+#[derive(Clone, Copy, Debug, Default)]
+struct PlainAxis {
+    /// `n12_x xc` (`n12_y yc`): the axis's term of `dot(n12, Xc)`.
+    t_dot: f32,
+    /// `|n12_x| hx` (`|n12_y| hy`): the axis's term of Eq. 7's pad `Z`.
+    t_pad: f32,
+    /// `n2_x xc`, `|n2_x| hx`: the same for `n2`.
+    p_dot: f32,
+    p_pad: f32,
+    /// A row: `avg_x` (= `a_u`) and `rad_x`; a column: `k avg_y` (= `a_v`) and `k rad_y`.
+    avg: f32,
+    rad: f32,
+    /// `a_x xc`, `|a_x| hx` (`a_y yc`, `|a_y| hy`): the axis's terms of `m_xy`.
+    at_c: f32,
+    pad: f32,
+    /// `-|a_u|` (row) or `-|a_v|` (column).
+    m_lens: f32,
+}
+
+/// [`Prep::grid`]: per column and edge the x terms ([`PlainAxis`]), per row and edge the
+/// y terms, per edge `n12_z 1` and `n2_z 1`. Per tile and edge only the sums of
+/// [`plane_of`] (`a_t`, `P`, `xi`, `a_1`) and [`edge_tile`] (`m_xy`, the reject, the
+/// three rests and quotients), with the same operations in the same order.
+struct PlainGrid<'a> {
+    s: &'a Setup,
+    per_sample: bool,
+    /// `[n12_z 1, n2_z 1]` per edge.
+    z: [[f32; 2]; 3],
+    cols: Vec<[PlainAxis; 3]>,
+    rows: Vec<[PlainAxis; 3]>,
+}
+
+impl PlainGrid<'_> {
+    /// The column (`axis` 0, edges `[x0, x1]`) or row (`axis` 1) terms of every edge.
+    fn axis(s: &Setup, axis: usize, [lo, hi]: [f32; 2]) -> [PlainAxis; 3] {
+        let ar = &Plain;
+        // `centre`'s operations on this axis.
+        let half = 0.5f32;
+        let (c, h) = (half * (lo + hi), half * (hi - lo));
+        s.edges.map(|e| {
+            let (mc, mr) = (&e.mc, &e.mr);
+            let pad_z = ar.add(&ar.abs(&mc[2]), &mr[2]);
+            let (avg, rad) = if axis == 1 {
+                let avg_x = ar.sub(&ar.mul(&c, &mc[2]), &mc[1]);
+                let rad_x = ar.add(&ar.add(&ar.mul(&ar.abs(&c), &mr[2]), &ar.mul(&h, &pad_z)), &mr[1]);
+                (avg_x, rad_x)
+            } else {
+                let avg_y = ar.sub(&mc[0], &ar.mul(&c, &mc[2]));
+                let rad_y = ar.add(&ar.add(&mr[0], &ar.mul(&ar.abs(&c), &mr[2])), &ar.mul(&h, &pad_z));
+                (ar.mul(&s.k, &avg_y), ar.mul(&s.k, &rad_y))
+            };
+            let a = e.n0[axis];
+            PlainAxis {
+                t_dot: ar.mul(&e.n12[axis], &c),
+                t_pad: ar.mul(&ar.abs(&e.n12[axis]), &h),
+                p_dot: ar.mul(&e.n2[axis], &c),
+                p_pad: ar.mul(&ar.abs(&e.n2[axis]), &h),
+                avg,
+                rad,
+                at_c: ar.mul(&a, &c),
+                pad: ar.mul(&ar.abs(&a), &h),
+                m_lens: ar.neg(&ar.abs(&avg)),
+            }
+        })
+    }
+}
+
+impl TileGrid for PlainGrid<'_> {
+    fn tile(&self, i: usize, j: usize) -> TileResult {
+        let ar = &Plain;
+        let zero = 0.0f32;
+        let mut out = TileBounds::full();
+        for (ei, e) in self.s.edges.iter().enumerate() {
+            let (x, y) = (&self.cols[i][ei], &self.rows[j][ei]);
+            let [n12z, n2z] = self.z[ei];
+            // plane_of: Eq. 7 and Eq. 8 from the column's and the row's terms.
+            let z = ar.add(&x.t_pad, &y.t_pad);
+            let a_t = ar.sub(&ar.add(&ar.add(&x.t_dot, &y.t_dot), &n12z), &z);
+            let a2 = ar.add(&ar.add(&ar.add(&x.p_dot, &y.p_dot), &n2z), &ar.add(&x.p_pad, &y.p_pad));
+            let p = ar.mul(&0.25, &ar.max(&a2, &zero));
+            let xi = ar.neg(&ar.add(&y.rad, &x.rad));
+            let a0 = ar.sub(&ar.add(&e.n0[2], &xi), &p);
+            let a = [a0, e.n0[0], e.n0[1], y.avg, x.avg, a_t];
+            if !a.iter().all(|v| v.is_finite()) {
+                continue;
+            }
+            // edge_tile.
+            let at_c = ar.add(&ar.add(&a0, &x.at_c), &y.at_c);
+            let m_xy = ar.sub(&at_c, &ar.add(&x.pad, &y.pad));
+            let (mu, mv, mt) = (y.m_lens, x.m_lens, ar.min(&a_t, &zero));
+            let m = ar.add(&ar.add(&ar.add(&m_xy, &mu), &mv), &mt);
+            if m > zero {
+                return TileResult::Empty;
+            }
+            let rests =
+                [ar.add(&ar.add(&m_xy, &mv), &mt), ar.add(&ar.add(&m_xy, &mu), &mt), ar.add(&ar.add(&m_xy, &mu), &mv)];
+            for (r, range) in [&mut out.u, &mut out.v, &mut out.t].into_iter().enumerate() {
+                let ak = a[3 + r];
+                let bound = ar.div(&ar.neg(&rests[r]), &ak);
+                if !bound.is_finite() {
+                    continue;
+                }
+                if ak < zero {
+                    range[0] = ar.max(&range[0], &bound);
+                }
+                if ak > zero {
+                    range[1] = ar.min(&range[1], &bound);
+                }
+            }
+            if self.per_sample {
+                out.constraints.push(Box::new(Plane { edge: ei, a, safe: false }));
+            }
+        }
+        finish(out)
+    }
+}
+
+/// One edge's share of [`SafePrep::tile`] for one column (`xs`) or one row (`ys`) of a
+/// grid: the interval products of [`plane_safe`] that read only that axis, kept as the
+/// ends the per-tile sums read, and the axis's corner term of `m_xy`.
+#[derive(Clone, Copy, Debug)]
+struct SafeAxis {
+    /// Low end of `(n0_x - a_x) xs` (`(n0_y - a_y) ys`): a term of the n0 rest.
+    n0_lo: f32,
+    /// Low end of `n12_x xs` (`n12_y ys`): a term of `dot(n12, X)`.
+    n12_lo: f32,
+    /// High end of `n2_x xs` (`n2_y ys`): a term of `dot(n2, X)`.
+    n2_hi: f32,
+    /// A column: `beta` (= `a_v`) and its radius `|k d_y - beta|`; a row: `alpha` (= `a_u`)
+    /// and its radius.
+    mid: f32,
+    dev: f32,
+    /// `min(dn(a_x x0), dn(a_x x1))` (`a_y`, `y0`, `y1` for a row).
+    corner: f32,
+    /// `-|beta|` (column) or `-|alpha|` (row).
+    m_lens: f32,
+}
+
+/// Per edge, what [`plane_safe`] computes from the setup alone (no tile).
+#[derive(Clone, Copy, Debug)]
+struct SafeConst {
+    /// `a_x`, `a_y`: the midpoints of `n0_x`, `n0_y`.
+    ax: f32,
+    ay: f32,
+    /// `n0_x - a_x`, `n0_y - a_y`.
+    rx: Iv,
+    ry: Iv,
+    /// `n12_z 1` and `n2_z 1` (the third terms of the dots).
+    n12z: Iv,
+    n2z: Iv,
+}
+
+/// [`SafePrep::grid`]: per edge its [`SafeConst`], per column and edge the x parts
+/// ([`SafeAxis`], None when the column's ends are not finite or out of order: every tile
+/// of it answers the full domain), per row the y parts. Per tile and edge only the
+/// interval sums of the n0 rest, `dot(n12, X)` and `dot(n2, X)` (the one end each uses,
+/// by `Iv::add`'s operations), `a_1`, the finiteness check, and [`SafePrep::tile`]'s
+/// `m_xy`, reject and bounds.
+struct SafeGrid<'a> {
+    prep: &'a SafePrep,
+    edges: &'a [Option<SafeEdge>; 3],
+    consts: [Option<SafeConst>; 3],
+    cols: Vec<Option<[SafeAxis; 3]>>,
+    rows: Vec<Option<[SafeAxis; 3]>>,
+}
+
+impl SafeGrid<'_> {
+    /// The parts of every edge for the column (`axis` 0) or row (`axis` 1) `[lo, hi]`.
+    fn axis(
+        edges: &[Option<SafeEdge>; 3],
+        consts: &[Option<SafeConst>; 3],
+        k: f32,
+        axis: usize,
+        [lo, hi]: [f32; 2],
+    ) -> Option<[SafeAxis; 3]> {
+        if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+            return None;
+        }
+        let dn = f32::next_down;
+        let r = Iv::new(lo, hi);
+        Some([0, 1, 2].map(|ei| {
+            let (Some(e), Some(c)) = (&edges[ei], &consts[ei]) else {
+                // An edge without a plane: never read.
+                return SafeAxis { n0_lo: 0.0, n12_lo: 0.0, n2_hi: 0.0, mid: 0.0, dev: 0.0, corner: 0.0, m_lens: 0.0 };
+            };
+            let (rest, a) = if axis == 0 { (c.rx, c.ax) } else { (c.ry, c.ay) };
+            // Eq. 8: k d_y = k (m_x - x m_z) (column), d_x = y m_z - m_y (row).
+            let d = if axis == 0 { Iv::point(k) * (e.m[0] - r * e.m[2]) } else { r * e.m[2] - e.m[1] };
+            let mid = d.mid();
+            SafeAxis {
+                n0_lo: (rest * r).lo,
+                n12_lo: (e.n12[axis] * r).lo,
+                n2_hi: (e.n2[axis] * r).hi,
+                mid,
+                dev: d.dev(mid),
+                corner: dn(a * lo).min(dn(a * hi)),
+                m_lens: -mid.abs(),
+            }
+        }))
+    }
+}
+
+impl TileGrid for SafeGrid<'_> {
+    fn tile(&self, i: usize, j: usize) -> TileResult {
+        let (Some(cols), Some(rows)) = (&self.cols[i], &self.rows[j]) else {
+            return TileResult::Bounds(TileBounds::full());
+        };
+        let (dn, up) = (f32::next_down, f32::next_up);
+        let mut out = TileBounds::full();
+        for (ei, (e, c)) in self.edges.iter().zip(&self.consts).enumerate() {
+            let (Some(e), Some(c)) = (e, c) else {
+                continue;
+            };
+            let (x, y) = (&cols[ei], &rows[ei]);
+            // plane_safe.
+            let c_n0 = lo_add(lo_add(x.n0_lo, y.n0_lo), e.n0[2].lo);
+            let a_t = lo_add(lo_add(x.n12_lo, y.n12_lo), c.n12z.lo);
+            let p = (0.25 * hi_add(hi_add(x.n2_hi, y.n2_hi), c.n2z.hi).max(0.0)).next_up();
+            let a_1 = dn(dn(dn(c_n0 - p) - y.dev) - x.dev);
+            let a = [a_1, c.ax, c.ay, y.mid, x.mid, a_t];
+            if !a.iter().all(|v| v.is_finite()) {
+                continue;
+            }
+            // SafePrep::tile.
+            let m_xy = dn(dn(a[0] + x.corner) + y.corner);
+            let (mu, mv, mt) = (y.m_lens, x.m_lens, a[5].min(0.0));
+            let m = dn(dn(dn(m_xy + mu) + mv) + mt);
+            if m > 0.0 {
+                return TileResult::Empty;
+            }
+            for (ak, rest, range) in [
+                (a[3], dn(dn(m_xy + mv) + mt), &mut out.u),
+                (a[4], dn(dn(m_xy + mu) + mt), &mut out.v),
+                (a[5], dn(dn(m_xy + mu) + mv), &mut out.t),
+            ] {
+                let bound = -rest / ak;
+                if !bound.is_finite() {
+                    continue;
+                }
+                if ak > 0.0 {
+                    range[1] = range[1].min(up(bound));
+                } else if ak < 0.0 {
+                    range[0] = range[0].max(dn(bound));
+                }
+            }
+            if self.prep.per_sample {
+                out.constraints.push(Box::new(Plane { edge: ei, a, safe: true }));
+            }
+        }
+        finish(out)
+    }
+}
+
+#[cfg(test)]
+mod grid_cases;
 
 #[cfg(test)]
 mod tests {
