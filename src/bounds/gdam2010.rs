@@ -622,16 +622,30 @@ struct PieceEnd {
 /// product of two vertices linear in t, so on the piece it is a quadratic with Bernstein
 /// coefficients `P_i(l) x P_j(l)`, `(P_i(l) x P_j(h) + P_i(h) x P_j(l)) / 2`,
 /// `P_i(h) x P_j(h)`, and its values lie between the least and the greatest of them.
+///
+/// The middle coefficient is computed only when it can matter: an edge whose end values
+/// already have some `hi > 0` and some `lo < 0` (or a NaN) is `<= 0` throughout, `>= 0`
+/// throughout, `> 0` and `< 0` by none of the four tests below, whatever the middle one
+/// is. And once some edge is `<= 0` and some edge `>= 0`, the piece is culled whatever
+/// the remaining edges are.
 fn classify_piece(l: &PieceEnd, h: &PieceEnd) -> Piece {
     let (pl, ph) = (l.p, h.p);
     let (mut some_le, mut some_ge, mut all_gt, mut all_lt) = (false, false, true, true);
     for (k, (i, j)) in EDGES.into_iter().enumerate() {
+        let ends = [l.e[k], h.e[k]];
+        if !(ends.iter().all(|v| v.hi <= 0.0) || ends.iter().all(|v| v.lo >= 0.0)) {
+            (all_gt, all_lt) = (false, false);
+            continue;
+        }
         let b = [l.e[k], cross_iv(pl[i], ph[j]).add(cross_iv(ph[i], pl[j])), h.e[k]];
         // (the middle one doubled: only its sign matters)
         some_le |= b.iter().all(|v| v.hi <= 0.0);
         some_ge |= b.iter().all(|v| v.lo >= 0.0);
         all_gt &= b.iter().all(|v| v.lo > 0.0);
         all_lt &= b.iter().all(|v| v.hi < 0.0);
+        if some_le && some_ge {
+            return Piece::Culled;
+        }
     }
     if some_le && some_ge {
         Piece::Culled

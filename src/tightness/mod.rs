@@ -933,10 +933,15 @@ fn measure_triangle(
                         out.ceiling[ti].1 += cov_here;
                     }
                 }
-                asked.clear();
                 let (i, j) = ((tx - tx0) as usize, (ty - ty0) as usize);
                 debug_assert_eq!(format!("{:?}", grid.tile(i, j)), format!("{tile:?}"));
-                asked.extend(grids.iter().map(|g| g.as_ref().map(|g| g.tile(i, j))));
+                // Each slot's previous answer is dropped just before its new one is made,
+                // so the allocator hands the freed constraint boxes straight back.
+                asked.resize_with(grids.len(), || None);
+                for (a, g) in asked.iter_mut().zip(&grids) {
+                    *a = None;
+                    *a = g.as_ref().map(|g| g.tile(i, j));
+                }
                 let answer = |k: usize| -> &TileResult { fixed[k].as_ref().or(asked[k].as_ref()).expect("asked") };
                 for (mi, src) in plan.of.iter().enumerate() {
                     let c = &mut out.counts[ti][mi];

@@ -431,13 +431,25 @@ fn batched_exact_coverage_is_the_scalar_oracles() {
 }
 
 /// The counts of the measurement are those of [`TileBounds::admits`] sample by sample
-/// over every traversed tile (the row-by-row count with `eval_row` changes nothing).
+/// over every traversed tile (the count in chunks of a row, with `eval_row`, on the
+/// whole chunk or on the samples inside gathered, changes nothing): short rows (2
+/// samples per pixel, 1 and 4 px tiles) and long ones (9 per pixel, 8 px tiles: rows of
+/// 72 samples, a chunk of 64 and one of 8).
 #[test]
 fn counts_are_those_of_admits_sample_by_sample() {
+    let gathered = counts_match_admits(2, vec![1, 4]) + counts_match_admits(9, vec![8]);
+    assert!(gathered > 100, "only {gathered} long chunks with constraints and less than half inside");
+}
+
+/// [`counts_are_those_of_admits_sample_by_sample`] for one pattern density and tile
+/// sizes; returns the number of (answer with constraints, chunk of more than 32
+/// samples) pairs with less than half of the chunk inside the intervals.
+fn counts_match_admits(spp: u32, tiles: Vec<u32>) -> u64 {
     let s = tiny("forest", 32, 24);
-    let p = Pattern::new(PatternKind::Stratified, 2, 3);
-    let cfg = Config::new(vec![1, 4], p);
+    let p = Pattern::new(PatternKind::Stratified, spp, 3);
+    let cfg = Config::new(tiles, p);
     let methods = registry();
+    let mut gathered = 0u64;
     let m = measure(&s, &methods, &Setting::ALL, &cfg, &ProgressBar::hidden());
     let table = SampleTable::new(&p, s.width, s.height);
     let mut per_sample_tiles = 0u64;
@@ -469,6 +481,21 @@ fn counts_are_those_of_admits_sample_by_sample() {
                                 TileResult::Empty => c.missed += cov.iter().filter(|&&x| x).count() as u64,
                                 TileResult::Bounds(b) => {
                                     per_sample_tiles += !b.constraints.is_empty() as u64;
+                                    let row = (px.x1 - px.x0 + 1) as usize * table.spp;
+                                    if !b.constraints.is_empty() && row > 32 {
+                                        for r in smp.chunks(row) {
+                                            for ch in r.chunks(64) {
+                                                let inside = ch
+                                                    .iter()
+                                                    .filter(|x| {
+                                                        let i = |r: [f32; 2], v: f32| r[0] <= v && v <= r[1];
+                                                        i(b.u, x.u) && i(b.v, x.v) && i(b.t, x.t)
+                                                    })
+                                                    .count();
+                                                gathered += (ch.len() > 32 && 2 * inside < ch.len()) as u64;
+                                            }
+                                        }
+                                    }
                                     for (x, &cv) in smp.iter().zip(&cov) {
                                         let a = b.admits(x);
                                         c.tested += a as u64;
@@ -489,4 +516,5 @@ fn counts_are_those_of_admits_sample_by_sample() {
         }
     }
     assert!(per_sample_tiles > 100, "only {per_sample_tiles} tiles with per-sample constraints");
+    gathered
 }
