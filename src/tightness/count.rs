@@ -70,65 +70,48 @@ pub(super) fn count_passing(iv: ([f32; 2], [f32; 2], [f32; 2]), pass: &[bool], h
     c.missed += h.cov - hits;
 }
 
-/// Chunks of at most this many samples of a row are evaluated whole: gathering a few
-/// samples of a short chunk costs more than evaluating the constraints on all of it.
-const WHOLE_BELOW: usize = 32;
-
-/// Samples are counted in chunks of a row of at most this many, one bit per sample.
-const CHUNK: usize = 64;
+/// Rows of at most this many samples are evaluated whole: gathering a few samples of a
+/// short row costs more than evaluating the constraints on all of it.
+const WHOLE_ROW_BELOW: usize = 32;
 
 /// Buffers of [`count_admitted`], reused from tile to tile.
 #[derive(Default)]
 pub(super) struct AdmitScratch {
-    /// Per sample of a chunk (or of a row, for [`region_pass`]): a flag (inside the
-    /// intervals, or culled by a constraint).
+    /// Per sample of a row: inside the intervals.
     mask: Vec<bool>,
-    /// The chunk's samples inside the intervals, side by side (x, y, u, v, t).
+    /// The row's samples inside the intervals, side by side (x, y, u, v, t), and
+    /// their index in the row.
     inside: [Vec<f32>; 5],
-    /// One constraint's values.
+    index: Vec<u32>,
+    /// Per inside sample: no constraint culled it so far.
+    alive: Vec<bool>,
+    /// One constraint's values on the inside samples.
     values: Vec<f32>,
 }
 
 impl AdmitScratch {
-    /// Room for `n` samples in every buffer.
+    /// Room for a row of `n` samples in every buffer.
     fn reserve(&mut self, n: usize) {
         if self.mask.len() < n {
             self.mask.resize(n, false);
+            self.index.resize(n, 0);
             for c in &mut self.inside {
                 c.resize(n, 0.0);
             }
+            self.alive.resize(n, false);
             self.values.resize(n, 0.0);
         }
     }
-}
-
-/// Up to 64 flags as bits (flag i is bit i): eight at a time, by one product that moves
-/// each byte's 0 or 1 into its own bit of the top byte.
-fn pack(flags: &[bool]) -> u64 {
-    debug_assert!(flags.len() <= 64);
-    let mut words = flags.chunks_exact(8);
-    let mut bits = 0u64;
-    for (w, ch) in (&mut words).enumerate() {
-        let bytes: [bool; 8] = ch.try_into().expect("chunks of 8");
-        let x = u64::from_le_bytes(bytes.map(|b| b as u8));
-        bits |= (x.wrapping_mul(0x0102_0408_1020_4080) >> 56) << (8 * w);
-    }
-    let rest = words.remainder();
-    let base = flags.len() - rest.len();
-    for (j, &f) in rest.iter().enumerate() {
-        bits |= (f as u64) << (base + j);
-    }
-    bits
 }
 
 /// Count the samples of a tile that an answer admits: intervals `iv` (u, v, t) and the
 /// per-sample constraints of every slice of `cons` (one answer's, or the parts' of a
 /// conjunction). An answer with the whole (u, v, t) domain and no per-sample constraint
 /// admits every sample ([`TileBounds::admits`] would say so sample by sample).
-/// Otherwise, in chunks of at most 64 samples of a row, the samples inside the intervals
-/// are found side by side (one bit each), and each per-sample constraint is evaluated
-/// once on them ([`SampleConstraint::eval_row`], the same values as `eval`) until none
-/// is left: a sample passes when no value is negative, as in `admits`.
+/// Otherwise, row by row, the samples inside the intervals are found side by side, and
+/// each per-sample constraint is evaluated once on each of them
+/// ([`SampleConstraint::eval_row`], the same values as `eval`): a sample passes when no
+/// value is negative, as in `admits`.
 ///
 /// [`TileBounds::admits`]: crate::bounds::TileBounds::admits
 pub(super) fn count_admitted(
@@ -149,81 +132,85 @@ pub(super) fn count_admitted(
     }
     let (mut tested, mut hits) = (0u64, 0u64);
     let ([u0, u1], [v0, v1], [t0, t1]) = (b_u, b_v, b_t);
-    sc.reserve(CHUNK);
-    let cons = || cons.iter().flat_map(|c| c.iter());
     for &(ts, ls, n) in rows {
-        for c0 in (0..n).step_by(CHUNK) {
-            let (s, k) = (ts + c0, (n - c0).min(CHUNK));
-            let (us, vs, tv) = (&table.cols[2][s..s + k], &table.cols[3][s..s + k], &table.cols[4][s..s + k]);
-            // The interval test of `TileBounds::admits`, side by side, as bits.
-            let mask = &mut sc.mask[..k];
-            for i in 0..k {
-                mask[i] = (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1);
+        let (us, vs, tv) = (&table.cols[2][ts..ts + n], &table.cols[3][ts..ts + n], &table.cols[4][ts..ts + n]);
+        let cv = &local.covered[ls..ls + n];
+        if no_constraints {
+            // The interval test of `TileBounds::admits`, side by side (vectorised).
+            let (mut t_row, mut h_row) = (0u32, 0u32);
+            for i in 0..n {
+                let a = (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1);
+                t_row += a as u32;
+                h_row += (a & cv[i]) as u32;
             }
-            let inside = pack(mask);
-            if inside == 0 {
-                continue;
-            }
-            let covered = pack(&local.covered[ls + c0..ls + c0 + k]);
-            // Then the constraints (a sample is culled by a negative value; a NaN value
-            // culls nothing, as in `admits`), until none is left: on the whole chunk when
-            // it is short or at least half of it is inside (the values of the others are
-            // not used), otherwise on the samples inside, gathered.
-            let m = inside.count_ones() as usize;
-            let alive = if no_constraints {
-                inside
-            } else if 2 * m >= k || k <= WHOLE_BELOW {
-                let cols = table.cols(s, k);
-                let mut alive = inside;
-                for con in cons() {
-                    con.eval_row(&cols, &mut sc.values[..k]);
-                    for (f, &g) in sc.mask[..k].iter_mut().zip(&sc.values[..k]) {
-                        *f = g < 0.0;
-                    }
-                    alive &= !pack(&sc.mask[..k]);
-                    if alive == 0 {
-                        break;
-                    }
-                }
-                alive
-            } else {
-                // The positions of the inside samples in the chunk, then their columns.
-                let mut at = [0u8; CHUNK];
-                let mut bits = inside;
-                for a in at[..m].iter_mut() {
-                    *a = bits.trailing_zeros() as u8;
-                    bits &= bits - 1;
-                }
-                for (col, src) in sc.inside.iter_mut().zip(&table.cols) {
-                    let src = &src[s..s + k];
-                    for (d, &i) in col[..m].iter_mut().zip(&at[..m]) {
-                        *d = src[i as usize];
-                    }
-                }
-                let [x, y, u, v, t] = &sc.inside;
-                let cols = SampleCols::new(x, y, u, v, t, m);
-                // Bit j: gathered sample j (at `at[j]` in the chunk) is still alive.
-                let mut alive_g = u64::MAX >> (CHUNK - m);
-                for con in cons() {
-                    con.eval_row(&cols, &mut sc.values[..m]);
-                    for (f, &g) in sc.mask[..m].iter_mut().zip(&sc.values[..m]) {
-                        *f = g < 0.0;
-                    }
-                    alive_g &= !pack(&sc.mask[..m]);
-                    if alive_g == 0 {
-                        break;
-                    }
-                }
-                let mut alive = 0u64;
-                while alive_g != 0 {
-                    alive |= 1 << at[alive_g.trailing_zeros() as usize];
-                    alive_g &= alive_g - 1;
-                }
-                alive
-            };
-            tested += alive.count_ones() as u64;
-            hits += (alive & covered).count_ones() as u64;
+            tested += t_row as u64;
+            hits += h_row as u64;
+            continue;
         }
+        // The intervals first (side by side), then the constraints: on the whole row's
+        // columns when the row is short or at least half of its samples are inside (the
+        // values of the others are not used), otherwise on the samples inside, gathered.
+        sc.reserve(n);
+        let mask = &mut sc.mask[..n];
+        let mut m = 0usize;
+        for i in 0..n {
+            let a = (u0 <= us[i]) & (us[i] <= u1) & (v0 <= vs[i]) & (vs[i] <= v1) & (t0 <= tv[i]) & (tv[i] <= t1);
+            mask[i] = a;
+            m += a as usize;
+        }
+        if m == 0 {
+            continue;
+        }
+        let whole_row = 2 * m >= n || n <= WHOLE_ROW_BELOW;
+        if !whole_row {
+            // The indices of the inside samples (written branch-free), then their columns.
+            let index = &mut sc.index[..n];
+            let mut k = 0usize;
+            for (i, &a) in mask.iter().enumerate() {
+                index[k] = i as u32;
+                k += a as usize;
+            }
+            for (col, src) in sc.inside.iter_mut().zip(&table.cols) {
+                let src = &src[ts..ts + n];
+                for (d, &i) in col[..m].iter_mut().zip(&index[..m]) {
+                    *d = src[i as usize];
+                }
+            }
+        }
+        let (cols, len) = if whole_row {
+            (table.cols(ts, n), n)
+        } else {
+            let [x, y, u, v, t] = &sc.inside;
+            (SampleCols::new(x, y, u, v, t, m), m)
+        };
+        let (alive, values) = (&mut sc.alive[..len], &mut sc.values[..len]);
+        if whole_row {
+            alive.copy_from_slice(mask);
+        } else {
+            alive.fill(true);
+        }
+        for k in cons.iter().flat_map(|c| c.iter()) {
+            k.eval_row(&cols, values);
+            for (a, &g) in alive.iter_mut().zip(values.iter()) {
+                // Culled when negative (a NaN value culls nothing, as in `admits`).
+                let culled = g < 0.0;
+                *a &= !culled;
+            }
+        }
+        let (mut t_row, mut h_row) = (0u32, 0u32);
+        if whole_row {
+            for (&a, &cv) in alive.iter().zip(cv) {
+                t_row += a as u32;
+                h_row += (a & cv) as u32;
+            }
+        } else {
+            for (&a, &i) in alive.iter().zip(&sc.index[..m]) {
+                t_row += a as u32;
+                h_row += (a & cv[i as usize]) as u32;
+            }
+        }
+        tested += t_row as u64;
+        hits += h_row as u64;
     }
     c.tested += tested;
     c.hits += hits;
