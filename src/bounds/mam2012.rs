@@ -914,17 +914,20 @@ impl SampleConstraint for SafeLine {
             w - ((a * s.t).next_down() + b).next_down()
         }
     }
-    /// `eval` over the columns (the same operations and steps per sample).
+    /// `eval` over the columns (the same operations and steps per sample; the steps
+    /// written as selects, the same bits as `next_up` / `next_down`, so the samples run
+    /// side by side).
     fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {
+        use super::step::{dn, up};
         let Line { is_v, upper, a, b } = self.0;
         let w = if is_v { c.v } else { c.u };
         if upper {
             for ((o, &w), &t) in out.iter_mut().zip(w).zip(c.t) {
-                *o = ((a * t).next_up() + b).next_up() - w;
+                *o = up(up(a * t) + b) - w;
             }
         } else {
             for ((o, &w), &t) in out.iter_mut().zip(w).zip(c.t) {
-                *o = w - ((a * t).next_down() + b).next_down();
+                *o = w - dn(dn(a * t) + b);
             }
         }
     }

@@ -773,7 +773,9 @@ impl SampleConstraint for Plane {
         let n = c.len().min(out.len());
         let (xs, ys, us, vs, ts, out) = (&c.x[..n], &c.y[..n], &c.u[..n], &c.v[..n], &c.t[..n], &mut out[..n]);
         if self.safe {
-            let dn = f32::next_down;
+            // `f32::next_down` written as selects (the same bits), so the samples run
+            // side by side.
+            let dn = super::step::dn;
             for i in 0..n {
                 let mut acc = a[0];
                 for (ai, si) in a[1..].iter().zip([xs[i], ys[i], us[i], vs[i], ts[i]]) {

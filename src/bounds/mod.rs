@@ -31,6 +31,7 @@ pub mod mam2012_new;
 pub mod nilsson2012_depth;
 pub mod proofs;
 mod shared;
+pub(crate) mod step;
 pub use shared::{shared, shared_all, MethodRef};
 #[cfg(test)]
 mod row_tests;
