@@ -70,7 +70,8 @@ pub mod symbolic;
 pub mod tightness;
 
 pub use bounds::{
-    Method, MethodInfo, MethodRef, Outputs, Prepared, SampleBox, SampleConstraint, TileBounds, TileResult,
+    Grid, Method, MethodInfo, MethodRef, Outputs, PerTile, Prepared, SampleBox, SampleConstraint, TileBounds, TileGrid,
+    TileResult,
 };
 pub use check::Expectations;
 pub use gate::{Bound, Counterexample, Gate, GateReport, MethodReport, MethodVerdict, Unproven};
