@@ -638,6 +638,13 @@ fn classify_fixed(e: &PieceEnd) -> Piece {
         all_gt &= b.iter().all(|v| v.lo > 0.0);
         all_lt &= b.iter().all(|v| v.hi < 0.0);
     }
+    verdict(some_le, some_ge, all_gt, all_lt)
+}
+
+/// A piece's verdict from its edges' tests: culled when some edge is `<= 0` and some
+/// edge `>= 0` throughout; covered when every edge is `> 0`, or every edge `< 0`,
+/// throughout; open otherwise.
+fn verdict(some_le: bool, some_ge: bool, all_gt: bool, all_lt: bool) -> Piece {
     if some_le && some_ge {
         Piece::Culled
     } else if all_gt || all_lt {
@@ -689,13 +696,7 @@ fn classify_piece(l: &PieceEnd, h: &PieceEnd) -> Piece {
             return Piece::Culled;
         }
     }
-    if some_le && some_ge {
-        Piece::Culled
-    } else if all_gt || all_lt {
-        Piece::Covered
-    } else {
-        Piece::Open
-    }
+    verdict(some_le, some_ge, all_gt, all_lt)
 }
 
 impl SampleConstraint for SafeTimeSpans {

@@ -6,6 +6,28 @@
 
 use super::*;
 use crate::gen::{bit_compare_case, boundary_tile, physical_case, rng_for, Regime};
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+
+/// A boundary value that breaks arithmetic.
+fn odd(rng: &mut ChaCha8Rng) -> f32 {
+    [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, -0.0, 0.0, f32::MAX, -f32::MAX, 1.0e-40][rng.gen_range(0..8)]
+}
+
+/// Grid boundaries around `[a, b]` (the steps of its width), one of them odd at times, in
+/// reverse order at times.
+pub(crate) fn boundaries(rng: &mut ChaCha8Rng, a: f32, b: f32) -> Vec<f32> {
+    let w = b - a;
+    let mut v = vec![a - w, a, b, b + w];
+    if rng.gen_bool(0.3) {
+        let k = rng.gen_range(0..v.len());
+        v[k] = odd(rng);
+    }
+    if rng.gen_bool(0.1) {
+        v.reverse();
+    }
+    v
+}
 
 /// The grids around a case's tiles: the first tile with neighbours on each side (its
 /// width and height as the steps), the first tile's columns with the second tile's rows,

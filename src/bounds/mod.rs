@@ -20,7 +20,7 @@ pub mod broken;
 pub mod gdam2010;
 mod grid;
 #[cfg(test)]
-mod grid_tests;
+pub(crate) mod grid_tests;
 pub use grid::{Grid, PerTile, TileGrid};
 pub mod la2011;
 pub mod lb2011;

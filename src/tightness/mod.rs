@@ -486,22 +486,26 @@ impl Sums {
         if r.off_screen {
             return;
         }
-        for ti in 0..tiles.len() {
-            for (acc, x) in self.counts[ti].iter_mut().zip(&r.counts[ti]) {
-                acc.add(x);
-            }
-            for (acc, x) in self.work[ti].iter_mut().zip(&r.work[ti]) {
-                acc.add(x);
-            }
-            self.ceiling[ti].0 += r.ceiling[ti].0;
-            self.ceiling[ti].1 += r.ceiling[ti].1;
-        }
+        self.add_tables(&r.counts, &r.work, &r.ceiling);
         for (d, &x) in self.disabled.iter_mut().zip(&r.disabled) {
             *d += x as u64;
         }
         for c in &r.certified {
             let ti = tiles.iter().position(|&s| s == c.tile).unwrap();
             self.certified[ti].add(c);
+        }
+    }
+    /// Per tile size and method: counts and work added; per tile size: the ceiling's.
+    fn add_tables(&mut self, counts: &[Vec<Counts>], work: &[Vec<Work>], ceiling: &[(u64, u64)]) {
+        for ti in 0..self.counts.len() {
+            for (acc, x) in self.counts[ti].iter_mut().zip(&counts[ti]) {
+                acc.add(x);
+            }
+            for (acc, x) in self.work[ti].iter_mut().zip(&work[ti]) {
+                acc.add(x);
+            }
+            self.ceiling[ti].0 += ceiling[ti].0;
+            self.ceiling[ti].1 += ceiling[ti].1;
         }
     }
     /// Two partial sums added.
@@ -514,16 +518,9 @@ impl Sums {
         a.covered += b.covered;
         a.boundary += b.boundary;
         a.exact_fallbacks += b.exact_fallbacks;
-        for ti in 0..self.counts.len() {
-            for (acc, x) in self.counts[ti].iter_mut().zip(&o.counts[ti]) {
-                acc.add(x);
-            }
-            for (acc, x) in self.work[ti].iter_mut().zip(&o.work[ti]) {
-                acc.add(x);
-            }
-            self.ceiling[ti].0 += o.ceiling[ti].0;
-            self.ceiling[ti].1 += o.ceiling[ti].1;
-            self.certified[ti].add(&o.certified[ti]);
+        self.add_tables(&o.counts, &o.work, &o.ceiling);
+        for (acc, c) in self.certified.iter_mut().zip(&o.certified) {
+            acc.add(c);
         }
         for (d, &x) in self.disabled.iter_mut().zip(&o.disabled) {
             *d += x;
