@@ -8,7 +8,6 @@ use super::*;
 use crate::bounds::grid_tests::boundaries;
 use crate::gen::{bit_compare_case, rng_for};
 use rand::Rng;
-use rand_chacha::ChaCha8Rng;
 
 /// How often each path was taken: `[x axis Empty, x without corners and y Empty, x
 /// without corners and y with patches, non-empty answers with patches]`.

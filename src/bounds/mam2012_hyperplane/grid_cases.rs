@@ -8,8 +8,6 @@
 use super::*;
 use crate::bounds::grid_tests::boundaries;
 use crate::gen::{bit_compare_case, rng_for};
-use rand::Rng;
-use rand_chacha::ChaCha8Rng;
 
 /// How often each path was taken: `[an edge without a finite plane on this tile while
 /// another edge has one, Empty, the full domain for a tile that is not a finite ordered
