@@ -687,6 +687,19 @@ pub fn edge_tile<A: F32Arith>(
 ) -> (A::B, Ranges<A::F>) {
     let at_c = ar.add(&ar.add(&a[0], &ar.mul(&a[1], &c[0])), &ar.mul(&a[2], &c[1]));
     let m_xy = ar.sub(&at_c, &ar.add(&ar.mul(&ar.abs(&a[1]), &h[0]), &ar.mul(&ar.abs(&a[2]), &h[1])));
+    edge_cut(ar, (ok, a), &m_xy, ranges)
+}
+
+/// [`edge_tile`] from `m_xy`, the plane's x, y part at the tile centre minus its pad:
+/// the reject (the plane's minimum over the tile, lens and shutter is > 0) and the ranges
+/// cut by the plane.
+pub fn edge_cut<A: F32Arith>(
+    ar: &A,
+    (ok, a): (&A::B, &[A::F; 6]),
+    m_xy: &A::F,
+    ranges: &Ranges<A::F>,
+) -> (A::B, Ranges<A::F>) {
+    let m_xy = m_xy.clone();
     let zero = ar.lit(0.0);
     let (mu, mv, mt) = (ar.neg(&ar.abs(&a[3])), ar.neg(&ar.abs(&a[4])), ar.min(&a[5], &zero));
     let m = ar.add(&ar.add(&ar.add(&m_xy, &mu), &mv), &mt);
@@ -1044,6 +1057,37 @@ fn plane_safe(e: &SafeEdge, k: f32, xs: Iv, ys: Iv) -> Option<[f32; 6]> {
     a.iter().all(|v| v.is_finite()).then_some(a)
 }
 
+/// One edge's reject and bounds for `-safe`, from its plane `a` and `m_xy`, a lower bound
+/// of the plane's x, y part over the tile: the minimum over the hypercube bounded below
+/// by adding the u, v, t corner terms (each sum rounded down); false when that bound is
+/// positive (the tile is Empty). Otherwise each of u, v, t is cut where the plane's bound
+/// on it, `-rest / a_k` with the other terms at their minimum, is finite: stepped
+/// outward.
+fn safe_cut(a: &[f32; 6], m_xy: f32, out: &mut TileBounds) -> bool {
+    let (dn, up) = (f32::next_down, f32::next_up);
+    let (mu, mv, mt) = (-a[3].abs(), -a[4].abs(), a[5].min(0.0));
+    let m = dn(dn(dn(m_xy + mu) + mv) + mt);
+    if m > 0.0 {
+        return false;
+    }
+    for (ak, rest, range) in [
+        (a[3], dn(dn(m_xy + mv) + mt), &mut out.u),
+        (a[4], dn(dn(m_xy + mu) + mt), &mut out.v),
+        (a[5], dn(dn(m_xy + mu) + mv), &mut out.t),
+    ] {
+        let bound = -rest / ak;
+        if !bound.is_finite() {
+            continue;
+        }
+        if ak > 0.0 {
+            range[1] = range[1].min(up(bound));
+        } else if ak < 0.0 {
+            range[0] = range[0].max(dn(bound));
+        }
+    }
+    true
+}
+
 impl Prepared for SafePrep {
     fn tile(&self, tile: &Tile) -> TileResult {
         let Ok(edges) = &self.s else {
@@ -1053,35 +1097,18 @@ impl Prepared for SafePrep {
         if !([x0, x1, y0, y1].iter().all(|v| v.is_finite()) && x0 <= x1 && y0 <= y1) {
             return TileResult::Bounds(TileBounds::full());
         }
-        let (dn, up) = (f32::next_down, f32::next_up);
+        let dn = f32::next_down;
         let (xs, ys) = (Iv::new(x0, x1), Iv::new(y0, y1));
         let mut out = TileBounds::full();
         for (ei, e) in edges.iter().enumerate() {
             let Some(a) = e.as_ref().and_then(|e| plane_safe(e, self.k, xs, ys)) else {
                 continue;
             };
-            // Lower bounds of the minimum over the hypercube: the xy part at the tile's
-            // corner (each product and sum rounded down), then the u, v, t corner terms.
+            // Lower bound of the xy part over the tile: at the tile's corner, each product
+            // and sum rounded down.
             let m_xy = dn(dn(a[0] + dn(a[1] * x0).min(dn(a[1] * x1))) + dn(a[2] * y0).min(dn(a[2] * y1)));
-            let (mu, mv, mt) = (-a[3].abs(), -a[4].abs(), a[5].min(0.0));
-            let m = dn(dn(dn(m_xy + mu) + mv) + mt);
-            if m > 0.0 {
+            if !safe_cut(&a, m_xy, &mut out) {
                 return TileResult::Empty;
-            }
-            for (ak, rest, range) in [
-                (a[3], dn(dn(m_xy + mv) + mt), &mut out.u),
-                (a[4], dn(dn(m_xy + mu) + mt), &mut out.v),
-                (a[5], dn(dn(m_xy + mu) + mv), &mut out.t),
-            ] {
-                let bound = -rest / ak;
-                if !bound.is_finite() {
-                    continue;
-                }
-                if ak > 0.0 {
-                    range[1] = range[1].min(up(bound));
-                } else if ak < 0.0 {
-                    range[0] = range[0].max(dn(bound));
-                }
             }
             if self.per_sample {
                 out.constraints.push(Box::new(Plane { edge: ei, a, safe: true }));
@@ -1152,8 +1179,6 @@ struct PlainAxis {
     /// `a_x xc`, `|a_x| hx` (`a_y yc`, `|a_y| hy`): the axis's terms of `m_xy`.
     at_c: f32,
     pad: f32,
-    /// `-|a_u|` (row) or `-|a_v|` (column).
-    m_lens: f32,
 }
 
 /// [`Prep::grid`]: per column and edge the x terms ([`PlainAxis`]), per row and edge the
@@ -1198,7 +1223,6 @@ impl PlainGrid<'_> {
                 rad,
                 at_c: ar.mul(&a, &c),
                 pad: ar.mul(&ar.abs(&a), &h),
-                m_lens: ar.neg(&ar.abs(&avg)),
             }
         })
     }
@@ -1223,29 +1247,14 @@ impl TileGrid for PlainGrid<'_> {
             if !a.iter().all(|v| v.is_finite()) {
                 continue;
             }
-            // edge_tile.
+            // edge_tile: m_xy from the column's and the row's terms, then its cut.
             let at_c = ar.add(&ar.add(&a0, &x.at_c), &y.at_c);
             let m_xy = ar.sub(&at_c, &ar.add(&x.pad, &y.pad));
-            let (mu, mv, mt) = (y.m_lens, x.m_lens, ar.min(&a_t, &zero));
-            let m = ar.add(&ar.add(&ar.add(&m_xy, &mu), &mv), &mt);
-            if m > zero {
+            let (rejects, [u, v, t]) = edge_cut(ar, (&true, &a), &m_xy, &[out.u, out.v, out.t]);
+            if rejects {
                 return TileResult::Empty;
             }
-            let rests =
-                [ar.add(&ar.add(&m_xy, &mv), &mt), ar.add(&ar.add(&m_xy, &mu), &mt), ar.add(&ar.add(&m_xy, &mu), &mv)];
-            for (r, range) in [&mut out.u, &mut out.v, &mut out.t].into_iter().enumerate() {
-                let ak = a[3 + r];
-                let bound = ar.div(&ar.neg(&rests[r]), &ak);
-                if !bound.is_finite() {
-                    continue;
-                }
-                if ak < zero {
-                    range[0] = ar.max(&range[0], &bound);
-                }
-                if ak > zero {
-                    range[1] = ar.min(&range[1], &bound);
-                }
-            }
+            (out.u, out.v, out.t) = (u, v, t);
             if self.per_sample {
                 out.constraints.push(Box::new(Plane { edge: ei, a, safe: false }));
             }
@@ -1271,8 +1280,6 @@ struct SafeAxis {
     dev: f32,
     /// `min(dn(a_x x0), dn(a_x x1))` (`a_y`, `y0`, `y1` for a row).
     corner: f32,
-    /// `-|beta|` (column) or `-|alpha|` (row).
-    m_lens: f32,
 }
 
 /// Per edge, what [`plane_safe`] computes from the setup alone (no tile).
@@ -1320,7 +1327,7 @@ impl SafeGrid<'_> {
         Some([0, 1, 2].map(|ei| {
             let (Some(e), Some(c)) = (&edges[ei], &consts[ei]) else {
                 // An edge without a plane: never read.
-                return SafeAxis { n0_lo: 0.0, n12_lo: 0.0, n2_hi: 0.0, mid: 0.0, dev: 0.0, corner: 0.0, m_lens: 0.0 };
+                return SafeAxis { n0_lo: 0.0, n12_lo: 0.0, n2_hi: 0.0, mid: 0.0, dev: 0.0, corner: 0.0 };
             };
             let (rest, a) = if axis == 0 { (c.rx, c.ax) } else { (c.ry, c.ay) };
             // Eq. 8: k d_y = k (m_x - x m_z) (column), d_x = y m_z - m_y (row).
@@ -1333,7 +1340,6 @@ impl SafeGrid<'_> {
                 mid,
                 dev: d.dev(mid),
                 corner: dn(a * lo).min(dn(a * hi)),
-                m_lens: -mid.abs(),
             }
         }))
     }
@@ -1344,7 +1350,7 @@ impl TileGrid for SafeGrid<'_> {
         let (Some(cols), Some(rows)) = (&self.cols[i], &self.rows[j]) else {
             return TileResult::Bounds(TileBounds::full());
         };
-        let (dn, up) = (f32::next_down, f32::next_up);
+        let dn = f32::next_down;
         let mut out = TileBounds::full();
         for (ei, (e, c)) in self.edges.iter().zip(&self.consts).enumerate() {
             let (Some(e), Some(c)) = (e, c) else {
@@ -1362,25 +1368,8 @@ impl TileGrid for SafeGrid<'_> {
             }
             // SafePrep::tile.
             let m_xy = dn(dn(a[0] + x.corner) + y.corner);
-            let (mu, mv, mt) = (y.m_lens, x.m_lens, a[5].min(0.0));
-            let m = dn(dn(dn(m_xy + mu) + mv) + mt);
-            if m > 0.0 {
+            if !safe_cut(&a, m_xy, &mut out) {
                 return TileResult::Empty;
-            }
-            for (ak, rest, range) in [
-                (a[3], dn(dn(m_xy + mv) + mt), &mut out.u),
-                (a[4], dn(dn(m_xy + mu) + mt), &mut out.v),
-                (a[5], dn(dn(m_xy + mu) + mv), &mut out.t),
-            ] {
-                let bound = -rest / ak;
-                if !bound.is_finite() {
-                    continue;
-                }
-                if ak > 0.0 {
-                    range[1] = range[1].min(up(bound));
-                } else if ak < 0.0 {
-                    range[0] = range[0].max(dn(bound));
-                }
             }
             if self.prep.per_sample {
                 out.constraints.push(Box::new(Plane { edge: ei, a, safe: true }));
@@ -1392,6 +1381,8 @@ impl TileGrid for SafeGrid<'_> {
 
 #[cfg(test)]
 mod grid_cases;
+#[cfg(test)]
+mod safe_old;
 
 #[cfg(test)]
 mod tests {
@@ -1801,5 +1792,28 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `-safe`'s tile test (both per-sample settings) is its old code
+    /// (`safe_old.rs`), bit for bit, on the stress stream of the bit-identity tests.
+    #[test]
+    fn safe_tile_is_its_old_code_bit_for_bit() {
+        let (mut n, mut kept, mut empty) = (0, 0, 0);
+        for c in 0..20_000 {
+            let (tri, tiles) = crate::gen::bit_compare_case(61, c);
+            for per_sample in [false, true] {
+                let Ok(s) = setup_safe(&tri) else { continue };
+                let p = SafePrep { s: Ok(s), k: tri.k, per_sample };
+                for tile in &tiles {
+                    let (new, old) = (p.tile(tile), p.tile_old(tile));
+                    assert_eq!(format!("{new:?}"), format!("{old:?}"), "case {c} tile {tile:?}: {tri:?}");
+                    n += 1;
+                    kept +=
+                        matches!(new, TileResult::Bounds(ref b) if b.u != [-1.0, 1.0] || b.t != [0.0, 1.0]) as usize;
+                    empty += matches!(new, TileResult::Empty) as usize;
+                }
+            }
+        }
+        assert!(n > 20_000 && kept > 1000 && empty > 1000, "{n} {kept} {empty}");
     }
 }
