@@ -44,12 +44,13 @@
 //!   samples* themselves (the whole range in a coordinate the triangle's coverage does
 //!   not depend on: u, v without defocus, t without motion), and the pattern samples
 //!   inside it. That box lies inside the exact one, so it lets through no more samples:
-//!   its STE is an **upper bound** on the true ceiling (for the same pattern). A method with per-sample constraints can beat
-//!   it (those are not interval tests); an interval-only method that misses nothing
-//!   cannot.
+//!   its STE is an **upper bound** on the true ceiling (for the same pattern). A method
+//!   with per-sample constraints can beat it (those are not interval tests); an
+//!   interval-only method that misses nothing cannot.
 //! - optionally, a **certified ceiling** on a seeded random subset of the traversed
-//!   tiles, or on every one of them (the exact ceiling of the scene): certified enclosures of the six extents (`oracles::extents::TileSolver`,
-//!   resolution and box budget of [`Config::certified`]), each side taken at its outer
+//!   tiles, or on every one of them (the exact ceiling of the scene): certified
+//!   enclosures of the six extents (`oracles::extents::TileSolver`, resolution and box
+//!   budget of [`Config::certified`]), each side taken at its outer
 //!   end, so the box contains the exact one and its STE is a **lower bound** on the true
 //!   ceiling over those tiles; the sample ceiling of the same tiles is shown beside it.
 //!   A tile where the solver left boxes open (over budget) is counted `undecided`; its
@@ -74,12 +75,16 @@
 //! its constraints those of the parts); an answer that does not read the tile
 //! ([`Prepared::tile_independent`]: gdam2010 and gdam2010-safe) is asked once per
 //! triangle, and its constraints are evaluated once per sample of the triangle's region
-//! for every tile size (`region_pass`). The work counted ([`Work`]) is still each
-//! method's own: a conjunction's tile test counts once for it, whatever was shared. Exact coverage goes through one
-//! function ([`exact_coverage`]). Each count also feeds the cost model ([`Work`],
+//! for every tile size (`region_pass`). Every other slot answers all the tiles of one
+//! size over the triangle at once ([`Prepared::grid`]: the same answers as
+//! [`Prepared::tile`], with each column's and each row's share computed once). The work
+//! counted ([`Work`]) is still each method's own: a conjunction's tile test counts once
+//! for it, whatever was shared. Exact coverage goes through one function
+//! ([`exact_coverage`]). Each count also feeds the cost model ([`Work`],
 //! [`cost`]).
 //!
-//! Results are integer counts summed in triangle order: identical at any thread count.
+//! Results are integer counts, summed per worker and then across workers: the same in
+//! any order, so identical at any thread count.
 
 pub mod chart;
 mod cli;
