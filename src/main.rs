@@ -138,8 +138,11 @@ enum Cmd {
     /// Merge the JSON reports of `check --shard K/N --json F` (all N shards of one run)
     /// into the report the unsharded run gives, number for number: prints the table,
     /// applies the expectations and (for the settings of a stored entry) the baseline,
-    /// exits 1 when a row fails, like `check`. Shards of different runs, a missing or
-    /// repeated shard, or a timed run are refused with an error naming the file.
+    /// exits 1 when a row fails, like `check`. Every shard is validated first (its shard
+    /// index, its counts against its rows and against the cases its settings give, no
+    /// row dropped; the same build, expectations, baseline and settings as the others;
+    /// each shard once): anything else, a timed run or a report written without a tool
+    /// version is refused (exit 2) with an error naming the file and the field.
     Merge {
         /// The shard reports (JSON of `check --json`).
         #[arg(required = true)]

@@ -11,18 +11,26 @@
 //! the merged counts against the expectations and (when the merged run has the
 //! settings of a stored baseline) the baseline, exactly as `check` does.
 //!
-//! A merge refuses shards of different runs (seed, cases, methods, regimes, tile,
-//! budgets), a missing or repeated shard, and timed runs (`--time`: their case set
-//! depends on the machine), each with an error naming the file and the field.
+//! Before anything is added, every shard is checked ([`validate`]): against itself and
+//! its declared settings (a shard index below its count, every row's cases those the
+//! settings give its regime and each proven, violated or unproven, totals the sums of
+//! the rows, no row dropped) and against the others (one build and one set of
+//! expectations and baseline, `tool`; one run: seed, cases, methods, regimes, tile,
+//! budgets; every shard exactly once). Timed runs (`--time`: their case set depends on
+//! the machine) and reports without a tool version are refused. Each error names the
+//! file and the field.
 
 use super::baseline::{self, BaselineFile, Settings};
 use super::expect::Expectations;
 use super::report::{finish_row, CheckReport, CrossCheck, Row};
+use super::tool::ToolInfo;
 use super::CheckConfig;
 use anyhow::{anyhow, bail, Result};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+
+mod validate;
 
 /// Exact sums behind a row's means: the pass fraction and the admit fraction (each a
 /// number in [0, 1] per case) and the limit slack (per case whose limit tiles were
@@ -152,45 +160,9 @@ pub fn merge(
     ex: &Expectations,
     base: Option<&BaselineFile>,
 ) -> Result<CheckReport> {
-    let Some((first_path, first)) = shards.first() else { bail!("merge: no shard reports given") };
+    validate::shards(&shards)?;
+    let Some((_, first)) = shards.first() else { bail!("merge: no shard reports given") };
     let run = first.run.clone();
-    let n = run.shard[1];
-    let mut seen = vec![None::<&Path>; n as usize];
-    for (p, r) in &shards {
-        if r.run.timed {
-            bail!("{}: field `run.timed` = true: a run for a time (--time) cannot be merged (its cases depend on the machine); shard a run of --cases N", p.display());
-        }
-        if r.run.methods != run.methods {
-            bail!(
-                "{}: field `run.methods` = {:?} differs from {}'s {:?}: shards of different runs",
-                p.display(),
-                r.run.methods,
-                first_path.display(),
-                run.methods
-            );
-        }
-        if r.run.settings != run.settings {
-            bail!(
-                "{}: field `run.settings` = {:?} differs from {}'s {:?}: shards of different runs",
-                p.display(),
-                r.run.settings,
-                first_path.display(),
-                run.settings
-            );
-        }
-        let [k, rn] = r.run.shard;
-        if rn != n {
-            bail!("{}: field `run.shard` = {k}/{rn}: {} is a shard of {n}", p.display(), first_path.display());
-        }
-        if let Some(other) = seen[k as usize] {
-            bail!("{}: field `run.shard` = {k}/{n}: shard {k} is also {}", p.display(), other.display());
-        }
-        seen[k as usize] = Some(p);
-    }
-    if let Some(k) = seen.iter().position(|s| s.is_none()) {
-        bail!("merge: shard {k}/{n} is missing (give the reports of all {n} shards)");
-    }
-
     let regimes = &run.settings.regimes;
     let pos = |list: &[String], x: &str, what: &str, p: &Path| -> Result<usize> {
         list.iter()
@@ -200,17 +172,26 @@ pub fn merge(
     let mut rows: BTreeMap<(usize, usize), Row> = BTreeMap::new();
     let mut cross: BTreeMap<usize, CrossCheck> = BTreeMap::new();
     let (mut cases, mut boxes, mut seconds) = (0u64, 0u64, 0f64);
+    // Counts of validated shards add up to at most the run's; the solver's boxes and the
+    // cross-check's samples are only bounded per shard, so their sums are checked.
+    let add = |acc: &mut u64, v: u64, p: &Path, field: &str| -> Result<()> {
+        *acc = acc.checked_add(v).ok_or_else(|| {
+            anyhow!("{}: field `{field}` = {v}: added to the other shards' it exceeds 2^64", p.display())
+        })?;
+        Ok(())
+    };
     for (p, r) in &shards {
         cases += r.cases;
-        boxes += r.solver_boxes;
+        add(&mut boxes, r.solver_boxes, p, "solver_boxes")?;
         seconds = seconds.max(r.seconds);
-        for c in &r.cross_check {
+        for (i, c) in r.cross_check.iter().enumerate() {
             let ri = pos(regimes, &c.regime, "the regime", p)?;
             let x = cross.entry(ri).or_insert_with(|| CrossCheck { regime: c.regime.clone(), ..Default::default() });
-            x.samples += c.samples;
-            x.interior += c.interior;
-            x.embree_over += c.embree_over;
-            x.embree_under += c.embree_under;
+            let f = |name: &str| format!("cross_check[{i}].{name}");
+            add(&mut x.samples, c.samples, p, &f("samples"))?;
+            add(&mut x.interior, c.interior, p, &f("interior"))?;
+            add(&mut x.embree_over, c.embree_over, p, &f("embree_over"))?;
+            add(&mut x.embree_under, c.embree_under, p, &f("embree_under"))?;
         }
         for row in &r.rows {
             let key = (pos(&run.methods, &row.method, "the method", p)?, pos(regimes, &row.regime, "the regime", p)?);
@@ -244,6 +225,9 @@ pub fn merge(
         solver_boxes: boxes,
         seconds,
         baseline: None,
+        // the shards' build (their counts); the expectations and baseline of this merge
+        // (its statuses)
+        tool: Some(ToolInfo { version: first.tool.clone().unwrap_or_default().version, ..ToolInfo::of(ex, base) }),
     };
     if let Some(b) = base {
         baseline::apply_settings(&mut rep, Some(&run.settings), b);

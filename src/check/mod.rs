@@ -28,6 +28,7 @@ pub mod report;
 pub mod samples;
 pub mod strength;
 pub mod tiles;
+pub mod tool;
 
 /// Case making lives with the generators; re-exported where the gate's users look.
 pub use crate::gen::boundary_tile;
@@ -423,6 +424,7 @@ pub fn run_with_baseline(
     }
     let mut rep = acc.finish(cfg, judged, start.elapsed().as_secs_f64());
     rep.samples = samples::SetNote::of(cfg, drawn - judged);
+    rep.tool = Some(tool::ToolInfo::of(ex, base));
     if let Some(b) = base {
         baseline::apply(&mut rep, cfg, b);
     }

@@ -138,6 +138,10 @@ pub struct CheckReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[serde(default)]
     pub samples: Option<super::samples::SetNote>,
+    /// The build that wrote the report and the expectations and baseline it used
+    /// (absent from reports of older builds, which `cullproof merge` refuses).
+    #[serde(default)]
+    pub tool: Option<super::tool::ToolInfo>,
 }
 
 impl CheckReport {
@@ -283,6 +287,7 @@ impl<'a> Accumulator<'a> {
             seconds,
             baseline: None,
             samples: super::samples::SetNote::of(cfg, 0),
+            tool: Some(super::tool::ToolInfo::of(self.ex, None)),
         }
     }
 }
