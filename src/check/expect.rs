@@ -79,6 +79,12 @@ pub struct Entry {
     /// Unproven cases allowed (for an expected-conservative row; none by default).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unproven: Option<Allowance>,
+    /// The tightness signature: per interval end kind ("u min", ..., "t max"), the least
+    /// share of the row's proven ends that have a covered sample within
+    /// [`super::judge::TIGHT_DELTA`] of them. A loosened answer leaves its signature
+    /// here at any seed and case count, as a new violation kind does.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub tight: BTreeMap<String, f64>,
 }
 
 impl Entry {
@@ -89,7 +95,31 @@ impl Entry {
             bounds: BTreeMap::new(),
             max_rate: None,
             unproven: None,
+            tight: BTreeMap::new(),
         }
+    }
+    /// Where a row's tightness leaves the signature: one line per end kind whose tight
+    /// ends fall below the least share, beyond counting noise (the share's count less
+    /// three binomial standard deviations, less 2 for small rows).
+    pub fn looser(&self, tight: &BTreeMap<String, super::report::TightStat>) -> Vec<String> {
+        let mut out = Vec::new();
+        for (kind, &p) in &self.tight {
+            let Some(s) = tight.get(kind) else { continue };
+            let n = s.probed as f64;
+            let least = p * n - 3.0 * (p * (1.0 - p) * n).sqrt() - 2.0;
+            if s.probed > 0 && (s.tight as f64) < least {
+                out.push(format!(
+                    "looser: `{kind}` has a covered sample within {:.1e} in {} of {} proven ends ({:.0} %; the \
+                     signature says at least {:.0} %)",
+                    super::judge::TIGHT_DELTA,
+                    s.tight,
+                    s.probed,
+                    100.0 * s.tight as f64 / n,
+                    100.0 * p
+                ));
+            }
+        }
+        out
     }
     /// Where this row's violations leave the signature: one line per breach.
     pub fn breaches(&self, violated: &BTreeMap<String, (u64, f64)>, violations: u64, cases: u64) -> Vec<String> {

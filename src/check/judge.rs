@@ -99,7 +99,19 @@ pub struct Judgement {
     /// When the method's limit tiles were placed: how far its reject limit lies beyond
     /// the footprint's extreme, in tile sizes ([`super::tiles::Limit::slack`]).
     pub limit_slack: Option<f64>,
+    /// Per interval end kind ("u min", ..., "t max"), the ends of this case probed for
+    /// tightness and those with a covered sample within [`TIGHT_DELTA`] inside them
+    /// (or beyond: a violated end counts as tight). See [`TileJudge::probe_tight`].
+    pub tight: BTreeMap<String, (u32, u32)>,
 }
+
+/// An interval end counts as tight when a covered sample lies within this much of it on
+/// the inside (lens coordinates span 2, the shutter 1): a quarter of the smallest
+/// loosening the gate must notice at any settings (1e-3).
+pub const TIGHT_DELTA: f64 = 2.5e-4;
+
+/// Boxes the search for a covered sample next to an end may examine.
+pub const TIGHT_BUDGET: usize = 200;
 
 impl Judgement {
     pub fn verdict(&self) -> Verdict {
@@ -143,6 +155,10 @@ impl Judgement {
         self.limit_tiles += o.limit_tiles;
         self.limit_violations += o.limit_violations;
         self.limit_slack = self.limit_slack.or(o.limit_slack);
+        for (k, (n, t)) in o.tight {
+            let e = self.tight.entry(k).or_insert((0, 0));
+            (e.0, e.1) = (e.0 + n, e.1 + t);
+        }
         if self.violation.is_some() {
             self.boundary_only = false;
         }
@@ -299,6 +315,23 @@ impl<'a> TileJudge<'a> {
         }
     }
 
+    /// How tight a proven end is: is a covered sample within [`TIGHT_DELTA`] of it, on
+    /// its inside (in the tile and the domain)? Recorded per end kind in
+    /// [`Judgement::tight`]; a loosened answer leaves no covered sample that close, so
+    /// the share of tight ends drops at any seed and case count (the expectations
+    /// hold the least share each method shows). Ends of coordinates the triangle does
+    /// not have are not probed.
+    fn probe_tight(&mut self, j: &mut Judgement, ext: Extent, bound: f64, name: &str) {
+        let Some(index) = ext.sample_coord() else { return };
+        if (index == 4 && self.tri.is_static()) || (index < 4 && self.tri.is_pinhole()) {
+            return;
+        }
+        let w = self.solver.witness_near(ext, bound, TIGHT_DELTA, TIGHT_BUDGET);
+        let tight = w.is_some_and(|w| in_domain(&self.tile, w));
+        let e = j.tight.entry(name.to_string()).or_insert((0, 0));
+        (e.0, e.1) = (e.0 + 1, e.1 + tight as u32);
+    }
+
     /// Judge one tile answer.
     pub fn judge(&mut self, answer: &TileResult) -> Judgement {
         let mut j = Judgement::default();
@@ -360,6 +393,10 @@ impl<'a> TileJudge<'a> {
                         j.add_unproven(Unproven::DepthUnconfirmed);
                         continue;
                     }
+                    if coord.is_some() {
+                        let e = j.tight.entry(name.clone()).or_insert((0, 0));
+                        (e.0, e.1) = (e.0 + 1, e.1 + 1);
+                    }
                     j.consider(self.witness(w, name, (value - bound).abs()));
                     let axis = coord.unwrap_or(5);
                     let cands = f32_candidates(w, axis, bound as f32, is_max, &tile);
@@ -374,6 +411,8 @@ impl<'a> TileJudge<'a> {
                 Side::Within { gap, .. } => {
                     if gap > 0.0 {
                         j.add_unproven(Unproven::SideGap);
+                    } else if coord.is_some() {
+                        self.probe_tight(j, ext, bound, &name);
                     }
                 }
             }

@@ -254,6 +254,11 @@ fn add_row(acc: &mut Row, o: &Row) {
     acc.limit_tiles += o.limit_tiles;
     acc.limit_violations += o.limit_violations;
     acc.limit_found += o.limit_found;
+    for (k, t) in &o.tight {
+        let e = acc.tight.entry(k.clone()).or_default();
+        e.probed += t.probed;
+        e.tight += t.tight;
+    }
     acc.sums = acc.sums + o.sums;
     if let Some(w) = &o.worst {
         let later = acc.worst.as_ref().is_none_or(|a| (w.margin, w.case_index) > (a.margin, a.case_index));

@@ -61,6 +61,13 @@ pub struct BoundStat {
     pub max_margin: f64,
 }
 
+/// Proven interval ends of one kind probed for tightness, and how many were tight.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct TightStat {
+    pub probed: u64,
+    pub tight: u64,
+}
+
 /// The row of the verdict table.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Row {
@@ -88,6 +95,12 @@ pub struct Row {
     /// footprint's extreme; larger: looser).
     pub limit_found: u64,
     pub limit_slack: f64,
+    /// Per interval end kind: the proven ends probed for tightness and those with a
+    /// covered sample within [`super::judge::TIGHT_DELTA`] of them (see
+    /// [`super::judge::Judgement::tight`]); checked against the expectation's least
+    /// share at any settings.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub tight: BTreeMap<String, TightStat>,
     /// Mean share of the boundary tile's uniform samples the answer admits (intervals
     /// and constraints; 0 for a culled tile).
     pub admit_fraction: f64,
@@ -218,6 +231,7 @@ impl<'a> Accumulator<'a> {
                     limit_violations: 0,
                     limit_found: 0,
                     limit_slack: 0.0,
+                    tight: BTreeMap::new(),
                     admit_fraction: 0.0,
                     pass_fraction: 0.0,
                     margin_needed: 0.0,
@@ -253,6 +267,11 @@ impl<'a> Accumulator<'a> {
                     row.violations += 1;
                     row.f32_witnessed += j.f32_witness as u64;
                 }
+            }
+            for (k, &(n, t)) in &j.tight {
+                let s = row.tight.entry(k.clone()).or_default();
+                s.probed += n as u64;
+                s.tight += t as u64;
             }
             for (k, m) in &j.violated {
                 let b = row.bounds.entry(k.clone()).or_default();
@@ -340,6 +359,16 @@ fn set_status(row: &mut Row) {
             }
         }
     };
+    // Looser than the signature allows, at any settings: a row that passes otherwise
+    // fails as a regression (a row that already fails keeps its status; the lines
+    // are added either way).
+    if row.status != Status::NotGated {
+        let looser = entry.looser(&row.tight);
+        if !looser.is_empty() && !row.status.fails() {
+            row.status = Status::Regression;
+        }
+        row.problems.extend(looser);
+    }
 }
 
 fn fmt_margin(row: &Row) -> String {

@@ -263,6 +263,14 @@ impl Problem for ExtentSearch<'_> {
             return Flow::Continue;
         }
         let tri = self.tri;
+        if class == BoxClass::Full && matches!(obj, Objective::Depth { .. }) && self.wanted(key) {
+            // Every sample of a full box is interior, and at a fixed time the depth is
+            // monotone in each of x, y, u, v there (its numerator affine in each, D in
+            // u and v, D of one sign): its least and greatest values over the box are at
+            // the corners, at some time. The corners at the box's three times come
+            // within the box's time variation of the key.
+            self.try_witnesses(full_box_corners(&b), &b, key);
+        }
         // Witnesses, while one could still improve on the best.
         if self.wanted(key) {
             let found = self.try_witnesses(candidate_points(tri, obj, &b, opts.eliminate), &b, key);
@@ -350,9 +358,18 @@ impl Problem for ExtentSearch<'_> {
                 dim = Some(i);
             }
         }
+        if dim.is_none() {
+            // No smear points anywhere (a full box has no open value): split the
+            // widest side, relative to the initial box, that can still be split.
+            dim = (0..5)
+                .filter(|&i| active[i] && b[i].width() > min_w[i] && init[i].width() > 0.0)
+                .max_by(|&i, &j| (b[i].width() / init[i].width()).total_cmp(&(b[j].width() / init[j].width())));
+        }
         let Some(mut dim) = dim else {
-            if class != BoxClass::Full {
-                // (a full box's witness already stands for it)
+            // Nothing left to split. A box whose key its best witness does not reach
+            // stays open (its key bounds the result), full or not: a full box's
+            // witness stands for it only when it reaches the key.
+            if !(class == BoxClass::Full && self.best.is_some_and(|(w, _)| w <= key)) {
                 self.stuck.push(key);
                 self.stuck_lo = self.stuck_lo.min(key);
             }
@@ -380,6 +397,26 @@ impl Problem for ExtentSearch<'_> {
         }
         Flow::Continue
     }
+}
+
+/// The corners of a box in (x, y, u, v) at its first, middle and last time (a coordinate
+/// that is a point once).
+fn full_box_corners(b: &Box5) -> Vec<[f64; 5]> {
+    let ends = |i: usize| if b[i].width() > 0.0 { vec![b[i].lo, b[i].hi] } else { vec![b[i].lo] };
+    let ts = if b[4].width() > 0.0 { vec![b[4].lo, b[4].mid(), b[4].hi] } else { vec![b[4].lo] };
+    let mut out = Vec::with_capacity(48);
+    for &x in &ends(0) {
+        for &y in &ends(1) {
+            for &u in &ends(2) {
+                for &v in &ends(3) {
+                    for &t in &ts {
+                        out.push([x, y, u, v, t]);
+                    }
+                }
+            }
+        }
+    }
+    out
 }
 
 /// The box values the search judges by (see [`Search::eliminate`]).

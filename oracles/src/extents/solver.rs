@@ -76,6 +76,9 @@ pub struct TileSolver<'a> {
     /// Side judgements already made, by (objective, bound, band, budget, stall): methods that
     /// share a bound (lc and la2011, mam2012-new and its parts) are judged once.
     sides: Vec<(SideKey, Side)>,
+    /// Searches of [`TileSolver::witness_near`] already run, by (objective, bound, delta,
+    /// budget).
+    near: Vec<(SideKey, Option<[f64; 5]>)>,
     /// Boxes examined so far.
     pub boxes: u64,
 }
@@ -108,6 +111,7 @@ impl<'a> TileSolver<'a> {
             results: [None; 8],
             occupancy: None,
             sides: Vec::new(),
+            near: Vec::new(),
             boxes: 0,
         }
     }
@@ -284,6 +288,39 @@ impl<'a> TileSolver<'a> {
                 r
             }
         }
+    }
+
+    /// Is some interior sample within `delta` of `bound` on the inside of the claim
+    /// "extent `ext` stays within `bound`" (u, v or t in `[bound, bound + delta]` for a
+    /// minimum, `[bound - delta, bound]` for a maximum)? Some(witness) when one is
+    /// found (confirmed exactly), None when none was found within `budget` boxes (a
+    /// first-witness search with (x, y) eliminated). It measures how tight a claim
+    /// is, never whether it holds. None for the depth and for a coordinate the
+    /// triangle does not have (coverage does not depend on it).
+    pub fn witness_near(&mut self, ext: Extent, bound: f64, delta: f64, budget: usize) -> Option<[f64; 5]> {
+        let index = ext.sample_coord()?;
+        if !self.active[index] || !(bound.is_finite() && delta > 0.0) {
+            return None;
+        }
+        let mut init = self.init;
+        let d = init[index];
+        let (lo, hi) = if ext.is_max() { (bound - delta, bound) } else { (bound, bound + delta) };
+        let (lo, hi) = (lo.max(d.lo), hi.min(d.hi));
+        if !(lo <= hi) {
+            return None;
+        }
+        init[index] = Interval::new(lo, hi);
+        let key = (ext, bound.to_bits(), delta.to_bits(), budget, None);
+        if let Some((_, w)) = self.near.iter().find(|(k, _)| *k == key) {
+            return *w;
+        }
+        let cfg = ExtentsConfig { max_boxes: budget, ..self.cfg };
+        let opts = Search { bound: None, first_witness: true, refine_boxes: None, stall: None, eliminate: true };
+        let r = search(self.tri, init, ext, &cfg, opts);
+        self.boxes += r.boxes;
+        let w = r.extreme.map(|e| e.witness);
+        self.near.push((key, w));
+        w
     }
 
     /// The result of one extent.

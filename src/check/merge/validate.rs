@@ -303,6 +303,16 @@ fn row_counts(p: &Path, i: usize, row: &Row) -> Result<()> {
             refuse!(p, f(&format!("unproven_by.{why}")), "= {v} exceeds unproven = {}", row.unproven);
         }
     }
+    for (kind, t) in &row.tight {
+        // (the boundary tile and two limit tiles, three coordinates with two ends each)
+        let most = cases.saturating_mul(18);
+        if t.probed > most {
+            refuse!(p, f(&format!("tight.{kind}.probed")), "= {} exceeds 18 x cases = {most}", t.probed);
+        }
+        if t.tight > t.probed {
+            refuse!(p, f(&format!("tight.{kind}.tight")), "= {} exceeds probed = {}", t.tight, t.probed);
+        }
+    }
     for (kind, b) in &row.bounds {
         if b.cases > cases {
             refuse!(p, f(&format!("bounds.{kind}.cases")), "= {} exceeds cases = {cases}", b.cases);
