@@ -17,6 +17,7 @@ use crate::bounds::{by_id, Method, MethodRef, TileResult};
 use crate::check::{culled_by, judge, try_make_case, CheckConfig, Judgement};
 use crate::gen::Regime;
 use crate::model::{Case, SampleSet, Snap, Tile, Viewport};
+use crate::quote::{clip, quote};
 use anyhow::{anyhow, bail, Context, Result};
 use oracles::{classify, Coverage};
 use serde::{Deserialize, Serialize};
@@ -70,7 +71,10 @@ pub(crate) mod num_or_inf {
         match NumOrStr::deserialize(d)? {
             NumOrStr::Num(v) => Ok(v),
             NumOrStr::Str(s) if s == "inf" => Ok(f64::INFINITY),
-            NumOrStr::Str(s) => Err(serde::de::Error::custom(format!("expected a number or \"inf\", found {s:?}"))),
+            NumOrStr::Str(s) => Err(serde::de::Error::custom(format!(
+                "expected a number or \"inf\", found {}",
+                crate::quote::quote(&s)
+            ))),
         }
     }
 }
@@ -172,18 +176,18 @@ impl CaseFile {
             anyhow!(
                 "{}: field `{}`: {}",
                 path.display(),
-                if field == "." { "(top level)".into() } else { field },
-                e.inner()
+                if field == "." { "(top level)".into() } else { clip(&field) },
+                clip(&e.inner().to_string())
             )
         })?;
         if cf.format != FORMAT {
-            bail!("{}: field `format` = {:?}: expected {FORMAT:?}", path.display(), cf.format);
+            bail!("{}: field `format` = {}: expected {FORMAT:?}", path.display(), quote(&cf.format));
         }
         if method_of(&cf.method).is_none() {
             bail!(
-                "{}: field `method` = {:?} is not a known method id (see `cullproof methods`; a plugin's id needs `--plugin LIB.so`)",
+                "{}: field `method` = {} is not a known method id (see `cullproof methods`; a plugin's id needs `--plugin LIB.so`)",
                 path.display(),
-                cf.method
+                quote(&cf.method)
             );
         }
         cf.case.validate().map_err(|e| anyhow!("{}: in `case`: {e}", path.display()))?;

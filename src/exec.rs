@@ -20,6 +20,7 @@
 
 use crate::bounds::{Method, MethodInfo, Outputs, Prepared, SampleBox, SampleConstraint, TileBounds, TileResult};
 use crate::model::{Dims, Sample, Tile, Triangle};
+use crate::quote::{clip, quote};
 use crate::Interval;
 use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
@@ -34,6 +35,11 @@ pub const PROTOCOL: u32 = 1;
 
 /// How long a process may take for one answer (the greeting included).
 pub const DEFAULT_TIMEOUT: Duration = Duration::from_secs(30);
+
+/// The longest answer line taken, in bytes (1 MiB; the newline not counted). A longer
+/// line stops the run with an error as soon as the limit is passed, before more of it
+/// is held in memory.
+pub const MAX_LINE: usize = 1 << 20;
 
 /// The triangle as it crosses the boundary: the model's f32 values written as f64, so
 /// that the decimal text denotes exactly the f32 value (an f32 printed as f32 reads back
@@ -229,9 +235,17 @@ fn spawn(command: &str) -> Result<Proc> {
         .with_context(|| format!("--exec {command:?}: cannot start"))?;
     let stdin = child.stdin.take().expect("piped");
     let stdout = child.stdout.take().expect("piped");
-    let (tx, rx) = std::sync::mpsc::channel();
+    // A few lines ahead at most: one answer is read per request, so the memory held is
+    // bounded by MAX_LINE times the channel's room.
+    let (tx, rx) = std::sync::mpsc::sync_channel(2);
     std::thread::spawn(move || {
-        for line in BufReader::new(stdout).lines() {
+        let mut r = BufReader::new(stdout);
+        loop {
+            let line = match read_line(&mut r, MAX_LINE) {
+                Ok(Some(l)) => Ok(l),
+                Ok(None) => break,
+                Err(e) => Err(e),
+            };
             let stop = line.is_err();
             if tx.send(line).is_err() || stop {
                 break;
@@ -239,6 +253,48 @@ fn spawn(command: &str) -> Result<Proc> {
         }
     });
     Ok(Proc { child, stdin, lines: rx })
+}
+
+/// One line of `r` without its `\n` (None at the end of the stream), of at most `max`
+/// bytes: a longer line is an error as soon as `max` is passed (the rest is not read).
+fn read_line(r: &mut impl BufRead, max: usize) -> std::io::Result<Option<String>> {
+    let mut line = Vec::new();
+    let mut any = false;
+    loop {
+        let buf = match r.fill_buf() {
+            Ok(b) => b,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(e),
+        };
+        if buf.is_empty() {
+            if !any {
+                return Ok(None);
+            }
+            break;
+        }
+        any = true;
+        let (take, done) = match buf.iter().position(|&b| b == b'\n') {
+            Some(i) => (i, true),
+            None => (buf.len(), false),
+        };
+        if line.len() + take > max {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("an answer line is longer than {max} bytes, the most the protocol takes"),
+            ));
+        }
+        line.extend_from_slice(&buf[..take]);
+        r.consume(take + done as usize);
+        if done {
+            break;
+        }
+    }
+    String::from_utf8(line).map(Some).map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("an answer line of {} bytes is not UTF-8 text", e.as_bytes().len()),
+        )
+    })
 }
 
 impl Proc {
@@ -269,13 +325,18 @@ pub fn start(command: &str, timeout: Duration) -> Result<&'static dyn Method> {
     let mut p = spawn(command)?;
     let hello = serde_json::to_string(&Request::Hello { protocol: PROTOCOL })? + "\n";
     let line = p.ask(&hello, timeout).map_err(|e| anyhow::anyhow!("--exec {command:?}: greeting: {e}"))?;
-    let h: Hello = serde_json::from_str(&line)
-        .map_err(|e| anyhow::anyhow!("--exec {command:?}: greeting answer {line:?}: {e} (see docs/protocol.md)"))?;
+    let h: Hello = serde_json::from_str(&line).map_err(|e| {
+        anyhow::anyhow!(
+            "--exec {command:?}: greeting answer {}: {} (see docs/protocol.md)",
+            quote(&line),
+            clip(&e.to_string())
+        )
+    })?;
     if h.protocol != PROTOCOL {
         bail!("--exec {command:?}: speaks protocol version {}, this cullproof speaks {PROTOCOL}", h.protocol);
     }
     if !crate::plugin::valid_id(&h.id) {
-        bail!("--exec {command:?}: id {:?}: use 1 to 64 letters, digits, '-', '_' or '.'", h.id);
+        bail!("--exec {command:?}: id {}: use 1 to 64 letters, digits, '-', '_' or '.'", quote(&h.id));
     }
     let mut outputs = Outputs { tile_reject: false, lens: false, time: false, depth: false, per_sample: false };
     for o in &h.outputs {
@@ -285,7 +346,10 @@ pub fn start(command: &str, timeout: Duration) -> Result<&'static dyn Method> {
             "time" => outputs.time = true,
             "depth" => outputs.depth = true,
             "per-sample" => outputs.per_sample = true,
-            _ => bail!("--exec {command:?}: output {o:?} is not one of tile-reject, lens, time, depth, per-sample"),
+            _ => bail!(
+                "--exec {command:?}: output {} is not one of tile-reject, lens, time, depth, per-sample",
+                quote(o)
+            ),
         }
     }
     let info = Box::leak(Box::new(MethodInfo {
@@ -378,13 +442,13 @@ impl Prepared for ExecPrep {
         let line = self.m.round_trip(&req);
         let a: TileAnswer = match serde_json::from_str(&line) {
             Ok(a) => a,
-            Err(e) => self.m.fail(&req, &format!("answer {line:?} does not parse: {e}")),
+            Err(e) => self.m.fail(&req, &format!("answer {} does not parse: {}", quote(&line), clip(&e.to_string()))),
         };
         if a.n != n {
-            self.m.fail(&req, &format!("answer {line:?} is for request {} (expected {n})", a.n));
+            self.m.fail(&req, &format!("answer {} is for request {} (expected {n})", quote(&line), a.n));
         }
         if let Some(e) = a.error {
-            self.m.fail(&req, &format!("the process reported: {e}"));
+            self.m.fail(&req, &format!("the process reported: {}", clip(&e)));
         }
         if a.empty {
             return TileResult::Empty;
@@ -539,9 +603,9 @@ impl SampleConstraint for ExecConstraint {
         let line = self.m.round_trip(&req);
         match serde_json::from_str::<EvalAnswer>(&line) {
             Ok(EvalAnswer { n: got, error: None, g: Some(g) }) if got == n => g,
-            Ok(EvalAnswer { error: Some(e), .. }) => self.m.fail(&req, &format!("the process reported: {e}")),
-            Ok(_) => self.m.fail(&req, &format!("answer {line:?} is not {{\"n\": {n}, \"g\": value}}")),
-            Err(e) => self.m.fail(&req, &format!("answer {line:?} does not parse: {e}")),
+            Ok(EvalAnswer { error: Some(e), .. }) => self.m.fail(&req, &format!("the process reported: {}", clip(&e))),
+            Ok(_) => self.m.fail(&req, &format!("answer {} is not {{\"n\": {n}, \"g\": value}}", quote(&line))),
+            Err(e) => self.m.fail(&req, &format!("answer {} does not parse: {}", quote(&line), clip(&e.to_string()))),
         }
     }
     fn eval_box(&self, b: &SampleBox) -> Interval {
@@ -582,6 +646,24 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn answer_lines_are_read_up_to_the_limit() {
+        let mut r = std::io::Cursor::new(b"one\ntwo\n\nlast".to_vec());
+        let mut got = Vec::new();
+        while let Some(l) = read_line(&mut r, 8).unwrap() {
+            got.push(l);
+        }
+        assert_eq!(got, ["one", "two", "", "last"]);
+        // Reading stops at the limit: the rest of a long line is never held.
+        let long = [vec![b'x'; 5000], b"\nnext\n".to_vec()].concat();
+        let mut r = std::io::BufReader::with_capacity(64, std::io::Cursor::new(long));
+        let e = read_line(&mut r, 100).unwrap_err().to_string();
+        assert!(e.contains("longer than 100 bytes"), "{e}");
+        assert!(r.get_ref().position() < 300);
+        let mut r = std::io::Cursor::new(vec![b'a', 0xff, b'\n']);
+        assert!(read_line(&mut r, 8).unwrap_err().to_string().contains("not UTF-8"));
     }
 
     #[test]

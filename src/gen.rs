@@ -489,15 +489,36 @@ pub fn bit_compare_case(seed: u64, n: usize) -> (Triangle, Vec<Tile>) {
     }
 }
 
-/// A uniform sample with (x, y) in the tile, over the whole lens and shutter.
+/// A uniform sample with (x, y) in the tile, over the whole lens and shutter. Total on
+/// every finite tile, even one wider than `f32::MAX` (see [`coordinate`]).
 pub fn tile_sample(rng: &mut ChaCha8Rng, tile: &Tile) -> Sample {
     Sample::new(
-        rng.gen_range(tile.x0..=tile.x1),
-        rng.gen_range(tile.y0..=tile.y1),
+        coordinate(rng, tile.x0, tile.x1),
+        coordinate(rng, tile.y0, tile.y1),
         rng.gen_range(-1.0..=1.0),
         rng.gen_range(-1.0..=1.0),
         rng.gen_range(0.0..=1.0),
     )
+}
+
+/// Uniform in `[lo, hi]` (finite ends). `rand` panics on a range whose width, divided
+/// by its largest unit draw `1 - f32::EPSILON`, overflows f32 (a tile from -f32::MAX to
+/// f32::MAX, or from 0 to f32::MAX): such a range is drawn in f64, where the width of
+/// any two f32 values is finite, as `lo (1 - u) + hi u`, rounded back into `[lo, hi]`.
+/// Every other range takes the draw it always took (runs repeat bit for bit). Ends in
+/// the wrong order are swapped; a non-finite end gives a non-finite coordinate (no
+/// tile has one: tiles are validated).
+fn coordinate(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
+    let (lo, hi) = if lo <= hi { (lo, hi) } else { (hi, lo) };
+    if ((hi - lo) / (1.0 - f32::EPSILON)).is_finite() {
+        return rng.gen_range(lo..=hi);
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        return lo + hi;
+    }
+    let u: f64 = rng.gen_range(0.0..=1.0);
+    let x = lo as f64 * (1.0 - u) + hi as f64 * u;
+    (x as f32).clamp(lo, hi)
 }
 
 /// Samples for a case: half uniform over the triangle's screen region, half drawn near
@@ -708,5 +729,26 @@ mod tests {
             let z = physical_case(&mut Tape::new(vec![0.0; strategy::TAPE_LEN]), r);
             z.validate().unwrap_or_else(|e| panic!("{}: {e}", r.name()));
         }
+    }
+
+    #[test]
+    fn tile_samples_are_drawn_on_every_finite_tile() {
+        let mut rng = rng_for(3, 0);
+        let m = f32::MAX;
+        for (x0, x1) in [(-m, m), (0.0, m), (-m, 0.0), (m.next_down(), m), (-m, -m / 2.0), (-1e38, 3e38)] {
+            let tile = Tile { x0, y0: -m, x1, y1: m };
+            for _ in 0..200 {
+                let s = tile_sample(&mut rng, &tile);
+                assert!(s.x.is_finite() && x0 <= s.x && s.x <= x1, "{x0} {x1}: {}", s.x);
+                assert!(s.y.is_finite(), "{}", s.y);
+            }
+        }
+        // The two ends are reached in the wide form (not only one half of the range).
+        let xs: Vec<f32> = (0..400).map(|_| coordinate(&mut rng, -m, m)).collect();
+        assert!(xs.iter().any(|&x| x < -1e38) && xs.iter().any(|&x| x > 1e38));
+        // An ordinary tile draws what it always drew.
+        let tile = Tile::square(3.0, 5.0, 4.0);
+        let (mut a, mut b) = (rng_for(9, 1), rng_for(9, 1));
+        assert_eq!(tile_sample(&mut a, &tile).x, b.gen_range(3.0f32..=7.0));
     }
 }

@@ -61,7 +61,11 @@ pub mod explain;
 #[doc(hidden)]
 pub mod gen;
 #[doc(hidden)]
+pub mod output;
+#[doc(hidden)]
 pub mod plugin;
+#[doc(hidden)]
+pub mod quote;
 #[doc(hidden)]
 pub mod stability;
 #[doc(hidden)]

@@ -398,12 +398,30 @@ fn parse_regimes(name: &str) -> Result<Vec<cullproof::gen::Regime>> {
     })
 }
 
-fn write_json(path: &PathBuf, text: &str) -> Result<()> {
+/// Write a JSON report to `path` (checked before the run with [`check_json`]; "-" is
+/// standard output), replacing an existing file only by the whole new report.
+fn write_json(path: &std::path::Path, text: &str) -> Result<()> {
     if path.as_os_str() == "-" {
         println!("{text}");
         Ok(())
     } else {
-        std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))
+        cullproof::output::write(path, text)
+    }
+}
+
+/// Check a `--json` path before any work (see [`cullproof::output`]).
+fn check_json(json: &Option<PathBuf>) -> Result<()> {
+    match json {
+        Some(p) => cullproof::output::file_or_stdout("--json", p),
+        None => Ok(()),
+    }
+}
+
+/// Check a `--junit` path (and its witness directory) before any work.
+fn check_junit(junit: &Option<PathBuf>) -> Result<()> {
+    match junit {
+        Some(p) => cullproof::check::junit::check_path(p),
+        None => Ok(()),
     }
 }
 
@@ -441,6 +459,7 @@ fn run() -> Result<()> {
     match cli.cmd {
         Cmd::OracleAgree { samples, seed, json, jobs } => {
             cullproof::args::count("--samples", samples, cullproof::args::AGREE_MAX_SAMPLES, "samples")?;
+            check_json(&json)?;
             set_jobs(jobs)?;
             let r = cullproof::agree::run(seed, samples, json.is_none());
             match &json {
@@ -491,6 +510,16 @@ fn run() -> Result<()> {
             if let Some(t) = time {
                 args::time("--time", t, args::CHECK_MAX_TIME)?;
             }
+            // Every output is checked before the run, so none fails after it.
+            check_json(&json)?;
+            check_junit(&junit)?;
+            if write_baseline {
+                anyhow::ensure!(
+                    time.is_none() && (k, n) == (0, 1),
+                    "--write-baseline: a baseline needs a fixed case count, not --time or --shard"
+                );
+                cullproof::output::file("--baseline", &baseline)?;
+            }
             set_jobs(jobs)?;
             anyhow::ensure!(
                 expectations.is_file(),
@@ -532,6 +561,8 @@ fn run() -> Result<()> {
         }
         Cmd::Merge { reports, expectations, baseline, json, junit } => {
             use cullproof::check::{baseline::BaselineFile, merge, Expectations};
+            check_json(&json)?;
+            check_junit(&junit)?;
             anyhow::ensure!(
                 expectations.is_file(),
                 "--expectations {}: no such file (the expectations file is required)",
@@ -564,6 +595,10 @@ fn run() -> Result<()> {
             args::time("--time", time, args::SEARCH_MAX_TIME)?;
             args::count("--max", max as u64, u64::MAX, "violation to stop at")?;
             args::margin("--min-margin", min_margin)?;
+            check_json(&json)?;
+            if !dry_run {
+                cullproof::output::dir("--out", &out)?;
+            }
             set_jobs(jobs)?;
             cfg.seed = seed;
             cfg.tile = tile;
@@ -628,6 +663,13 @@ fn run() -> Result<()> {
             anyhow::ensure!((1..=64).contains(&jobs), "--jobs {jobs}: give 1 to 64");
             anyhow::ensure!((1..=1_000_000).contains(&queries), "--queries {queries}: give 1 to 1000000");
             anyhow::ensure!((0.0..=1.0).contains(&free_share), "--free-share {free_share}: give 0 to 1");
+            check_json(&json)?;
+            if !dry_run {
+                cullproof::output::dir("--out", &out)?;
+            }
+            if let Some(d) = &emit_smt {
+                cullproof::output::dir("--emit-smt", d)?;
+            }
             let m = cullproof::args::method("--method", &method, true)?;
             use cullproof::symbolic::{family, prove};
             let fam = prove::family(m.info().id)?;
@@ -657,6 +699,7 @@ fn run() -> Result<()> {
         }
         Cmd::Replay { paths, json, sample } => {
             let over = sample.parse()?;
+            check_json(&json)?;
             let paths = if paths.is_empty() { vec![PathBuf::from("corpus/cases")] } else { paths };
             let files = cullproof::corpus::case_files(&paths)?;
             let cfg = cullproof::check::CheckConfig::default_with(cullproof::bounds::registry());
@@ -691,6 +734,14 @@ fn run() -> Result<()> {
             }
         }
         Cmd::Explain { case, svg, sample } => {
+            if let Some(out) = &svg {
+                anyhow::ensure!(
+                    std::fs::symlink_metadata(out).is_err(),
+                    "--svg {}: the file exists (an existing file is never overwritten)",
+                    out.display()
+                );
+                cullproof::output::file("--svg", out)?;
+            }
             let mut cf = cullproof::corpus::CaseFile::load(&case)?;
             let over = sample.parse()?;
             cf.samples = over.samples.unwrap_or(cf.samples);
@@ -726,6 +777,7 @@ fn run() -> Result<()> {
             set_jobs(jobs)?;
             let methods = cullproof::args::methods("--method", &method, false)?;
             let cases = cullproof::args::count("--cases", cases, 1_000_000, "cases")?;
+            check_json(&json)?;
             let ex = cullproof::check::Expectations::load(&expectations)?;
             let base =
                 if baseline.exists() { Some(cullproof::check::baseline::BaselineFile::load(&baseline)?) } else { None };

@@ -25,6 +25,7 @@
 
 use super::report::{BoundStat, CheckReport, Status};
 use super::CheckConfig;
+use crate::quote::{clip, quote};
 use anyhow::{anyhow, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -122,10 +123,12 @@ impl BaselineFile {
     pub fn load(path: &Path) -> Result<BaselineFile> {
         let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
         let de = &mut serde_json::Deserializer::from_str(&text);
-        let f: BaselineFile = serde_path_to_error::deserialize(de)
-            .map_err(|e| anyhow!("{}: field `{}`: {}", path.display(), e.path(), e.inner()))?;
+        let f: BaselineFile = serde_path_to_error::deserialize(de).map_err(|e| {
+            let (field, why) = (e.path().to_string(), e.inner().to_string());
+            anyhow!("{}: field `{}`: {}", path.display(), clip(&field), clip(&why))
+        })?;
         if f.format != FORMAT {
-            anyhow::bail!("{}: field `format` = {:?}: expected {FORMAT:?}", path.display(), f.format);
+            anyhow::bail!("{}: field `format` = {}: expected {FORMAT:?}", path.display(), quote(&f.format));
         }
         Ok(f)
     }

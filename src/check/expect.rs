@@ -20,6 +20,7 @@
 
 use crate::corpus::num_or_inf;
 use crate::gen::Regime;
+use crate::quote::clip;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -159,28 +160,31 @@ impl Expectations {
         let text =
             std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("{}: cannot read: {e}", path.display()))?;
         let raw: BTreeMap<String, BTreeMap<String, serde_json::Value>> = serde_json::from_str(&text)
-            .map_err(|e| anyhow::anyhow!("{}: not an expectations file: {e}", path.display()))?;
+            .map_err(|e| anyhow::anyhow!("{}: not an expectations file: {}", path.display(), clip(&e.to_string())))?;
         let mut out = BTreeMap::new();
         for (m, regimes) in raw {
             if !known(&m) {
-                anyhow::bail!("{}: method `{m}` is not a known method id (see `cullproof methods`; a plugin's id needs `--plugin LIB.so`)", path.display());
+                anyhow::bail!("{}: method `{}` is not a known method id (see `cullproof methods`; a plugin's id needs `--plugin LIB.so`)", path.display(), clip(&m));
             }
             let mut rows = BTreeMap::new();
             for (r, v) in regimes {
-                let at = format!("{}: method `{m}`, regime `{r}`", path.display());
+                let at = format!("{}: method `{m}`, regime `{}`", path.display(), clip(&r));
                 if r != "*" && !Regime::ALL.iter().any(|x| x.name() == r) {
-                    anyhow::bail!("{at}: `{r}` is not a known regime");
+                    anyhow::bail!("{at}: not a known regime");
                 }
                 // A bare status, or the whole object (whose errors name the field).
                 let e = if v.is_string() {
                     match serde_json::from_value::<Expected>(v) {
                         Ok(e) => Entry { expect: e, ..Entry::conservative() },
-                        Err(err) => anyhow::bail!("{at}: {err}"),
+                        Err(err) => anyhow::bail!("{at}: {}", clip(&err.to_string())),
                     }
                 } else {
                     match serde_path_to_error::deserialize::<_, Entry>(v) {
                         Ok(e) => e,
-                        Err(err) => anyhow::bail!("{at}: field `{}`: {}", err.path(), err.inner()),
+                        Err(err) => {
+                            let (field, why) = (err.path().to_string(), err.inner().to_string());
+                            anyhow::bail!("{at}: field `{}`: {}", clip(&field), clip(&why))
+                        }
                     }
                 };
                 Self::validate(&e).map_err(|why| anyhow::anyhow!("{at}: {why}"))?;

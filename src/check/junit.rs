@@ -11,7 +11,7 @@
 
 use super::report::{CheckReport, Row, Status};
 use crate::corpus::CaseFile;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -137,11 +137,26 @@ pub fn render(r: &CheckReport, dir: &Path) -> Result<String> {
     Ok(s)
 }
 
+/// Check a `--junit` path before the run ([`crate::output::file`]), and that its
+/// witness directory ([`witness_dir`]) is a directory if it exists.
+pub fn check_path(path: &Path) -> Result<()> {
+    crate::output::file("--junit", path)?;
+    let w = witness_dir(path);
+    if std::fs::metadata(&w).is_ok_and(|m| !m.is_dir()) {
+        anyhow::bail!(
+            "--junit {}: the witness directory beside it, {}, exists and is not a directory",
+            path.display(),
+            w.display()
+        );
+    }
+    Ok(())
+}
+
 /// Write the JUnit XML of a report to `path` (its witnesses beside it, see
-/// [`witness_dir`]).
+/// [`witness_dir`]); an existing file is replaced only by the whole new one.
 pub fn write(r: &CheckReport, path: &Path) -> Result<()> {
     let xml = render(r, &witness_dir(path))?;
-    std::fs::write(path, xml).with_context(|| format!("writing {}", path.display()))
+    crate::output::write(path, xml)
 }
 
 #[cfg(test)]

@@ -526,7 +526,7 @@ fn parse_methods(s: &str) -> Result<Vec<&'static dyn Method>> {
 }
 
 fn write(path: &Path, text: &str) -> Result<()> {
-    std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))
+    crate::output::write(path, text)
 }
 
 /// The `stability` command.
@@ -541,6 +541,19 @@ pub fn run_cli(args: &StabilityArgs) -> Result<()> {
     }
     ensure!(args.samples <= 1 << 20, "--samples {}: at most 1048576", args.samples);
     let threads = crate::args::jobs(args.jobs)?.unwrap_or_else(rayon::current_num_threads);
+    // Every output is checked before the run (see crate::output), so none fails after it.
+    crate::output::dir("--out", &args.out)?;
+    for f in &families {
+        for ext in ["svg", "md"] {
+            let p = args.out.join(format!("{}.{ext}", f.name()));
+            if p.exists() {
+                crate::output::file("--out", &p)?;
+            }
+        }
+    }
+    if let Some(p) = &args.json {
+        crate::output::file_or_stdout("--json", p)?;
+    }
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().context("building the thread pool")?;
     let cfg = Config {
         methods: methods.clone(),

@@ -175,6 +175,9 @@ fn check_scene_finite(scene: &Scene, settings: &[Setting], name: &str) -> Result
     Ok(())
 }
 
+/// The files written into `--out`.
+const OUT_FILES: [&str; 3] = ["ste.md", "ste.json", "ste_vs_cost.svg"];
+
 /// Refuse to replace a file that is not an earlier report of this command.
 fn check_replaceable(p: &Path) -> Result<()> {
     if p.is_dir() {
@@ -562,15 +565,25 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
     if args.out.exists() && !args.out.is_dir() {
         bail!("--out {}: exists and is not a directory; refusing to write into it", args.out.display());
     }
+    // Every output is checked before the run (see crate::output), so none fails after it.
+    crate::output::dir("--out", &args.out)?;
+    for name in OUT_FILES {
+        let p = args.out.join(name);
+        if p.exists() {
+            crate::output::file("--out", &p)?;
+        }
+    }
     if let Some(j) = &args.json {
         if j.as_os_str() != "-" {
             check_replaceable(j)?;
+            crate::output::file("--json", j)?;
         }
     }
-    // The bar runs from the start: reading a large OBJ file takes time too.
+    // The bar runs from the start: reading a large OBJ file takes time too (counted in
+    // bytes of the file while it is read).
     let pb = ProgressBar::new(0);
     pb.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} {elapsed_precise} eta {eta}")
+        ProgressStyle::with_template("{bar:40} {bytes}/{total_bytes} {msg} {elapsed_precise} eta {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     pb.set_message(format!("reading the scene {}", args.scene));
@@ -578,7 +591,7 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
     let is_obj = args.scene.to_ascii_lowercase().ends_with(".obj");
     let loaded = (|| -> Result<_> {
         let (scene, mesh) = if is_obj {
-            let (s, m) = mesh::from_obj_with(Path::new(&args.scene), args.seed, w, h, &args.mesh)?;
+            let (s, m) = mesh::from_obj_with_progress(Path::new(&args.scene), args.seed, w, h, &args.mesh, &pb)?;
             (s, Some(m))
         } else {
             args.mesh.refuse_for(&args.scene)?;
@@ -594,6 +607,11 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
             return Err(e);
         }
     };
+    pb.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} {elapsed_precise} eta {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    pb.set_position(0);
     let pattern = Pattern::new(args.pattern, args.spp, args.seed);
     let mut cfg = Config::new(tiles.clone(), pattern);
     cfg.certified_tiles = args.certified;
@@ -661,7 +679,7 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
     let json = serde_json::to_string_pretty(&report)?;
     let write = |name: &str, body: &str| -> Result<PathBuf> {
         let p = args.out.join(name);
-        std::fs::write(&p, body).with_context(|| format!("writing {}", p.display()))?;
+        crate::output::write(&p, body)?;
         Ok(p)
     };
     let mut written = vec![write("ste.md", &render(&report, true))?, write("ste.json", &json)?];
@@ -680,7 +698,7 @@ pub fn run_cli(args: &TightnessArgs) -> Result<()> {
         if j.as_os_str() == "-" {
             println!("{json}");
         } else {
-            std::fs::write(j, &json).with_context(|| format!("writing {}", j.display()))?;
+            crate::output::write(j, &json)?;
             written.push(j.clone());
         }
     }

@@ -209,6 +209,19 @@ pub fn from_obj_with(
     height: u32,
     c: &MeshControls,
 ) -> Result<(Scene, MeshSettings)> {
+    from_obj_with_progress(path, seed, width, height, c, &indicatif::ProgressBar::hidden())
+}
+
+/// [`from_obj_with`], advancing `pb` by the bytes of the file read
+/// ([`obj::load_with_progress`]).
+pub fn from_obj_with_progress(
+    path: &Path,
+    seed: u64,
+    width: u32,
+    height: u32,
+    c: &MeshControls,
+    pb: &indicatif::ProgressBar,
+) -> Result<(Scene, MeshSettings)> {
     ensure!(width >= 1 && height >= 1, "the screen must be at least 1x1 pixels (got {width}x{height})");
     let fov = value("--fov", c.fov, 45.0, 1.0, 170.0)?;
     let distance = value("--distance", c.distance, 1.0, 0.05, 100.0)?;
@@ -225,7 +238,7 @@ pub fn from_obj_with(
     }
     let focus_at = value("--focus-at", c.focus_at, 0.0, -1.0, 1.0)?;
 
-    let tris = obj::load(path)?;
+    let tris = obj::load_with_progress(path, pb)?;
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for t in &tris {

@@ -11,8 +11,19 @@
 //! which Rust's float parser accepts) are refused the same way, and so are vertex
 //! positions beyond [`MAX_COORD`] in magnitude (finite in f32, but the scene built from
 //! them would overflow f32 once fitted into the view).
+//!
+//! Two caps hold the size of what a file can ask for: at most [`MAX_FACE_VERTICES`]
+//! vertex references per face and [`MAX_TRIANGLES`] triangles in all (after the fans).
+//! They are checked on the bytes as tobj reads them, so a file that passes one stops at
+//! the line that does, with an error naming the file, the line and the count, before
+//! tobj builds anything from that line. Errors quote at most a bounded prefix of a line
+//! or a word ([`crate::quote`]). A long load shows its progress in bytes
+//! ([`load_with_progress`]; the bar is drawn only on a terminal).
 
 use super::scene::V3;
+use crate::quote::clip;
+use indicatif::ProgressBar;
+use std::io::Read;
 use std::path::Path;
 
 /// The largest vertex coordinate magnitude accepted: 10^15, far beyond any real mesh
@@ -21,15 +32,179 @@ use std::path::Path;
 /// offset) stay finite. A larger coordinate is refused with its file, line and value.
 pub const MAX_COORD: f32 = 1e15;
 
+/// The most vertex references one face (`f` line) may have. A polygon of n vertices
+/// becomes a fan of n - 2 triangles; real meshes have faces of 3 or 4, and a face of
+/// millions would only cost time and memory. Split a larger polygon into several faces.
+pub const MAX_FACE_VERTICES: usize = 1024;
+
+/// The most triangles a mesh may have, counted after the fans: 4,000,000 (400 times the
+/// largest built-in scene, the 10,000-triangle hairball). Every triangle is held per
+/// blur setting and tested per tile size and method, so a larger mesh would take hours
+/// and gigabytes; decimate it first.
+pub const MAX_TRIANGLES: usize = 4_000_000;
+
+/// The caps of one load (the constants above; smaller in tests).
+#[derive(Clone, Copy, Debug)]
+struct Caps {
+    face: usize,
+    triangles: usize,
+}
+
+const CAPS: Caps = Caps { face: MAX_FACE_VERTICES, triangles: MAX_TRIANGLES };
+
 /// Why a vertex coordinate `w` (the word as written) is refused, if it is.
 fn bad_coordinate(w: &str) -> Option<String> {
     match w.parse::<f32>() {
-        Ok(x) if !x.is_finite() => Some(format!("`{w}` is not a finite number")),
+        Ok(x) if !x.is_finite() => Some(format!("`{}` is not a finite number", clip(w))),
         Ok(x) if x.abs() > MAX_COORD => Some(format!(
-            "vertex coordinate `{w}` is too large: |x| must be at most {MAX_COORD:e} (the scene would overflow f32)"
+            "vertex coordinate `{}` is too large: |x| must be at most {MAX_COORD:e} (the scene would overflow f32)",
+            clip(w)
         )),
         Ok(_) => None,
-        Err(_) => Some(format!("`{w}` is not a number")),
+        Err(_) => Some(format!("`{}` is not a number", clip(w))),
+    }
+}
+
+/// The reader tobj reads the file through: it counts the bytes for the progress bar and
+/// checks the caps as the bytes pass (words per `f` line, the running triangle total).
+/// When a cap is passed it stops the read with an error (tobj then fails with a read
+/// error) and keeps the reason in `stop`; a face over the cap is read to its end first
+/// (counting only, nothing held), so the error gives its whole count.
+struct Watch<R> {
+    inner: R,
+    pb: ProgressBar,
+    caps: Caps,
+    /// 1-based number of the line being read.
+    line: usize,
+    /// The first word of the line so far (only whether it is exactly `f` matters).
+    key: Vec<u8>,
+    words: usize,
+    in_word: bool,
+    /// The current line is a face already over the cap.
+    over: bool,
+    triangles: usize,
+    ended: bool,
+    /// Why the load stopped: `(line, reason)`.
+    stop: Option<(usize, String)>,
+}
+
+impl<R: Read> Watch<R> {
+    fn new(inner: R, pb: ProgressBar, caps: Caps) -> Self {
+        Watch {
+            inner,
+            pb,
+            caps,
+            line: 1,
+            key: Vec::new(),
+            words: 0,
+            in_word: false,
+            over: false,
+            triangles: 0,
+            ended: false,
+            stop: None,
+        }
+    }
+
+    fn is_face(&self) -> bool {
+        self.key == b"f"
+    }
+
+    fn end_line(&mut self) {
+        if self.is_face() && self.stop.is_none() {
+            let refs = self.words - 1;
+            if refs > self.caps.face {
+                self.stop = Some((
+                    self.line,
+                    format!(
+                        "a face with {refs} vertex references: at most {} per face (split the polygon into \
+                         several faces)",
+                        self.caps.face
+                    ),
+                ));
+            } else {
+                self.triangles += refs.saturating_sub(2);
+                if self.triangles > self.caps.triangles {
+                    self.stop = Some((
+                        self.line,
+                        format!(
+                            "the mesh passes {} triangles at this line (faces are triangulated as fans, n - 2 \
+                             triangles per face of n vertices): at most {} triangles are taken (decimate the mesh)",
+                            self.caps.triangles, self.caps.triangles
+                        ),
+                    ));
+                }
+            }
+        }
+        self.line += 1;
+        self.key.clear();
+        self.words = 0;
+        self.in_word = false;
+        self.over = false;
+    }
+
+    fn scan(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            match b {
+                b'\n' => {
+                    self.end_line();
+                    if self.stop.is_some() {
+                        return;
+                    }
+                }
+                b' ' | b'\t' | b'\r' | 0x0b | 0x0c => self.in_word = false,
+                _ => {
+                    if !self.in_word {
+                        self.in_word = true;
+                        self.words += 1;
+                        if self.words > self.caps.face + 1 && self.is_face() {
+                            self.over = true;
+                        }
+                    }
+                    if self.words == 1 && self.key.len() < 2 {
+                        self.key.push(b);
+                    }
+                }
+            }
+        }
+    }
+
+    fn stopped() -> std::io::Error {
+        std::io::Error::other("a cap of the OBJ loader was passed")
+    }
+}
+
+impl<R: Read> Read for Watch<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        if self.stop.is_some() {
+            return Err(Self::stopped());
+        }
+        let n = self.inner.read(buf)?;
+        self.pb.inc(n as u64);
+        if n == 0 {
+            if !self.ended {
+                self.ended = true;
+                self.end_line();
+            }
+        } else {
+            self.scan(&buf[..n]);
+            // A face over the cap: count the rest of its references, holding nothing.
+            let mut chunk = Vec::new();
+            while self.over && self.stop.is_none() {
+                chunk.resize(64 << 10, 0);
+                let k = self.inner.read(&mut chunk)?;
+                self.pb.inc(k as u64);
+                if k == 0 {
+                    self.ended = true;
+                    self.end_line();
+                } else {
+                    self.scan(&chunk[..k]);
+                }
+            }
+        }
+        if self.stop.is_some() {
+            return Err(Self::stopped());
+        }
+        Ok(n)
     }
 }
 
@@ -38,18 +213,36 @@ fn bad_coordinate(w: &str) -> Option<String> {
 pub struct LineError {
     /// 1-based line number.
     pub line: usize,
+    /// The line, trimmed (at most [`crate::quote::QUOTE_CHARS`] characters of it).
     pub text: String,
     pub why: String,
 }
 
 /// The triangles of an OBJ file, in file order.
 pub fn load(path: &Path) -> anyhow::Result<Vec<[V3; 3]>> {
+    load_with_progress(path, &ProgressBar::hidden())
+}
+
+/// [`load`], advancing `pb` by the bytes read (its length is set to the file's size).
+pub fn load_with_progress(path: &Path, pb: &ProgressBar) -> anyhow::Result<Vec<[V3; 3]>> {
+    load_capped(path, pb, CAPS)
+}
+
+fn load_capped(path: &Path, pb: &ProgressBar, caps: Caps) -> anyhow::Result<Vec<[V3; 3]>> {
     let file = path.display();
-    if let Err(e) = std::fs::metadata(path) {
-        anyhow::bail!("{file}: cannot open the OBJ file: {e}");
+    let f = std::fs::File::open(path).map_err(|e| anyhow::anyhow!("{file}: cannot open the OBJ file: {e}"))?;
+    if let Ok(m) = f.metadata() {
+        pb.set_length(m.len());
     }
+    pb.set_position(0);
     let opts = tobj::LoadOptions { triangulate: true, ignore_points: true, ignore_lines: true, ..Default::default() };
-    let models = match tobj::load_obj(path, &opts) {
+    let mut reader = std::io::BufReader::new(Watch::new(f, pb.clone(), caps));
+    // Materials are not needed: a `mtllib` is not even opened.
+    let loaded = tobj::load_obj_buf(&mut reader, &opts, |_| Err(tobj::LoadError::OpenFileFailed));
+    if let Some((line, why)) = reader.get_ref().stop.clone() {
+        anyhow::bail!("{file}:{line}: {why}");
+    }
+    let models = match loaded {
         Ok((models, _materials)) => models,
         Err(e) => {
             return Err(match scan(path) {
@@ -105,7 +298,7 @@ pub fn scan(path: &Path) -> std::io::Result<Option<LineError>> {
     }
     let (mut sv, mut svt, mut svn) = (0usize, 0usize, 0usize);
     for (i, line) in text.lines().enumerate() {
-        let err = |why: String| Ok(Some(LineError { line: i + 1, text: line.trim().to_string(), why }));
+        let err = |why: String| Ok(Some(LineError { line: i + 1, text: clip(line.trim()), why }));
         let mut words = line.split_whitespace();
         let Some(key) = words.next() else { continue };
         let rest: Vec<&str> = words.collect();
@@ -116,8 +309,8 @@ pub fn scan(path: &Path) -> std::io::Result<Option<LineError>> {
             for w in &rest[..n] {
                 match w.parse::<f32>() {
                     Ok(x) if x.is_finite() => {}
-                    Ok(_) => return Err(format!("`{w}` is not a finite number")),
-                    Err(_) => return Err(format!("`{w}` is not a number")),
+                    Ok(_) => return Err(format!("`{}` is not a finite number", clip(w))),
+                    Err(_) => return Err(format!("`{}` is not a number", clip(w))),
                 }
             }
             Ok(())
@@ -134,11 +327,11 @@ pub fn scan(path: &Path) -> std::io::Result<Option<LineError>> {
                     3 => {}
                     4 => match rest[3].parse::<f32>() {
                         Ok(w) if w != 0.0 && w.is_finite() => {}
-                        _ => return err(format!("the weight w = `{}` must be a non-zero number", rest[3])),
+                        _ => return err(format!("the weight w = `{}` must be a non-zero number", clip(rest[3]))),
                     },
                     6 => {
                         if let Some(w) = rest[3..].iter().find(|w| w.parse::<f32>().is_err()) {
-                            return err(format!("colour value `{w}` is not a number"));
+                            return err(format!("colour value `{}` is not a number", clip(w)));
                         }
                     }
                     n => return err(format!("`v` takes 3, 4 (x y z w) or 6 (x y z r g b) numbers, found {n}")),
@@ -161,23 +354,24 @@ pub fn scan(path: &Path) -> std::io::Result<Option<LineError>> {
                 for w in &rest {
                     let parts: Vec<&str> = w.split('/').collect();
                     if parts.len() > 3 {
-                        return err(format!("face vertex `{w}` has more than 3 indices"));
+                        return err(format!("face vertex `{}` has more than 3 indices", clip(w)));
                     }
                     let kinds = [("v", sv, nv), ("vt", svt, nvt), ("vn", svn, nvn)];
                     for (p, (what, so_far, total)) in parts.iter().zip(kinds) {
                         if p.is_empty() {
                             if what == "v" {
-                                return err(format!("face vertex `{w}` has no position index"));
+                                return err(format!("face vertex `{}` has no position index", clip(w)));
                             }
                             continue;
                         }
                         let Ok(x) = p.parse::<isize>() else {
-                            return err(format!("face index `{p}` in `{w}` is not an integer"));
+                            return err(format!("face index `{}` in `{}` is not an integer", clip(p), clip(w)));
                         };
                         let resolved = if x < 0 { so_far as isize + x } else { x - 1 };
                         if x == 0 || resolved < 0 || resolved as usize >= total {
                             return err(format!(
-                                "{what} index {x} in `{w}` is out of range (the file has {total} `{what}` lines{})",
+                                "{what} index {x} in `{}` is out of range (the file has {total} `{what}` lines{})",
+                                clip(w),
                                 if x < 0 { format!(", {so_far} before this line") } else { String::new() }
                             ));
                         }
@@ -239,6 +433,52 @@ mod tests {
         assert!(e.contains("huge.obj") && e.contains(":3:") && e.contains("1e36") && e.contains("too large"), "{e}");
         let p = temp("edge.obj", "v 0 0 0\nv -1e15 0 0\nv 0 1 0\nf 1 2 3\n");
         assert_eq!(load(&p).unwrap()[0][1][0], -1e15);
+    }
+
+    #[test]
+    fn a_face_over_the_cap_is_refused_with_its_line_and_count() {
+        let refs = " 1 2 3".repeat(700); // 2100 references
+        let p = temp("bigface.obj", &format!("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\nf{refs}\nf 1 2 3\n"));
+        let e = load(&p).unwrap_err().to_string();
+        assert!(e.contains("bigface.obj:5:") && e.contains("2100 vertex references") && e.contains("1024"), "{e}");
+        assert!(e.len() < 400, "{e}");
+        // At the cap it loads (a fan of n - 2 triangles); without a final newline too.
+        let at = " 1 2 3 4".repeat(256);
+        let p = temp("atcap.obj", &format!("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf{at}"));
+        assert_eq!(load(&p).unwrap().len(), 1022);
+        // The last line is checked even without its newline.
+        let p = temp("lastface.obj", &format!("v 0 0 0\nv 1 0 0\nv 1 1 0\nf{refs}"));
+        assert!(load(&p).unwrap_err().to_string().contains("lastface.obj:4: a face with 2100"));
+    }
+
+    #[test]
+    fn a_mesh_over_the_triangle_cap_is_refused_at_the_line_that_passes_it() {
+        let mut text = String::from("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n# faces\n");
+        for _ in 0..6 {
+            text += "f 1 2 3 4\n"; // two triangles each
+        }
+        let p = temp("many.obj", &text);
+        let pb = ProgressBar::hidden();
+        let caps = Caps { face: 8, triangles: 10 };
+        let e = load_capped(&p, &pb, caps).unwrap_err().to_string();
+        assert!(e.contains("many.obj:11:") && e.contains("at most 10 triangles"), "{e}");
+        assert_eq!(load_capped(&p, &pb, Caps { face: 8, triangles: 12 }).unwrap().len(), 12);
+        // The bar went through the whole file.
+        assert_eq!(pb.position(), text.len() as u64);
+        assert_eq!(pb.length(), Some(text.len() as u64));
+        // `f` only as a whole first word: `fo` lines and comments are not faces.
+        let p = temp(
+            "notfaces.obj",
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\n# f 1 2 3 1 2 3 1 2 3\nfoo 1 2 3 4 5 6 7 8 9 10\nf 1 2 3\n",
+        );
+        assert_eq!(load_capped(&p, &pb, Caps { face: 3, triangles: 1 }).unwrap().len(), 1);
+    }
+
+    #[test]
+    fn a_long_bad_line_is_quoted_in_part() {
+        let p = temp("longbad.obj", &format!("v 0 0 0\nv 1 0 {}\nv 1 1 0\nf 1 2 3\n", "9".repeat(100_000)));
+        let e = load(&p).unwrap_err().to_string();
+        assert!(e.contains("longbad.obj:2:") && e.contains("bytes") && e.len() < 1000, "{e}");
     }
 
     #[test]
