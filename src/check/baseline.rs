@@ -365,6 +365,7 @@ mod tests {
             seconds: 0.0,
             baseline: None,
             samples: None,
+            contract_breaches: vec![],
         };
         let mut f = BaselineFile::default();
         f.record(&cfg, &rep(1)).unwrap();

@@ -244,11 +244,29 @@ pub fn merge(
         solver_boxes: boxes,
         seconds,
         baseline: None,
+        contract_breaches: merge_breaches(shards.iter().map(|(_, r)| r)),
     };
     if let Some(b) = base {
         baseline::apply_settings(&mut rep, Some(&run.settings), b);
     }
     Ok(rep)
+}
+
+/// The shards' contract breaches summed per plugged method, in the order first seen.
+fn merge_breaches<'a>(shards: impl Iterator<Item = &'a CheckReport>) -> Vec<crate::plugin::ContractBreaches> {
+    let mut out: Vec<crate::plugin::ContractBreaches> = Vec::new();
+    for b in shards.flat_map(|r| &r.contract_breaches) {
+        match out.iter_mut().find(|o| o.method == b.method) {
+            None => out.push(b.clone()),
+            Some(o) => {
+                o.answers += b.answers;
+                for (k, n) in &b.kinds {
+                    *o.kinds.entry(k.clone()).or_insert(0) += n;
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Fold row `o` (the same method and regime, other cases) into `acc`.

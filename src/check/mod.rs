@@ -376,6 +376,7 @@ pub fn run_with_baseline(
     progress: bool,
 ) -> CheckReport {
     let start = std::time::Instant::now();
+    let breaches = crate::plugin::breaches();
     let (k, n) = cfg.shard;
     let mut results = Vec::new();
     match cfg.time {
@@ -423,6 +424,7 @@ pub fn run_with_baseline(
     }
     let mut rep = acc.finish(cfg, judged, start.elapsed().as_secs_f64());
     rep.samples = samples::SetNote::of(cfg, drawn - judged);
+    rep.contract_breaches = crate::plugin::breaches_since(&breaches);
     if let Some(b) = base {
         baseline::apply(&mut rep, cfg, b);
     }

@@ -138,6 +138,11 @@ pub struct CheckReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[serde(default)]
     pub samples: Option<super::samples::SetNote>,
+    /// Per plugged method (`--plugin`) whose answers broke the contract of
+    /// include/cullproof.h during the run: how many answers, of which kinds (each judged
+    /// as given, as `src/plugin.rs` says; the verdicts are unchanged).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub contract_breaches: Vec<crate::plugin::ContractBreaches>,
 }
 
 impl CheckReport {
@@ -283,6 +288,7 @@ impl<'a> Accumulator<'a> {
             seconds,
             baseline: None,
             samples: super::samples::SetNote::of(cfg, 0),
+            contract_breaches: Vec::new(),
         }
     }
 }
