@@ -25,6 +25,21 @@
  * of one triangle may be asked concurrently), so it must not be written after setup.
  * A tile state (constraints) is read by `eval` / `eval_box` and freed once.
  *
+ * Limits: an answer beyond a cap below (CP_MAX_*) stops the run with an error naming
+ * the library, the call and the value (exit code 2); it is checked before cullproof
+ * allocates anything for it. Every call (setup, tile, eval, eval_box, ...) must return
+ * within `--plugin-timeout` seconds (default 30): a call that has not stops the run
+ * with an error naming the library and the call, exit code 2 (the call cannot be
+ * interrupted, so the process ends).
+ *
+ * Contract breaches that have a fail-safe reading are judged as given and counted:
+ * a NaN interval end (culls everything), an infinite end of u^, v^ or t^, lo > hi
+ * (culls everything), a tile answer that is neither CP_EMPTY nor CP_BOUNDS (taken as
+ * CP_EMPTY), constraints without `eval` (ignored), an eval_box enclosure with a NaN end
+ * or lo > hi (taken as the whole line). At the end of a run cullproof prints one line
+ * per library with its count by kind, and `check --json` lists them
+ * (`contract_breaches`).
+ *
  * Versioning: `abi_version` must equal CULLPROOF_ABI_VERSION; cullproof refuses a
  * library built against another version, naming both. New fields are only ever
  * appended, with a new version.
@@ -52,6 +67,11 @@ extern "C" {
 #define CP_EMPTY 0
 #define CP_BOUNDS 1
 
+/* Caps (see "Limits" above). */
+#define CP_MAX_CONSTRAINTS 4096u /* cp_bounds.n_constraints of one answer */
+#define CP_MAX_TEXT 1024u        /* bytes before the NUL: source, a disabled reason, a constraint name */
+#define CP_MAX_REASONS 256u      /* distinct `disabled` strings (by address) of one library */
+
 /* One triangle (all f32, exactly as cullproof's model holds it). q[i] and r[i] are
  * (x, y, z, w) of vertex i at t = 0 and t = 1. */
 typedef struct cp_triangle {
@@ -72,7 +92,7 @@ typedef struct cp_sample {
     float x, y, u, v, t;
 } cp_sample;
 
-/* A closed interval of doubles (lo <= hi; -INFINITY / INFINITY allowed). */
+/* A closed interval of doubles (lo <= hi, neither NaN; -INFINITY / INFINITY allowed). */
 typedef struct cp_interval {
     double lo, hi;
 } cp_interval;
@@ -83,16 +103,18 @@ typedef struct cp_sample_box {
 } cp_sample_box;
 
 /* The non-empty answer of a tile test. cullproof fills it with the full domain
- * (u, v in [-1, 1], t in [0, 1], no depth, no constraints) before the call. */
+ * (u, v in [-1, 1], t in [0, 1], no depth, no constraints) before the call. Every
+ * interval has lo <= hi and no NaN end; the ends of u, v and t are finite, those of z
+ * may be infinite. */
 typedef struct cp_bounds {
     float u[2];
     float v[2];
     float t[2];
     int32_t has_z; /* nonzero: z[] holds the depth interval */
     float z[2];
-    /* Per-sample constraints valid for this tile: their number, and an opaque tile
-     * state handed back to eval / eval_box / constraint_name / free_tile (NULL when
-     * there are none). */
+    /* Per-sample constraints valid for this tile: their number (at most
+     * CP_MAX_CONSTRAINTS), and an opaque tile state handed back to eval / eval_box /
+     * constraint_name / free_tile (NULL when there are none). */
     uint32_t n_constraints;
     void *tile_state;
 } cp_bounds;
@@ -100,13 +122,14 @@ typedef struct cp_bounds {
 typedef struct cp_method {
     uint32_t abi_version; /* CULLPROOF_ABI_VERSION */
     const char *id;       /* the method id, e.g. "my-bound": letters, digits, '-', '_', '.' */
-    const char *source;   /* one line: what it is, where it comes from */
+    const char *source;   /* one line: what it is, where it comes from (<= CP_MAX_TEXT bytes) */
     uint32_t outputs;     /* CP_OUT_* flags */
 
     /* Per-triangle setup. Returns the state handed to `tile` (may be NULL when the
      * bound needs none). *disabled may be set to a static string saying why the
      * bound gives no information for this triangle (then every tile should get the
-     * full bounds); leave it NULL otherwise. */
+     * full bounds); leave it NULL otherwise. At most CP_MAX_REASONS distinct such
+     * strings, each at most CP_MAX_TEXT bytes. */
     void *(*setup)(const cp_triangle *tri, const char **disabled);
 
     /* The tile test: CP_EMPTY or CP_BOUNDS (then *out holds the answer). */
@@ -123,7 +146,7 @@ typedef struct cp_method {
     int32_t (*eval_box)(const void *tile_state, uint32_t m, const cp_sample_box *b, cp_interval *out);
 
     /* A short label for constraint m (optional, NULL: "constraint m"). The string
-     * must live as long as the tile state. */
+     * must live as long as the tile state (at most CP_MAX_TEXT bytes). */
     const char *(*constraint_name)(const void *tile_state, uint32_t m);
 
     /* Free a tile state (optional; called once per non-NULL tile_state). */

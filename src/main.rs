@@ -23,6 +23,11 @@ struct Cli {
     /// stops with an error naming the request.
     #[arg(long, global = true, default_value_t = 30.0, value_name = "SECONDS")]
     exec_timeout: f64,
+    /// Seconds one call into a library loaded by --plugin may take before the run stops
+    /// with an error naming the plugin and the call (a hung call cannot be interrupted:
+    /// the process ends, exit code 2).
+    #[arg(long, global = true, default_value_t = 30.0, value_name = "SECONDS")]
+    plugin_timeout: f64,
 }
 
 #[derive(Subcommand)]
@@ -431,22 +436,45 @@ fn check_junit(junit: &Option<PathBuf>) -> Result<()> {
 fn main() {
     if let Err(e) = run() {
         eprintln!("error: {e:#}");
-        std::process::exit(2);
+        exit(2);
     }
+    report_breaches();
+}
+
+/// One line per plugin that broke the contract of include/cullproof.h during the run.
+fn report_breaches() {
+    for b in cullproof::plugin::breaches().iter().filter(|b| b.answers > 0) {
+        eprintln!("warning: {}", b.line());
+    }
+}
+
+/// End the process with `code`, after the plugins' contract breaches.
+fn exit(code: i32) -> ! {
+    report_breaches();
+    std::process::exit(code)
 }
 
 fn run() -> Result<()> {
     let cli = Cli::parse();
-    // A bound in another process that fails (an error answer, a crash, silence) stops
-    // the run from whichever worker saw it: say so as an error, without a backtrace.
+    // A bound in another process that fails (an error answer, a crash, silence), or a
+    // plugin answer beyond a cap, stops the run from whichever worker saw it: say so as
+    // an error, without a backtrace.
     let default_hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
         if let Some(f) = info.payload().downcast_ref::<cullproof::exec::ExecFailure>() {
             eprintln!("error: {f}");
             std::process::exit(2);
         }
+        if let Some(f) = info.payload().downcast_ref::<cullproof::plugin::PluginFailure>() {
+            eprintln!("error: {f}");
+            std::process::exit(2);
+        }
         default_hook(info)
     }));
+    if !cli.plugins.is_empty() {
+        cullproof::args::time("--plugin-timeout", cli.plugin_timeout, 86400.0)?;
+        cullproof::plugin::set_timeout(std::time::Duration::from_secs_f64(cli.plugin_timeout));
+    }
     for p in &cli.plugins {
         cullproof::plugin::load_and_plug(p)?;
     }
@@ -467,7 +495,7 @@ fn run() -> Result<()> {
                 None => print!("{}", cullproof::agree::render(&r)),
             }
             if r.total.unsettled > 0 {
-                std::process::exit(1);
+                exit(1);
             }
         }
         Cmd::Check {
@@ -556,7 +584,7 @@ fn run() -> Result<()> {
                 cullproof::check::junit::write(&r, p)?;
             }
             if r.failed() {
-                std::process::exit(1);
+                exit(1);
             }
         }
         Cmd::Merge { reports, expectations, baseline, json, junit } => {
@@ -580,7 +608,7 @@ fn run() -> Result<()> {
                 cullproof::check::junit::write(&r, p)?;
             }
             if r.failed() {
-                std::process::exit(1);
+                exit(1);
             }
         }
         Cmd::Search { method, time, max, min_margin, seed, regime, tile, out, dry_run, json, jobs, sample } => {
@@ -730,7 +758,7 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&out)?)?;
             }
             if bad > 0 {
-                std::process::exit(1);
+                exit(1);
             }
         }
         Cmd::Explain { case, svg, sample } => {
@@ -793,7 +821,7 @@ fn run() -> Result<()> {
         }
         Cmd::Proofs(args) => {
             if !cullproof::bounds::proofs::cli::run_cli(&args)? {
-                std::process::exit(1);
+                exit(1);
             }
         }
         Cmd::Methods { json } => {

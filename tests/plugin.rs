@@ -5,7 +5,9 @@
 use cullproof::bounds::{by_id, plug, Method};
 use cullproof::check::{run, CheckConfig, Expectations};
 use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
 use std::sync::OnceLock;
+use std::time::{Duration, Instant};
 
 /// Compile `examples/c/bbox_safe.c` into a shared library (with `-DCULLPROOF_BROKEN`
 /// for the broken one) in this test's target directory.
@@ -140,11 +142,16 @@ fn the_broken_c_bound_is_caught_shrunk_and_replayed() {
 
 /// Write a C source into the test's target directory and compile it.
 fn compile_text(text: &str, name: &str) -> PathBuf {
+    compile_text_with(text, name, &[])
+}
+
+/// [`compile_text`] with compiler flags (`-D...`).
+fn compile_text_with(text: &str, name: &str, defines: &[&str]) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plugins");
     std::fs::create_dir_all(&dir).unwrap();
     let src = dir.join(format!("{name}.c"));
     std::fs::write(&src, text).unwrap();
-    compile(&src, &format!("lib{name}.so"), &[])
+    compile(&src, &format!("lib{name}.so"), defines)
 }
 
 fn refusal(path: &Path) -> String {
@@ -186,4 +193,276 @@ fn a_library_of_another_abi_version_or_without_a_tile_test_is_refused() {
     // The same table with its tile test loads.
     let ok = cullproof::plugin::load(&compile_text(&table("CULLPROOF_ABI_VERSION", "tile"), "minimal")).unwrap();
     assert_eq!(ok.info().id, "x");
+}
+
+// ---- Plugins held to their limits: caps, the watchdog, contract breaches. ----
+
+/// The exit code, stdout, stderr and wall time of the built binary on `args`, run from
+/// the repository root; killed (and the test failed) after `deadline`.
+fn cli(args: &[&str], deadline: Duration) -> (Option<i32>, String, String, Duration) {
+    let what = format!("cullproof {}", args.join(" "));
+    let start = Instant::now();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_cullproof"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("RUST_BACKTRACE", "0")
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap_or_else(|e| panic!("{what}: cannot start: {e}"));
+    let drain = |mut r: Box<dyn std::io::Read + Send>| {
+        std::thread::spawn(move || {
+            let mut s = String::new();
+            r.read_to_string(&mut s).ok();
+            s
+        })
+    };
+    let (out, err) = (drain(Box::new(child.stdout.take().unwrap())), drain(Box::new(child.stderr.take().unwrap())));
+    let status = loop {
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
+        if start.elapsed() > deadline {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{what}: still running after {deadline:?} (killed)");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    let took = start.elapsed();
+    (status.code(), out.join().unwrap(), err.join().unwrap(), took)
+}
+
+/// A run that must stop with exit code 2 and a message, never a panic or an abort.
+fn stops_with(args: &[&str], deadline: Duration, needles: &[&str]) -> Duration {
+    let (code, _, err, took) = cli(args, deadline);
+    assert_eq!(code, Some(2), "cullproof {}: exit {code:?} (a signal leaves none), stderr:\n{err}", args.join(" "));
+    assert!(!err.contains("panicked"), "{err}");
+    for n in needles {
+        assert!(err.contains(n), "stderr lacks {n:?}:\n{err}");
+    }
+    took
+}
+
+/// A bound that sleeps 100 s in `tile()` (or, with -DSLEEP_IN_SETUP, in `setup()`).
+const SLEEPER: &str = r#"#include "cullproof.h"
+#include <unistd.h>
+static void *setup(const cp_triangle *t, const char **d) {
+    (void)t; (void)d;
+#ifdef SLEEP_IN_SETUP
+    sleep(100);
+#endif
+    return 0;
+}
+static int32_t tile(const void *s, const cp_tile *t, cp_bounds *o) {
+    (void)s; (void)t; (void)o;
+    sleep(100);
+    return CP_BOUNDS;
+}
+static const cp_method m = { .abi_version = CULLPROOF_ABI_VERSION, .id = ID, .source = "test: sleeps",
+    .outputs = CP_OUT_TILE_REJECT, .setup = setup, .tile = tile };
+const cp_method *cullproof_method(void) { return &m; }
+"#;
+
+#[test]
+fn a_hung_plugin_call_stops_the_run_within_the_timeout() {
+    for (name, defines, call) in [
+        ("sleep_tile", &["-DID=\"c-sleep-tile\""][..], "tile()"),
+        ("sleep_setup", &["-DID=\"c-sleep-setup\"", "-DSLEEP_IN_SETUP"][..], "setup()"),
+    ] {
+        let lib = compile_text_with(SLEEPER, name, defines);
+        let id = defines[0].trim_start_matches("-DID=").trim_matches('"');
+        let lib = lib.to_str().unwrap();
+        let took = stops_with(
+            &["check", "--plugin", lib, "--method", id, "--cases", "4", "--jobs", "1", "--plugin-timeout", "1"],
+            Duration::from_secs(60),
+            &[lib, id, &format!("{call} did not return within 1 s"), "--plugin-timeout"],
+        );
+        // 1 s of timeout, at most 0.1 s until the watchdog looks again, start-up.
+        assert!(took < Duration::from_secs(10), "{call}: stopped after {took:?}");
+    }
+}
+
+#[test]
+fn the_plugin_timeout_is_checked_like_the_exec_timeout() {
+    // Checked before any library is loaded.
+    for (t, shown) in [("0", "0"), ("-1", "-1"), ("nan", "NaN"), ("inf", "inf"), ("1e9", "1000000000")] {
+        stops_with(
+            &["methods", "--plugin", "/nonexistent/libx.so", &format!("--plugin-timeout={t}")],
+            Duration::from_secs(60),
+            &[&format!("--plugin-timeout {shown}")],
+        );
+    }
+}
+
+/// A bound that answers 4e9 constraints.
+const HUGE: &str = r#"#include "cullproof.h"
+static void *setup(const cp_triangle *t, const char **d) { (void)t; (void)d; return 0; }
+static int32_t tile(const void *s, const cp_tile *t, cp_bounds *o) {
+    (void)s; (void)t;
+    o->n_constraints = 4000000000u;
+    return CP_BOUNDS;
+}
+static float eval(const void *ts, uint32_t m, const cp_sample *s) { (void)ts; (void)m; (void)s; return 1.0f; }
+static const cp_method m = { .abi_version = CULLPROOF_ABI_VERSION, .id = "c-huge", .source = "test: 4e9 constraints",
+    .outputs = CP_OUT_PER_SAMPLE, .setup = setup, .tile = tile, .eval = eval };
+const cp_method *cullproof_method(void) { return &m; }
+"#;
+
+#[test]
+fn too_many_constraints_stop_the_run_with_a_clear_error() {
+    let lib = compile_text(HUGE, "huge");
+    let lib = lib.to_str().unwrap();
+    stops_with(
+        &["check", "--plugin", lib, "--method", "c-huge", "--cases", "4", "--jobs", "1"],
+        Duration::from_secs(120),
+        &[&format!("plugin {lib} (`c-huge`): tile() answered n_constraints = 4000000000, more than the cap 4096")],
+    );
+    // A library caller gets the failure as a panic payload, before any allocation.
+    let m = cullproof::plugin::load(Path::new(lib)).unwrap();
+    let cfg = CheckConfig::default_with(vec![m]);
+    let (_, case, tile) = cullproof::check::make_case(&cfg, 0);
+    let p = m.setup(&case.triangle);
+    let e =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| p.tile(&tile))).err().expect("the tile test stops");
+    let f = e.downcast_ref::<cullproof::plugin::PluginFailure>().expect("a PluginFailure payload");
+    assert!(f.0.contains("n_constraints = 4000000000") && f.0.contains("cap 4096"), "{}", f.0);
+}
+
+/// A bound whose answers break the contract: on tiles with an odd floor(x0) the lens
+/// interval u has a NaN end, on the others the time interval is inverted.
+const BREACH: &str = r#"#include "cullproof.h"
+#include <math.h>
+static void *setup(const cp_triangle *t, const char **d) { (void)t; (void)d; return 0; }
+static int32_t tile(const void *s, const cp_tile *t, cp_bounds *o) {
+    (void)s;
+    if ((long long)floorf(t->x0) & 1) {
+        o->u[0] = NAN;
+    } else {
+        o->t[0] = 0.75f;
+        o->t[1] = 0.25f;
+    }
+    return CP_BOUNDS;
+}
+static const cp_method m = { .abi_version = CULLPROOF_ABI_VERSION, .id = "c-breach", .source = "test: NaN and lo > hi",
+    .outputs = CP_OUT_LENS | CP_OUT_TIME, .setup = setup, .tile = tile };
+const cp_method *cullproof_method(void) { return &m; }
+"#;
+
+fn breach_plugin() -> &'static dyn Method {
+    static P: OnceLock<&'static dyn Method> = OnceLock::new();
+    *P.get_or_init(|| cullproof::plugin::load(&compile_text(BREACH, "breach")).expect("load the breaching plugin"))
+}
+
+#[test]
+fn contract_breaches_are_counted_and_judged_fail_safe() {
+    let m = breach_plugin();
+    let r = gate(m, 480);
+    // A NaN end or an inverted interval culls everything: the covered samples it culls
+    // are violations, and the gate fails, as before the breaches were counted.
+    let (proven, violations, unproven): (u64, u64, u64) =
+        r.rows.iter().fold((0, 0, 0), |a, x| (a.0 + x.proven, a.1 + x.violations, a.2 + x.unproven));
+    assert!(violations > 100, "{proven} {violations} {unproven}");
+    assert!(r.failed());
+    let b = r.contract_breaches.iter().find(|b| b.method == "c-breach").expect("c-breach's breaches are reported");
+    let (nan, inverted) = (b.kinds["tile-nan-end"], b.kinds["tile-lo-above-hi"]);
+    assert!(nan > 0 && inverted > 0, "{b:?}");
+    assert_eq!(b.answers, nan + inverted, "{b:?}");
+    assert!(b.line().contains("answers broke the contract"), "{}", b.line());
+    // The conservative C bound breaks nothing.
+    let (safe, _) = plugins();
+    let r = gate(safe, 96);
+    assert!(r.contract_breaches.iter().all(|b| b.method != "c-bbox-safe"), "{:?}", r.contract_breaches);
+}
+
+#[test]
+fn the_command_line_reports_contract_breaches_on_stderr_and_in_json() {
+    let lib = compile_text(BREACH, "breach_cli");
+    let json = Path::new(env!("CARGO_TARGET_TMPDIR")).join("breach-report.json");
+    let (code, _, err, _) = cli(
+        &[
+            "check",
+            "--plugin",
+            lib.to_str().unwrap(),
+            "--method",
+            "c-breach",
+            "--cases",
+            "96",
+            "--jobs",
+            "1",
+            "--json",
+            json.to_str().unwrap(),
+        ],
+        Duration::from_secs(300),
+    );
+    assert_eq!(code, Some(1), "the gate fails on the violations, stderr:\n{err}");
+    let line = err.lines().find(|l| l.contains("(`c-breach`)")).unwrap_or_else(|| panic!("no breach line:\n{err}"));
+    assert!(line.starts_with("warning: plugin ") && line.contains("answers broke the contract"), "{line}");
+    assert!(line.contains("NaN interval end") && line.contains("lo > hi"), "{line}");
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let b = &r["contract_breaches"][0];
+    assert_eq!(b["method"], "c-breach");
+    assert!(b["answers"].as_u64().unwrap() > 0, "{b}");
+}
+
+/// A bound whose tile test answers 7 left of x = 0, and otherwise two constraints whose
+/// enclosures are not intervals (a NaN end; lo > hi) and whose first name has no NUL
+/// within the cap.
+const BREACH_BOX: &str = r#"#include "cullproof.h"
+#include <math.h>
+#include <string.h>
+static char long_name[2048];
+static void *setup(const cp_triangle *t, const char **d) { (void)t; (void)d; return 0; }
+static int32_t tile(const void *s, const cp_tile *t, cp_bounds *o) {
+    (void)s;
+    if (t->x0 < 0.0f) return 7;
+    o->n_constraints = 2;
+    return CP_BOUNDS;
+}
+static float eval(const void *ts, uint32_t m, const cp_sample *s) { (void)ts; (void)m; (void)s; return 1.0f; }
+static int32_t eval_box(const void *ts, uint32_t m, const cp_sample_box *b, cp_interval *out) {
+    (void)ts; (void)b;
+    if (m == 0) { out->lo = NAN; out->hi = 1.0; } else { out->lo = 2.0; out->hi = 1.0; }
+    return 1;
+}
+static const char *name(const void *ts, uint32_t m) { (void)ts; return m == 0 ? long_name : "ok"; }
+static const cp_method m = { .abi_version = CULLPROOF_ABI_VERSION, .id = "c-breach-box", .source = "test",
+    .outputs = CP_OUT_PER_SAMPLE, .setup = setup, .tile = tile, .eval = eval, .eval_box = eval_box,
+    .constraint_name = name };
+const cp_method *cullproof_method(void) {
+    memset(long_name, 'a', sizeof long_name - 1);
+    return &m;
+}
+"#;
+
+#[test]
+fn bad_answer_codes_enclosures_and_long_names_are_caught() {
+    use cullproof::bounds::{SampleBox, TileResult};
+    use cullproof::Interval;
+    let m = cullproof::plugin::load(&compile_text(BREACH_BOX, "breach_box")).unwrap();
+    let cfg = CheckConfig::default_with(vec![m]);
+    let (_, case, _) = cullproof::check::make_case(&cfg, 0);
+    let p = m.setup(&case.triangle);
+    let t = |x0: f32| cullproof::model::Tile { x0, y0: 0.0, x1: x0 + 1.0, y1: 1.0 };
+    assert!(matches!(p.tile(&t(-4.0)), TileResult::Empty), "an answer of 7 is taken as CP_EMPTY");
+    let TileResult::Bounds(b) = p.tile(&t(4.0)) else { panic!("CP_BOUNDS") };
+    assert_eq!(b.constraints.len(), 2);
+    let whole = Interval::new(f64::NEG_INFINITY, f64::INFINITY);
+    let unit = Interval::new(0.0, 1.0);
+    let sb = SampleBox { x: Interval::new(4.0, 5.0), y: unit, u: unit, v: unit, t: unit };
+    for c in &b.constraints {
+        let e = c.eval_box(&sb);
+        assert_eq!((e.lo, e.hi), (whole.lo, whole.hi), "a non-interval encloses nothing");
+    }
+    assert_eq!(b.constraints[1].name(), "ok");
+    let e = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| b.constraints[0].name())).err().unwrap();
+    let f = e.downcast_ref::<cullproof::plugin::PluginFailure>().expect("a PluginFailure payload");
+    assert!(f.0.contains("constraint_name() returned a name with no NUL within 1024 bytes"), "{}", f.0);
+    let all = cullproof::plugin::breaches();
+    let r = all.iter().find(|b| b.method == "c-breach-box").unwrap();
+    assert_eq!(r.answers, 3, "{r:?}");
+    for k in ["tile-answer-code", "eval-box-nan-end", "eval-box-lo-above-hi"] {
+        assert_eq!(r.kinds[k], 1, "{k}: {r:?}");
+    }
 }

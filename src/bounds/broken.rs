@@ -17,6 +17,9 @@
 //!   around its centre (a dropped tile half-size).
 //! - `broken/loose/<id>`: every narrowed end moved out by 1e-3 (not a violation: a
 //!   loss of tightness, which the baseline comparison must see).
+//! - `broken/loose-t-max/<id>`: only the upper end of t moved out by 1e-3 (one end:
+//!   the tightness signature must see it at any seed and case count). Not in
+//!   `cullproof power`'s list.
 //!
 //! Two more, `broken/planted-eq/bbox-safe` and `broken/planted-band/bbox-safe`, are rare
 //! slips planted in `bbox-safe` itself (`crate::symbolic::planted`), not in `cullproof power`.
@@ -109,6 +112,15 @@ fn loosen(r: [f32; 2], lo: f32, hi: f32) -> [f32; 2] {
     [if r[0] > lo { (r[0] - 1e-3).max(lo) } else { r[0] }, if r[1] < hi { (r[1] + 1e-3).min(hi) } else { r[1] }]
 }
 
+fn loosen_t_max(r: [f32; 2], lo: f32, hi: f32) -> [f32; 2] {
+    // (t is the only coordinate whose domain is [0, 1])
+    if (lo, hi) == (0.0, 1.0) && r[1] < hi {
+        [r[0], (r[1] + 1e-3).min(hi)]
+    } else {
+        r
+    }
+}
+
 /// Runs the method on a changed triangle.
 struct OnTriangle {
     inner: &'static dyn Method,
@@ -178,6 +190,7 @@ pub fn parse(id: &str) -> Option<&'static dyn Method> {
         "no-coc-pad" => Box::leak(Box::new(NoCoc { inner, info })),
         "shrink-rel" => Box::leak(Box::new(Moved { inner, info, f: shrink_rel })),
         "loose" => Box::leak(Box::new(Moved { inner, info, f: loosen })),
+        "loose-t-max" => Box::leak(Box::new(Moved { inner, info, f: loosen_t_max })),
         "t0-only" => Box::leak(Box::new(OnTriangle { inner, info, f: t0_only })),
         "swap-coc" => Box::leak(Box::new(OnTriangle { inner, info, f: swap_coc })),
         "half-tile" => Box::leak(Box::new(HalfTile { inner, info })),

@@ -291,6 +291,7 @@ mod tests {
             limit_violations: 0,
             limit_found: 0,
             limit_slack: 0.0,
+            tight: BTreeMap::new(),
             admit_fraction: pass,
             pass_fraction: pass,
             margin_needed: 0.0,
@@ -368,6 +369,7 @@ mod tests {
             seconds: 0.0,
             baseline: None,
             samples: None,
+            contract_breaches: vec![],
             tool: None,
         };
         let mut f = BaselineFile::default();

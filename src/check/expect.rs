@@ -88,6 +88,14 @@ pub struct Entry {
     pub tight: BTreeMap<String, f64>,
 }
 
+/// The fewest tight ends a signature allows: the expected count `mean` (the least share
+/// times the ends probed, summed over rows when pooled) less three binomial standard
+/// deviations (`var` the summed variances) and 2 for small counts. A loosened answer
+/// has no tight end at all, so it fails wherever this is above 0.
+pub fn least_tight(mean: f64, var: f64) -> f64 {
+    mean - 3.0 * var.sqrt() - 2.0
+}
+
 impl Entry {
     pub fn conservative() -> Self {
         Entry {
@@ -100,15 +108,13 @@ impl Entry {
         }
     }
     /// Where a row's tightness leaves the signature: one line per end kind whose tight
-    /// ends fall below the least share, beyond counting noise (the share's count less
-    /// three binomial standard deviations, less 2 for small rows).
+    /// ends fall below the least share, beyond counting noise (see [`least_tight`]).
     pub fn looser(&self, tight: &BTreeMap<String, super::report::TightStat>) -> Vec<String> {
         let mut out = Vec::new();
         for (kind, &p) in &self.tight {
             let Some(s) = tight.get(kind) else { continue };
             let n = s.probed as f64;
-            let least = p * n - 3.0 * (p * (1.0 - p) * n).sqrt() - 2.0;
-            if s.probed > 0 && (s.tight as f64) < least {
+            if s.probed > 0 && (s.tight as f64) < least_tight(p * n, p * (1.0 - p) * n) {
                 out.push(format!(
                     "looser: `{kind}` has a covered sample within {:.1e} in {} of {} proven ends ({:.0} %; the \
                      signature says at least {:.0} %)",
@@ -315,6 +321,24 @@ mod tests {
     }
 
     #[test]
+    fn looser_counts_tight_ends_against_the_least_share() {
+        use crate::check::report::TightStat;
+        let e = Entry { tight: [("t max".to_string(), 0.3)].into(), ..Entry::conservative() };
+        let row = |probed, tight| -> BTreeMap<String, TightStat> {
+            [("t max".to_string(), TightStat { probed, tight })].into()
+        };
+        // 30 % of 200 is 60; three deviations (19.4) and 2 below that still pass
+        assert!(e.looser(&row(200, 40)).is_empty());
+        let b = e.looser(&row(200, 30));
+        assert!(b.len() == 1 && b[0].contains("`t max`") && b[0].contains("30 of 200"), "{b:?}");
+        // a loosened end has none; a small row cannot tell
+        assert_eq!(e.looser(&row(200, 0)).len(), 1);
+        assert!(e.looser(&row(10, 0)).is_empty());
+        // kinds without a signature, and kinds not probed, say nothing
+        assert!(e.looser(&[("u min".to_string(), TightStat { probed: 500, tight: 0 })].into()).is_empty());
+    }
+
+    #[test]
     fn breaches_name_the_kind_the_margin_and_the_rate() {
         let e = Entry {
             expect: Expected::Violation,
@@ -322,6 +346,7 @@ mod tests {
             bounds: [("u min".to_string(), Cap(1e-4)), ("tile culled".to_string(), Cap(f64::INFINITY))].into(),
             max_rate: Some(0.1),
             unproven: None,
+            tight: BTreeMap::new(),
         };
         let stats = |v: &[(&str, u64, f64)]| v.iter().map(|(k, n, m)| (k.to_string(), (*n, *m))).collect();
         assert!(e.breaches(&stats(&[("u min", 3, 5e-5), ("tile culled", 1, f64::INFINITY)]), 4, 100).is_empty());

@@ -212,7 +212,8 @@ pub fn merge(
         n.outside_viewport = shards.iter().filter_map(|(_, r)| r.samples.as_ref()).map(|x| x.outside_viewport).sum();
         n
     });
-    let rows: Vec<Row> = rows.into_values().collect();
+    let mut rows: Vec<Row> = rows.into_values().collect();
+    super::report::pooled_tightness(&mut rows);
     let mut rep = CheckReport {
         methods: super::strength::of_rows(&rows),
         samples,
@@ -225,6 +226,7 @@ pub fn merge(
         solver_boxes: boxes,
         seconds,
         baseline: None,
+        contract_breaches: merge_breaches(shards.iter().map(|(_, r)| r)),
         // the shards' build (their counts); the expectations and baseline of this merge
         // (its statuses)
         tool: Some(ToolInfo { version: first.tool.clone().unwrap_or_default().version, ..ToolInfo::of(ex, base) }),
@@ -233,6 +235,23 @@ pub fn merge(
         baseline::apply_settings(&mut rep, Some(&run.settings), b);
     }
     Ok(rep)
+}
+
+/// The shards' contract breaches summed per plugged method, in the order first seen.
+fn merge_breaches<'a>(shards: impl Iterator<Item = &'a CheckReport>) -> Vec<crate::plugin::ContractBreaches> {
+    let mut out: Vec<crate::plugin::ContractBreaches> = Vec::new();
+    for b in shards.flat_map(|r| &r.contract_breaches) {
+        match out.iter_mut().find(|o| o.method == b.method) {
+            None => out.push(b.clone()),
+            Some(o) => {
+                o.answers += b.answers;
+                for (k, n) in &b.kinds {
+                    *o.kinds.entry(k.clone()).or_insert(0) += n;
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Fold row `o` (the same method and regime, other cases) into `acc`.

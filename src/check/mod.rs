@@ -377,6 +377,7 @@ pub fn run_with_baseline(
     progress: bool,
 ) -> CheckReport {
     let start = std::time::Instant::now();
+    let breaches = crate::plugin::breaches();
     let (k, n) = cfg.shard;
     let mut results = Vec::new();
     match cfg.time {
@@ -424,6 +425,7 @@ pub fn run_with_baseline(
     }
     let mut rep = acc.finish(cfg, judged, start.elapsed().as_secs_f64());
     rep.samples = samples::SetNote::of(cfg, drawn - judged);
+    rep.contract_breaches = crate::plugin::breaches_since(&breaches);
     rep.tool = Some(tool::ToolInfo::of(ex, base));
     if let Some(b) = base {
         baseline::apply(&mut rep, cfg, b);

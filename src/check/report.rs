@@ -151,6 +151,11 @@ pub struct CheckReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[serde(default)]
     pub samples: Option<super::samples::SetNote>,
+    /// Per plugged method (`--plugin`) whose answers broke the contract of
+    /// include/cullproof.h during the run: how many answers, of which kinds (each judged
+    /// as given, as `src/plugin.rs` says; the verdicts are unchanged).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub contract_breaches: Vec<crate::plugin::ContractBreaches>,
     /// The build that wrote the report and the expectations and baseline it used
     /// (absent from reports of older builds, which `cullproof merge` refuses).
     #[serde(default)]
@@ -293,7 +298,8 @@ impl<'a> Accumulator<'a> {
             finish_row(row);
         }
         let (k, n) = cfg.shard;
-        let rows: Vec<Row> = self.rows.into_values().collect();
+        let mut rows: Vec<Row> = self.rows.into_values().collect();
+        pooled_tightness(&mut rows);
         CheckReport {
             methods: super::strength::of_rows(&rows),
             seed: cfg.seed,
@@ -306,7 +312,52 @@ impl<'a> Accumulator<'a> {
             seconds,
             baseline: None,
             samples: super::samples::SetNote::of(cfg, 0),
+            contract_breaches: Vec::new(),
             tool: Some(super::tool::ToolInfo::of(self.ex, None)),
+        }
+    }
+}
+
+/// The tightness signature over all of a method's rows at once: per end kind, the tight
+/// ends of every row that has a least share for that kind, against the sum of those
+/// shares times the ends probed (a binomial test over the pooled rows, see
+/// [`super::expect::least_tight`]). A row holds too few ends to see a loosening at small
+/// case counts; the method's rows together do. Failing kinds turn the method's rows
+/// with that kind into regressions, each naming the pooled counts.
+pub(crate) fn pooled_tightness(rows: &mut [Row]) {
+    let mut pools: BTreeMap<(String, String), (f64, f64, u64, u64)> = BTreeMap::new();
+    for row in rows.iter() {
+        let Some(entry) = &row.entry else { continue };
+        if row.status == Status::NotGated {
+            continue;
+        }
+        for (kind, &p) in &entry.tight {
+            let Some(s) = row.tight.get(kind) else { continue };
+            let e = pools.entry((row.method.clone(), kind.clone())).or_default();
+            let n = s.probed as f64;
+            e.0 += p * n;
+            e.1 += p * (1.0 - p) * n;
+            e.2 += s.probed;
+            e.3 += s.tight;
+        }
+    }
+    for ((method, kind), (mean, var, probed, tight)) in pools {
+        if probed == 0 || tight as f64 >= super::expect::least_tight(mean, var) {
+            continue;
+        }
+        let line = format!(
+            "looser over all regimes: `{kind}` has a covered sample within {:.1e} in {tight} of {probed} proven \
+             ends (the signatures expect about {:.0})",
+            super::judge::TIGHT_DELTA,
+            mean
+        );
+        for row in rows.iter_mut().filter(|r| r.method == method && r.tight.get(&kind).is_some_and(|s| s.probed > 0)) {
+            if !row.status.fails() {
+                row.status = Status::Regression;
+            }
+            if !row.problems.contains(&line) {
+                row.problems.push(line.clone());
+            }
         }
     }
 }
