@@ -207,6 +207,15 @@ impl Expectations {
     }
 
     fn validate(e: &Entry) -> Result<(), String> {
+        const ENDS: [&str; 6] = ["u min", "u max", "v min", "v max", "t min", "t max"];
+        for (kind, &p) in &e.tight {
+            if !ENDS.contains(&kind.as_str()) {
+                return Err(format!("field `tight.{}`: not an interval end (one of {})", clip(kind), ENDS.join(", ")));
+            }
+            if !(0.0..=1.0).contains(&p) {
+                return Err(format!("field `tight.{kind}` = {p}: a share of proven ends in [0, 1]"));
+            }
+        }
         if let Some(a) = &e.unproven {
             if !(0.0..=1.0).contains(&a.max_rate) {
                 return Err(format!("field `unproven.max_rate` = {}: a share of cases in [0, 1]", a.max_rate));

@@ -44,7 +44,15 @@
 //! below it is cut at the band's edge, so only the part beyond the band needs ruling
 //! out. (The side searches of the gate judge by the enclosures alone unless asked.) Boxes that reach the minimum size undecided, or remain when the box
 //! budget runs out, are counted and reported, never dropped: the enclosure then runs
-//! from the smallest lower bound among them.
+//! from the smallest lower bound among them. A full box (every sample interior) is
+//! settled by its witness only when the witness reaches the box's key; otherwise it is
+//! split like any other (the widest side when no value's smear points anywhere) or,
+//! at the minimum size, kept as undecided. A depth search proposes a full box's
+//! corners as witnesses: at a fixed time the depth is monotone in each of x, y, u, v
+//! over it, so its extremes are at corners. (Dropping full boxes whose witness did not
+//! reach their key once certified a least depth 4e-3 above an exactly interior sample
+//! at the corner of a tile's domain, one vertex behind the lens; the independent
+//! attack in `oracles/tests/attack_extents.rs` found it and holds the case.)
 //!
 //! Dimensions a triangle does not have are not searched: a static triangle is judged at
 //! t = 0 and, when covered, its t extents are the whole requested range (coverage does
