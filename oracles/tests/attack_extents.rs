@@ -13,7 +13,7 @@
 //! (the README gives the count of the long run).
 
 use oracles::coverage::{classify, depth_enclosure, Coverage};
-use oracles::extents::{search, Box5, Extent, ExtentsConfig, ObjectiveResult, Search};
+use oracles::extents::{search, Box5, Extent, ExtentsConfig, ObjectiveResult, Search, Side, TileSolver};
 use oracles::interval::Interval;
 use oracles::{classify_depth, DepthCheck, Tri};
 use rand::{Rng, SeedableRng};
@@ -286,5 +286,18 @@ fn a_full_box_keeps_its_key_until_a_witness_reaches_it() {
         assert!(e.lo <= z.lo, "elimination {eliminate}: certified z min {} above the corner's depth {:?}", e.lo, z);
         assert_eq!(r.undecided, 0);
         assert!(e.hi - e.lo <= 1e-4, "{e:?}");
+    }
+    // A side judged after the objective reuses its answer: the claim "z min stays at or
+    // above -138.588" (between the corner's depth and the old certified minimum) is
+    // violated, with a witness below it.
+    let cfg = ExtentsConfig::default();
+    let mut solver = TileSolver::new(&tri, [-2202.0, -2198.0, -1454.0, -1450.0], [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg);
+    solver.objective(Extent::ZMin);
+    match solver.side(Extent::ZMin, -138.588, 1e-4, 2000, None) {
+        Side::Beyond { witness, value, .. } => {
+            assert!(value < -138.588);
+            assert_eq!(classify_depth(&tri, witness, -138.588, f64::INFINITY), DepthCheck::Below);
+        }
+        s => panic!("a violated claim judged {s:?}"),
     }
 }
