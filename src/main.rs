@@ -171,6 +171,17 @@ enum Cmd {
     /// smaller tiles)
     /// while it stays a violation at least half as large, then written to corpus/cases/<method>/<hash>.json
     /// (an existing file is never overwritten). One file per regime and bound.
+    ///
+    /// With --gate, every violation is held against the method's expected signature
+    /// for its regime in the expectations file (as `check` holds a row): a kind of
+    /// bound the signature does not list, a margin above its cap, or any violation in
+    /// a regime expected conservative is beyond it. Violations inside the signature are
+    /// only counted (they neither count against --max nor stop the search); each kind
+    /// beyond it is a finding (one per regime and kind), shrunk while it stays beyond,
+    /// and written with that kind's own witness. Prints the kinds of bound seen per
+    /// regime with their largest margins and caps, and a line per finding; exit 1 when
+    /// something lies beyond the signature, 0 otherwise. (The rate cap is not judged:
+    /// a search's cases are not the gate's sample.)
     #[command(allow_negative_numbers = true)]
     Search {
         /// The method id (see `cullproof methods`), or a deliberately broken variant
@@ -212,6 +223,14 @@ enum Cmd {
         jobs: Option<usize>,
         #[command(flatten)]
         sample: cullproof::args::SampleFlags,
+        /// Hold each violation against the method's expected signature and report only
+        /// those beyond it; exit 1 when there is one.
+        #[arg(long)]
+        gate: bool,
+        /// The expectations file (required with --gate; without it, findings are
+        /// annotated when the file exists).
+        #[arg(long, default_value = "corpus/expectations.json")]
+        expectations: PathBuf,
     },
     /// Symbolic counterexample search (needs z3): asks z3, in queries with a resource
     /// and a time limit each (by default many small ones: a triangle drawn for the seed,
@@ -611,7 +630,22 @@ fn run() -> Result<()> {
                 exit(1);
             }
         }
-        Cmd::Search { method, time, max, min_margin, seed, regime, tile, out, dry_run, json, jobs, sample } => {
+        Cmd::Search {
+            method,
+            time,
+            max,
+            min_margin,
+            seed,
+            regime,
+            tile,
+            out,
+            dry_run,
+            json,
+            jobs,
+            sample,
+            gate,
+            expectations,
+        } => {
             use cullproof::args;
             let m = args::method("--method", &method, true)?;
             let mut cfg = cullproof::check::CheckConfig::default_with(vec![m]);
@@ -628,43 +662,32 @@ fn run() -> Result<()> {
                 cullproof::output::dir("--out", &out)?;
             }
             set_jobs(jobs)?;
+            anyhow::ensure!(
+                !gate || expectations.is_file(),
+                "--expectations {}: no such file (the expectations file is required with --gate)",
+                expectations.display()
+            );
+            let ex =
+                if expectations.is_file() { Some(cullproof::check::Expectations::load(&expectations)?) } else { None };
             cfg.seed = seed;
             cfg.tile = tile;
-            let r = cullproof::corpus::search(
-                &cfg,
-                cullproof::bounds::shared(m),
-                time,
-                max,
+            let name = expectations.display().to_string();
+            let opts = cullproof::corpus::SearchOptions {
+                seconds: time,
+                max_found: max,
                 min_margin,
-                (!dry_run).then_some(out.as_path()),
-                true,
-            )?;
-            println!(
-                "search {}: seed {}, {} cases in {:.1} s, {} violation(s)",
-                r.method,
-                r.seed,
-                r.cases,
-                r.seconds,
-                r.found.len()
-            );
-            for f in &r.found {
-                println!(
-                    "  {:<15} case {:>6} after {:>6.2} s: {} by {:.3e}; shrunk: {}; {}",
-                    f.regime,
-                    f.case_index,
-                    f.seconds_to_first,
-                    f.bound,
-                    f.margin,
-                    if f.shrink_steps.is_empty() { "-".to_string() } else { f.shrink_steps.join(", ") },
-                    f.file
-                        .as_deref()
-                        .map_or("not written (already in the corpus or --dry-run)".to_string(), |p| format!(
-                            "wrote {p}"
-                        ))
-                );
-            }
+                out: (!dry_run).then_some(out.as_path()),
+                progress: true,
+                expectations: ex.as_ref().map(|e| (e, name.as_str())),
+                gate,
+            };
+            let r = cullproof::corpus::search_with(&cfg, cullproof::bounds::shared(m), &opts)?;
+            print!("{}", cullproof::corpus::render_search(&r));
             if let Some(p) = &json {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
+            }
+            if gate && r.found.iter().any(|f| f.beyond_signature) {
+                std::process::exit(1);
             }
         }
         Cmd::Prove {

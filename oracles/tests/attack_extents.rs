@@ -291,7 +291,8 @@ fn a_full_box_keeps_its_key_until_a_witness_reaches_it() {
     // above -138.588" (between the corner's depth and the old certified minimum) is
     // violated, with a witness below it.
     let cfg = ExtentsConfig::default();
-    let mut solver = TileSolver::new(&tri, [-2202.0, -2198.0, -1454.0, -1450.0], [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg);
+    let mut solver =
+        TileSolver::new(&tri, [-2202.0, -2198.0, -1454.0, -1450.0], [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &cfg);
     solver.objective(Extent::ZMin);
     match solver.side(Extent::ZMin, -138.588, 1e-4, 2000, None) {
         Side::Beyond { witness, value, .. } => {

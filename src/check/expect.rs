@@ -128,6 +128,31 @@ impl Entry {
         }
         out
     }
+    /// The cap on one kind of bound's margin (None: the kind is not listed, or the
+    /// regime is not an expected violation).
+    pub fn cap(&self, kind: &str) -> Option<f64> {
+        match self.expect {
+            Expected::Violation => self.bounds.get(kind).map(|c| c.0),
+            _ => None,
+        }
+    }
+
+    /// Where one violated bound kind, with the margin it needs, stands against this
+    /// signature: None inside it (or a regime that is not gated), else why it is
+    /// beyond: "not in the signature", "above the cap 5e-5", or "in a regime expected
+    /// conservative" (where any violation is beyond).
+    pub fn beyond(&self, kind: &str, margin: f64) -> Option<String> {
+        match self.expect {
+            Expected::Unknown => None,
+            Expected::Conservative => Some("in a regime expected conservative".into()),
+            Expected::Violation => match self.bounds.get(kind) {
+                None => Some("not in the signature".into()),
+                Some(Cap(cap)) if margin > *cap => Some(format!("above the cap {cap:e}")),
+                Some(_) => None,
+            },
+        }
+    }
+
     /// Where this row's violations leave the signature: one line per breach.
     pub fn breaches(&self, violated: &BTreeMap<String, (u64, f64)>, violations: u64, cases: u64) -> Vec<String> {
         let mut out = Vec::new();
@@ -366,5 +391,26 @@ mod tests {
         assert!(e.breaches(&stats(&[("u min", 11, 1e-5)]), 11, 100).is_empty(), "within counting noise");
         let b = e.breaches(&stats(&[("u min", 25, 1e-5)]), 25, 100);
         assert!(b.len() == 1 && b[0].contains("rate"), "{b:?}");
+    }
+
+    #[test]
+    fn one_kind_is_judged_against_the_signature() {
+        let e = Entry {
+            expect: Expected::Violation,
+            why: "w".into(),
+            bounds: [("u min".to_string(), Cap(5e-5)), ("tile culled".to_string(), Cap(f64::INFINITY))].into(),
+            max_rate: Some(0.1),
+            unproven: None,
+            tight: BTreeMap::new(),
+        };
+        assert_eq!(e.beyond("u min", 5e-5), None);
+        assert_eq!(e.beyond("u min", 1.94e-4).as_deref(), Some("above the cap 5e-5"));
+        assert_eq!(e.beyond("v max", 1e-9).as_deref(), Some("not in the signature"));
+        assert_eq!(e.beyond("tile culled", f64::INFINITY), None);
+        assert_eq!((e.cap("u min"), e.cap("v max")), (Some(5e-5), None));
+        let c = Entry::conservative();
+        assert!(c.beyond("u min", 1e-12).is_some_and(|w| w.contains("conservative")));
+        assert_eq!(c.cap("u min"), None);
+        assert_eq!(Entry { expect: Expected::Unknown, ..Entry::conservative() }.beyond("u min", 1.0), None);
     }
 }

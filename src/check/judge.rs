@@ -103,6 +103,11 @@ pub struct Judgement {
     /// tightness and those with a covered sample within [`TIGHT_DELTA`] inside them
     /// (or beyond: a violated end counts as tight). See [`TileJudge::probe_tight`].
     pub tight: BTreeMap<String, (u32, u32)>,
+    /// Per kind of bound violated, the witness with the largest margin of that kind;
+    /// kept only under [`CheckConfig::witnesses_per_kind`] (the search's signature
+    /// gate, which writes a case file for a kind that is not the worst one).
+    pub by_kind: BTreeMap<String, Witness>,
+    keep_by_kind: bool,
 }
 
 /// An interval end counts as tight when a covered sample lies within this much of it on
@@ -130,10 +135,18 @@ impl Judgement {
     pub fn add_unproven(&mut self, r: Unproven) {
         self.unproven |= r.bit();
     }
+    /// The witness of one kind of bound: the kind's own (under
+    /// [`CheckConfig::witnesses_per_kind`]), else the worst one.
+    pub fn witness_of(&self, kind: &str) -> Option<&Witness> {
+        self.by_kind.get(kind).or(self.violation.as_ref())
+    }
     fn consider(&mut self, w: Witness) {
         let kind = bound_kind(&w.bound);
-        let m = self.violated.entry(kind).or_insert(0.0);
+        let m = self.violated.entry(kind.clone()).or_insert(0.0);
         *m = m.max(w.margin);
+        if self.keep_by_kind && self.by_kind.get(&kind).is_none_or(|v| w.margin > v.margin) {
+            self.by_kind.insert(kind, w.clone());
+        }
         if self.violation.as_ref().is_none_or(|v| w.margin > v.margin) {
             self.violation = Some(w);
         }
@@ -143,6 +156,11 @@ impl Judgement {
         for (k, m) in o.violated {
             let e = self.violated.entry(k).or_insert(0.0);
             *e = e.max(m);
+        }
+        for (k, w) in o.by_kind {
+            if self.by_kind.get(&k).is_none_or(|v| w.margin > v.margin) {
+                self.by_kind.insert(k, w);
+            }
         }
         if let Some(w) = o.violation {
             if self.violation.as_ref().is_none_or(|v| w.margin > v.margin) {
@@ -334,7 +352,7 @@ impl<'a> TileJudge<'a> {
 
     /// Judge one tile answer.
     pub fn judge(&mut self, answer: &TileResult) -> Judgement {
-        let mut j = Judgement::default();
+        let mut j = Judgement { keep_by_kind: self.cfg.witnesses_per_kind, ..Judgement::default() };
         match answer {
             TileResult::Empty => self.culls_everything(&mut j, "tile culled"),
             TileResult::Bounds(b) => self.judge_bounds(&mut j, b),

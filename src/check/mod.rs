@@ -97,6 +97,10 @@ pub struct CheckConfig {
     pub snap: Option<Snap>,
     /// The viewport the cases are placed in (None: anywhere, as the regimes draw them).
     pub viewport: Option<Viewport>,
+    /// Keep, per kind of bound violated, that kind's own worst witness in each
+    /// judgement ([`Judgement::by_kind`]; off for `check`, which holds every
+    /// judgement until the report).
+    pub witnesses_per_kind: bool,
 }
 
 impl CheckConfig {
@@ -137,6 +141,7 @@ impl CheckConfig {
             sample_set: SampleSet::Any,
             snap: None,
             viewport: None,
+            witnesses_per_kind: false,
         }
     }
 }

@@ -1,0 +1,174 @@
+//! `search --gate`: every violation the search finds is held against the method's
+//! expected signature (`corpus/expectations.json`); one beyond it is shrunk, written as
+//! a case file and fails the run (exit 1), one inside it is only counted. Each test runs
+//! the built binary from the repository root with a short `--time`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+struct Out {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+}
+
+fn cullproof(args: &[&str]) -> Out {
+    let o = Command::new(env!("CARGO_BIN_EXE_cullproof"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("RUST_BACKTRACE", "0")
+        .output()
+        .unwrap_or_else(|e| panic!("cullproof {}: cannot start: {e}", args.join(" ")));
+    Out {
+        code: o.status.code(),
+        stdout: String::from_utf8_lossy(&o.stdout).into(),
+        stderr: String::from_utf8_lossy(&o.stderr).into(),
+    }
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("cullproof-search-gate-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn json_files(dir: &Path) -> Vec<PathBuf> {
+    cullproof::corpus::case_files(&[dir.to_path_buf()]).unwrap_or_default()
+}
+
+/// A planted slip in a method expected conservative (a broken variant is held to the
+/// expectations of the method it breaks): any violation is beyond the signature. The
+/// search stops at the first finding (--max 1), writes its case file, and exits 1 with
+/// a line naming the method, the regime, the kind and the margin; the file replays.
+#[test]
+fn a_planted_slip_is_beyond_the_signature_and_written() {
+    let dir = scratch("slip");
+    let report = dir.join("report.json");
+    let out = dir.join("cases");
+    let id = "broken/shrink/la2011-safe";
+    let r = cullproof(&[
+        "search",
+        "--method",
+        id,
+        "--gate",
+        "--time",
+        "25",
+        "--max",
+        "1",
+        "--seed",
+        "3",
+        "--jobs",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+        report.to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, Some(1), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
+    let line = r.stdout.lines().find(|l| l.starts_with("beyond the signature:")).unwrap_or_else(|| {
+        panic!("no finding line:\n{}", r.stdout);
+    });
+    assert!(
+        line.contains(id) && line.contains("margin") && line.contains("in a regime expected conservative"),
+        "{line}"
+    );
+    let files = json_files(&out);
+    assert_eq!(files.len(), 1, "one case file: {files:?}\n{}", r.stdout);
+    let cf = cullproof::corpus::CaseFile::load(&files[0]).unwrap();
+    assert_eq!(cf.method, id);
+    assert!(cf.note.contains("beyond") && cf.note.contains("signature"), "{}", cf.note);
+    let cfg = cullproof::check::CheckConfig::default_with(cullproof::bounds::registry());
+    let rp = cullproof::corpus::replay(&files[0], &cfg).unwrap();
+    assert!(rp.ok, "the written case does not replay: {rp:?}");
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let f = &j["found"][0];
+    assert_eq!(f["beyond_signature"], serde_json::json!(true), "{j}");
+    assert!(f["cap"].is_null(), "no cap where conservative is expected: {f}");
+    assert_eq!(j["gate"], serde_json::json!(true));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A clean -safe method stays inside its signature (expected conservative: no
+/// violation at all) for a short search: exit 0, nothing found, nothing written.
+#[test]
+fn a_clean_safe_method_passes_a_short_gated_search() {
+    let dir = scratch("safe");
+    let out = dir.join("cases");
+    let r = cullproof(&[
+        "search",
+        "--method",
+        "la2011-safe",
+        "--gate",
+        "--time",
+        "8",
+        "--seed",
+        "5",
+        "--jobs",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, Some(0), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
+    assert!(r.stdout.contains("0 finding(s) beyond the signature"), "{}", r.stdout);
+    assert!(json_files(&out).is_empty());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `--expectations PATH` is honoured: under a signature that lists every kind the
+/// slip can violate with a generous cap, the same slip is inside it: counted, not a
+/// finding, exit 0. A missing file is an error naming the flag (exit 2).
+#[test]
+fn violations_inside_a_given_signature_are_only_counted() {
+    let dir = scratch("within");
+    let ex = dir.join("expectations.json");
+    let sig = r#"{"expect": "violation", "why": "test: a planted slip, every kind listed",
+        "bounds": {"u min": 10, "u max": 10, "v min": 10, "v max": 10, "t min": 10, "t max": 10,
+                   "tile culled": "inf", "NaN interval end": "inf"}, "max_rate": 1}"#;
+    std::fs::write(&ex, format!(r#"{{"la2011-safe": {{"*": {sig}}}}}"#)).unwrap();
+    let report = dir.join("report.json");
+    let out = dir.join("cases");
+    let r = cullproof(&[
+        "search",
+        "--method",
+        "broken/shrink/la2011-safe",
+        "--gate",
+        "--expectations",
+        ex.to_str().unwrap(),
+        "--regime",
+        "motion",
+        "--time",
+        "8",
+        "--seed",
+        "3",
+        "--jobs",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+        report.to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, Some(0), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert!(j["violated_cases"].as_u64().unwrap() > 0, "the slip shows no violation in 8 s: {j}");
+    assert_eq!(j["beyond_cases"], serde_json::json!(0), "{j}");
+    assert!(j["found"].as_array().unwrap().is_empty(), "{j}");
+    assert!(j["kinds"].as_array().unwrap().iter().all(|k| k["beyond_signature"] == serde_json::json!(false)));
+    assert!(json_files(&out).is_empty());
+
+    let missing = dir.join("nope.json");
+    let r = cullproof(&[
+        "search",
+        "--method",
+        "la2011",
+        "--gate",
+        "--dry-run",
+        "--time",
+        "1",
+        "--expectations",
+        missing.to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, Some(2), "{}", r.stderr);
+    assert!(r.stderr.contains("--expectations") && r.stderr.contains("nope.json"), "{}", r.stderr);
+    std::fs::remove_dir_all(&dir).ok();
+}
