@@ -552,7 +552,11 @@ pub fn run_cli(args: &StabilityArgs) -> Result<()> {
         }
     }
     if let Some(p) = &args.json {
-        crate::output::file_or_stdout("--json", p)?;
+        // (a JSON file inside the output directory the run will create is covered by
+        // that directory's check)
+        if !(p.starts_with(&args.out) && !args.out.exists()) {
+            crate::output::file_or_stdout("--json", p)?;
+        }
     }
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().context("building the thread pool")?;
     let cfg = Config {
