@@ -490,7 +490,7 @@ pub fn bit_compare_case(seed: u64, n: usize) -> (Triangle, Vec<Tile>) {
 }
 
 /// A uniform sample with (x, y) in the tile, over the whole lens and shutter. Total on
-/// every finite tile, even one wider than `f32::MAX` (see [`coordinate`]).
+/// every finite tile, even one wider than `f32::MAX` (see `coordinate`).
 pub fn tile_sample(rng: &mut ChaCha8Rng, tile: &Tile) -> Sample {
     Sample::new(
         coordinate(rng, tile.x0, tile.x1),

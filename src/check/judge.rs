@@ -101,7 +101,7 @@ pub struct Judgement {
     pub limit_slack: Option<f64>,
     /// Per interval end kind ("u min", ..., "t max"), the ends of this case probed for
     /// tightness and those with a covered sample within [`TIGHT_DELTA`] inside them
-    /// (or beyond: a violated end counts as tight). See [`TileJudge::probe_tight`].
+    /// (or beyond: a violated end counts as tight). See `TileJudge::probe_tight`.
     pub tight: BTreeMap<String, (u32, u32)>,
     /// Per kind of bound violated, the witness with the largest margin of that kind;
     /// kept only under [`CheckConfig::witnesses_per_kind`] (the search's signature

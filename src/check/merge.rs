@@ -11,7 +11,7 @@
 //! the merged counts against the expectations and (when the merged run has the
 //! settings of a stored baseline) the baseline, exactly as `check` does.
 //!
-//! Before anything is added, every shard is checked ([`validate`]): against itself and
+//! Before anything is added, every shard is checked (module `validate`): against itself and
 //! its declared settings (a shard index below its count, every row's cases those the
 //! settings give its regime and each proven, violated or unproven, totals the sums of
 //! the rows, no row dropped) and against the others (one build and one set of
