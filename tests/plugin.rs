@@ -324,8 +324,9 @@ fn too_many_constraints_stop_the_run_with_a_clear_error() {
     let cfg = CheckConfig::default_with(vec![m]);
     let (_, case, tile) = cullproof::check::make_case(&cfg, 0);
     let p = m.setup(&case.triangle);
-    let e =
-        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| p.tile(&tile))).err().expect("the tile test stops");
+    let Err(e) = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| p.tile(&tile))) else {
+        panic!("the tile test stops")
+    };
     let f = e.downcast_ref::<cullproof::plugin::PluginFailure>().expect("a PluginFailure payload");
     assert!(f.0.contains("n_constraints = 4000000000") && f.0.contains("cap 4096"), "{}", f.0);
 }

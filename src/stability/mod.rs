@@ -554,7 +554,7 @@ pub fn run_cli(args: &StabilityArgs) -> Result<()> {
     if let Some(p) = &args.json {
         // (a JSON file inside the output directory the run will create is covered by
         // that directory's check)
-        if !(p.starts_with(&args.out) && !args.out.exists()) {
+        if !p.starts_with(&args.out) || args.out.exists() {
             crate::output::file_or_stdout("--json", p)?;
         }
     }

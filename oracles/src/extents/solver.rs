@@ -299,14 +299,14 @@ impl<'a> TileSolver<'a> {
     /// triangle does not have (coverage does not depend on it).
     pub fn witness_near(&mut self, ext: Extent, bound: f64, delta: f64, budget: usize) -> Option<[f64; 5]> {
         let index = ext.sample_coord()?;
-        if !self.active[index] || !(bound.is_finite() && delta > 0.0) {
+        if !self.active[index] || !bound.is_finite() || delta.is_nan() || delta <= 0.0 {
             return None;
         }
         let mut init = self.init;
         let d = init[index];
         let (lo, hi) = if ext.is_max() { (bound - delta, bound) } else { (bound, bound + delta) };
         let (lo, hi) = (lo.max(d.lo), hi.min(d.hi));
-        if !(lo <= hi) {
+        if lo.is_nan() || hi.is_nan() || lo > hi {
             return None;
         }
         init[index] = Interval::new(lo, hi);
