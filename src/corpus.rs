@@ -14,6 +14,7 @@
 //! Replay and explain judge a file under what it records.
 
 use crate::bounds::{by_id, Method, MethodRef, TileResult};
+use crate::check::expect::{pooled_looser, Entry};
 use crate::check::{culled_by, judge, try_make_case, Cap, CheckConfig, Expectations, Judgement};
 use crate::gen::Regime;
 use crate::model::{Case, SampleSet, Snap, Tile, Viewport};
@@ -21,6 +22,7 @@ use crate::quote::{clip, quote};
 use anyhow::{anyhow, bail, Context, Result};
 use oracles::{classify, Coverage};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The format tag of a case file.
@@ -593,6 +595,20 @@ pub struct KindSeen {
     pub beyond_signature: bool,
 }
 
+/// One regime of a search: its cases, and on their boundary tiles (as the gate judges
+/// them) the cases with a violation and the proven interval ends probed for tightness.
+/// Under `--gate` these are held against the signature's rate cap and tightness.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct RegimeSeen {
+    pub regime: String,
+    pub cases: u64,
+    /// Cases whose boundary tile shows a violation (by at least the minimum margin).
+    pub violated: u64,
+    /// The signature's rate cap (null: none).
+    pub max_rate: Option<f64>,
+    pub tight: BTreeMap<String, crate::check::report::TightStat>,
+}
+
 /// The result of a search.
 #[derive(Clone, Debug, Serialize)]
 pub struct SearchReport {
@@ -612,6 +628,13 @@ pub struct SearchReport {
     pub beyond_cases: u64,
     /// Per regime and kind of bound violated (when expectations were given).
     pub kinds: Vec<KindSeen>,
+    /// Per regime: cases, violated boundary tiles and tightness.
+    pub regimes: Vec<RegimeSeen>,
+    /// Under `--gate`: where the search's cases as a whole leave the signature (a
+    /// violation rate above the cap, beyond counting noise; fewer tight ends than the
+    /// tightness signature allows, per regime and pooled over the regimes), one line
+    /// each. No single case witnesses these, so no case file is written for them.
+    pub breaches: Vec<String>,
 }
 
 /// How a search runs (see [`search_with`]).
@@ -692,6 +715,7 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
     let mut seen = std::collections::BTreeSet::new();
     let (mut violated_cases, mut beyond_cases) = (0u64, 0u64);
     let mut kinds: std::collections::BTreeMap<(Regime, String), (u64, f64)> = Default::default();
+    let mut per_regime: BTreeMap<Regime, RegimeSeen> = BTreeMap::new();
     while start.elapsed().as_secs_f64() < o.seconds && found.len() < o.max_found {
         let ids: Vec<u64> = (next..next + batch).collect();
         next += batch;
@@ -718,6 +742,14 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
             })
             .collect();
         for (i, regime, j, limit) in results {
+            // The boundary tile, as the gate judges it: rate and tightness.
+            let rs = per_regime.entry(regime).or_default();
+            rs.cases += 1;
+            rs.violated += j.violated.values().any(|&mm| mm >= o.min_margin) as u64;
+            for (k, &(n, t)) in &j.tight {
+                let e = rs.tight.entry(k.clone()).or_default();
+                (e.probed, e.tight) = (e.probed + n as u64, e.tight + t as u64);
+            }
             // Count every kind violated in this case, over all its tiles.
             let mut all = j.clone();
             if let Some(l) = &limit {
@@ -841,6 +873,31 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
             }
         })
         .collect();
+    let mut breaches = Vec::new();
+    let regimes: Vec<RegimeSeen> = per_regime
+        .into_iter()
+        .map(|(regime, mut seen)| {
+            seen.regime = regime.name().into();
+            if let Some(e) = entry(regime) {
+                seen.max_rate = e.max_rate;
+                if o.gate {
+                    let lines = e.rate_breach(seen.violated, seen.cases).into_iter().chain(e.looser(&seen.tight));
+                    breaches.extend(lines.map(|l| format!("regime {}: {l}", regime.name())));
+                }
+            }
+            seen
+        })
+        .collect();
+    if o.gate {
+        let rows: Vec<(Entry, &RegimeSeen)> = regimes
+            .iter()
+            .filter_map(|seen| {
+                let r = Regime::ALL.into_iter().find(|r| r.name() == seen.regime)?;
+                Some((entry(r)?, seen))
+            })
+            .collect();
+        breaches.extend(pooled_looser(rows.iter().map(|(e, seen)| (e, &seen.tight))).into_iter().map(|(_, l)| l));
+    }
     Ok(SearchReport {
         method: id.into(),
         seed: cfg.seed,
@@ -852,6 +909,8 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
         violated_cases,
         beyond_cases,
         kinds,
+        regimes,
+        breaches,
     })
 }
 
@@ -939,12 +998,37 @@ pub fn render_search(r: &SearchReport) -> String {
                 );
             }
         }
-        if !r.found.is_empty() {
+        if !r.regimes.is_empty() {
+            s += &format!(
+                "\nboundary tiles per regime (as the gate judges them):\n  {:<15} {:>8} {:>9} {:>9}  tight ends (share)\n",
+                "regime", "cases", "violated", "rate cap"
+            );
+            for g in &r.regimes {
+                let tight: Vec<String> = g
+                    .tight
+                    .iter()
+                    .filter(|(_, t)| t.probed > 0)
+                    .map(|(k, t)| format!("{k} {:.2}", t.tight as f64 / t.probed as f64))
+                    .collect();
+                s += &format!(
+                    "  {:<15} {:>8} {:>9} {:>9}  {}\n",
+                    g.regime,
+                    g.cases,
+                    g.violated,
+                    g.max_rate.map_or("-".to_string(), |r| r.to_string()),
+                    if tight.is_empty() { "-".to_string() } else { tight.join(", ") }
+                );
+            }
+        }
+        if !r.found.is_empty() || !r.breaches.is_empty() {
             s += "\n";
         }
         for f in &r.found {
             s += &beyond_line(f);
             s += "\n";
+        }
+        for b in &r.breaches {
+            s += &format!("beyond the signature: {}, {b}\n", r.method);
         }
     }
     s

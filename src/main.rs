@@ -179,9 +179,12 @@ enum Cmd {
     /// only counted (they neither count against --max nor stop the search); each kind
     /// beyond it is a finding (one per regime and kind), shrunk while it stays beyond,
     /// and written with that kind's own witness. Prints the kinds of bound seen per
-    /// regime with their largest margins and caps, and a line per finding; exit 1 when
-    /// something lies beyond the signature, 0 otherwise. (The rate cap is not judged:
-    /// a search's cases are not the gate's sample.)
+    /// regime with their largest margins and caps, and a line per finding. The search's
+    /// cases as a whole are held to the rest of the signature, on their boundary tiles
+    /// as the gate judges them: the rate cap (beyond counting noise) and the tightness
+    /// signature (per regime and pooled), one line per breach (a looser or more often
+    /// wrong method has no single witness, so no case file). Exit 1 when something lies
+    /// beyond the signature, 0 otherwise.
     #[command(allow_negative_numbers = true)]
     Search {
         /// The method id (see `cullproof methods`), or a deliberately broken variant
@@ -686,7 +689,7 @@ fn run() -> Result<()> {
             if let Some(p) = &json {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
-            if gate && r.found.iter().any(|f| f.beyond_signature) {
+            if gate && (r.found.iter().any(|f| f.beyond_signature) || !r.breaches.is_empty()) {
                 std::process::exit(1);
             }
         }

@@ -172,3 +172,89 @@ fn violations_inside_a_given_signature_are_only_counted() {
     assert!(r.stderr.contains("--expectations") && r.stderr.contains("nope.json"), "{}", r.stderr);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The search's cases as a whole are held to the rest of the signature. A loosened
+/// published method (`loose`: every narrowed end moved out by 1e-3) violates nothing,
+/// but its proven ends have no covered sample next to them: the tightness signature of
+/// the real expectations breaks (per regime and pooled) and the run exits 1 (the
+/// breach is a line of the report: no single case witnesses it). A slip inside a signature's kinds and caps
+/// but at a higher rate than it allows breaks the rate cap.
+#[test]
+fn a_looser_or_more_often_wrong_method_breaks_the_signature_as_a_whole() {
+    let dir = scratch("whole");
+    let report = dir.join("report.json");
+    let r = cullproof(&[
+        "search",
+        "--method",
+        "broken/loose/la2011",
+        "--gate",
+        "--time",
+        "10",
+        "--seed",
+        "7",
+        "--jobs",
+        "1",
+        "--dry-run",
+        "--json",
+        report.to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, Some(1), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
+    assert!(
+        r.stdout.lines().any(|l| l.starts_with("beyond the signature: broken/loose/la2011, looser over all regimes:")),
+        "{}",
+        r.stdout
+    );
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert!(!j["breaches"].as_array().unwrap().is_empty(), "{j}");
+    assert!(j["regimes"].as_array().unwrap().iter().any(|g| g["tight"]["u min"]["probed"].as_u64() > Some(20)));
+
+    // The clean method on the same seed and time: no breach of the whole.
+    let r = cullproof(&[
+        "search",
+        "--method",
+        "la2011",
+        "--gate",
+        "--time",
+        "10",
+        "--seed",
+        "7",
+        "--jobs",
+        "1",
+        "--dry-run",
+        "--json",
+        report.to_str().unwrap(),
+    ]);
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert!(j["breaches"].as_array().unwrap().is_empty(), "{}", r.stdout);
+
+    // Rate: every kind listed with a generous cap, but at most 1 % of cases.
+    let ex = dir.join("expectations.json");
+    let sig = r#"{"expect": "violation", "why": "test: a planted slip at a low rate cap",
+        "bounds": {"u min": 10, "u max": 10, "v min": 10, "v max": 10, "t min": 10, "t max": 10,
+                   "tile culled": "inf", "NaN interval end": "inf"}, "max_rate": 0.01}"#;
+    std::fs::write(&ex, format!(r#"{{"la2011-safe": {{"*": {sig}}}}}"#)).unwrap();
+    let r = cullproof(&[
+        "search",
+        "--method",
+        "broken/shrink/la2011-safe",
+        "--gate",
+        "--expectations",
+        ex.to_str().unwrap(),
+        "--regime",
+        "motion",
+        "--time",
+        "8",
+        "--seed",
+        "3",
+        "--jobs",
+        "1",
+        "--dry-run",
+    ]);
+    assert_eq!(r.code, Some(1), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
+    assert!(
+        r.stdout.contains("regime motion: violation rate") && r.stdout.contains("above the cap 0.01"),
+        "{}",
+        r.stdout
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

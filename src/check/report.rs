@@ -325,38 +325,22 @@ impl<'a> Accumulator<'a> {
 /// case counts; the method's rows together do. Failing kinds turn the method's rows
 /// with that kind into regressions, each naming the pooled counts.
 pub(crate) fn pooled_tightness(rows: &mut [Row]) {
-    let mut pools: BTreeMap<(String, String), (f64, f64, u64, u64)> = BTreeMap::new();
-    for row in rows.iter() {
-        let Some(entry) = &row.entry else { continue };
-        if row.status == Status::NotGated {
-            continue;
-        }
-        for (kind, &p) in &entry.tight {
-            let Some(s) = row.tight.get(kind) else { continue };
-            let e = pools.entry((row.method.clone(), kind.clone())).or_default();
-            let n = s.probed as f64;
-            e.0 += p * n;
-            e.1 += p * (1.0 - p) * n;
-            e.2 += s.probed;
-            e.3 += s.tight;
-        }
-    }
-    for ((method, kind), (mean, var, probed, tight)) in pools {
-        if probed == 0 || tight as f64 >= super::expect::least_tight(mean, var) {
-            continue;
-        }
-        let line = format!(
-            "looser over all regimes: `{kind}` has a covered sample within {:.1e} in {tight} of {probed} proven \
-             ends (the signatures expect about {:.0})",
-            super::judge::TIGHT_DELTA,
-            mean
-        );
-        for row in rows.iter_mut().filter(|r| r.method == method && r.tight.get(&kind).is_some_and(|s| s.probed > 0)) {
-            if !row.status.fails() {
-                row.status = Status::Regression;
-            }
-            if !row.problems.contains(&line) {
-                row.problems.push(line.clone());
+    let methods: std::collections::BTreeSet<String> = rows.iter().map(|r| r.method.clone()).collect();
+    for method in methods {
+        let failing = super::expect::pooled_looser(rows.iter().filter_map(|row| {
+            let entry = row.entry.as_ref()?;
+            (row.method == method && row.status != Status::NotGated).then_some((entry, &row.tight))
+        }));
+        for (kind, line) in failing {
+            for row in
+                rows.iter_mut().filter(|r| r.method == method && r.tight.get(&kind).is_some_and(|s| s.probed > 0))
+            {
+                if !row.status.fails() {
+                    row.status = Status::Regression;
+                }
+                if !row.problems.contains(&line) {
+                    row.problems.push(line.clone());
+                }
             }
         }
     }
