@@ -355,6 +355,40 @@ mod watch {
     }
 }
 
+/// The floating-point environment every claim of this crate assumes (IEEE 754 binary32
+/// and binary64, round to nearest even, gradual underflow: no flush-to-zero, no
+/// denormals-are-zero), checked around every call into a plugin. On x86-64 that is
+/// the MXCSR register of the calling thread; elsewhere nothing is checked.
+pub(crate) mod fpenv {
+    /// MXCSR: flush-to-zero (bit 15), denormals-are-zero (bit 6), rounding control
+    /// (bits 13-14, 0 = to nearest).
+    #[cfg(target_arch = "x86_64")]
+    const NONSTANDARD: u32 = 1 << 15 | 1 << 6 | 3 << 13;
+
+    /// Reset this thread's environment to the standard one; true when it was not.
+    #[cfg(target_arch = "x86_64")]
+    #[inline]
+    pub fn reset() -> bool {
+        #[allow(deprecated)]
+        // SAFETY: SSE is part of x86-64; reading MXCSR and clearing these bits (which
+        // only restores the default rounding and underflow) cannot fault.
+        unsafe {
+            let c = std::arch::x86_64::_mm_getcsr();
+            if c & NONSTANDARD != 0 {
+                std::arch::x86_64::_mm_setcsr(c & !NONSTANDARD);
+                return true;
+            }
+        }
+        false
+    }
+
+    #[cfg(not(target_arch = "x86_64"))]
+    #[inline]
+    pub fn reset() -> bool {
+        false
+    }
+}
+
 /// Kinds of contract breach, counted per plugin (the names are the keys of
 /// [`ContractBreaches::kinds`]).
 #[derive(Clone, Copy)]
@@ -366,9 +400,10 @@ enum Breach {
     TileNoEval,
     EvalBoxNan,
     EvalBoxInverted,
+    FpEnv,
 }
 
-const BREACHES: usize = 7;
+const BREACHES: usize = 8;
 
 impl Breach {
     const ALL: [Breach; BREACHES] = [
@@ -379,6 +414,7 @@ impl Breach {
         Breach::TileNoEval,
         Breach::EvalBoxNan,
         Breach::EvalBoxInverted,
+        Breach::FpEnv,
     ];
     fn key(self) -> &'static str {
         match self {
@@ -389,6 +425,7 @@ impl Breach {
             Breach::TileNoEval => "tile-constraints-without-eval",
             Breach::EvalBoxNan => "eval-box-nan-end",
             Breach::EvalBoxInverted => "eval-box-lo-above-hi",
+            Breach::FpEnv => "fp-environment",
         }
     }
     fn words(self) -> &'static str {
@@ -400,6 +437,10 @@ impl Breach {
             Breach::TileNoEval => "tile() answers with constraints but `eval` is NULL (ignored)",
             Breach::EvalBoxNan => "eval_box() enclosures with a NaN end (taken as the whole line)",
             Breach::EvalBoxInverted => "eval_box() enclosures with lo > hi (taken as the whole line)",
+            Breach::FpEnv => {
+                "the floating-point environment was left with flush-to-zero, denormals-are-zero or a rounding \
+                 mode other than to nearest (by loading the library or by a call; reset to the standard one)"
+            }
         }
     }
 }
@@ -501,10 +542,17 @@ unsafe impl Send for PluginMethod {}
 unsafe impl Sync for PluginMethod {}
 
 impl PluginMethod {
-    /// Run a call into the plugin under the watchdog.
+    /// Run a call into the plugin under the watchdog, in the standard floating-point
+    /// environment ([`fpenv`]): one left otherwise (before the call, by the library's
+    /// loading; after it, by the call) is reset and counted as a breach.
     #[inline]
     fn call<R>(&self, c: Call, f: impl FnOnce() -> R) -> R {
-        watch::run(self.index, c, f)
+        let before = fpenv::reset();
+        let r = watch::run(self.index, c, f);
+        if before | fpenv::reset() {
+            self.breach(1 << Breach::FpEnv as u32);
+        }
+        r
     }
 
     /// Stop the run: `call` answered `what` (see [`PluginFailure`]).
@@ -569,6 +617,10 @@ pub fn load(path: &Path) -> Result<&'static dyn Method> {
     let at = path.display();
     // SAFETY: loading a library runs its initialisers; the user asked for this file.
     let lib = unsafe { libloading::Library::new(path) }.with_context(|| format!("--plugin {at}: cannot load"))?;
+    // A library built with fast-math options may set flush-to-zero at load: reset it
+    // here, before any other thread inherits it (the exact oracles need gradual
+    // underflow), and count it below.
+    let env_at_load = fpenv::reset();
     let entry = unsafe {
         let f: libloading::Symbol<unsafe extern "C" fn() -> *const CpMethod> = lib
             .get(b"cullproof_method\0")
@@ -649,7 +701,11 @@ pub fn load(path: &Path) -> Result<&'static dyn Method> {
         reasons: Mutex::new(HashMap::new()),
         _lib: lib,
     };
+    let env_at_load = env_at_load | fpenv::reset();
     let m: &'static PluginMethod = Box::leak(Box::new(m));
+    if env_at_load {
+        m.breach(1 << Breach::FpEnv as u32);
+    }
     LOADED.lock().unwrap_or_else(|e| e.into_inner()).push(m);
     Ok(m)
 }

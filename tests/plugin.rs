@@ -467,3 +467,47 @@ fn bad_answer_codes_enclosures_and_long_names_are_caught() {
         assert_eq!(r.kinds[k], 1, "{k}: {r:?}");
     }
 }
+
+/// A bound built as with fast-math options: its library sets flush-to-zero and
+/// denormals-are-zero when it loads, and its tile test sets them again on every call.
+/// It answers the whole domain (conservative).
+const FTZ: &str = r#"#include "cullproof.h"
+#include <xmmintrin.h>
+static void ftz_on(void) { _mm_setcsr(_mm_getcsr() | 0x8040); }
+__attribute__((constructor)) static void at_load(void) { ftz_on(); }
+static void *setup(const cp_triangle *t, const char **d) { (void)t; (void)d; return 0; }
+static int32_t tile(const void *s, const cp_tile *t, cp_bounds *o) {
+    (void)s; (void)t; (void)o;
+    ftz_on();
+    return CP_BOUNDS;
+}
+static const cp_method m = { .abi_version = CULLPROOF_ABI_VERSION, .id = "c-ftz", .source = "test: FTZ/DAZ",
+    .outputs = CP_OUT_LENS | CP_OUT_TIME, .setup = setup, .tile = tile };
+const cp_method *cullproof_method(void) { return &m; }
+"#;
+
+/// The claims assume round to nearest with gradual underflow. A plugin that sets
+/// flush-to-zero / denormals-are-zero (at load or in a call) is reported as a contract
+/// breach (`fp-environment`), and the environment is reset before any further work:
+/// neither our exact oracles nor the next call run under it.
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn a_plugin_that_sets_flush_to_zero_is_reported_and_the_environment_reset() {
+    #[allow(deprecated)]
+    fn mxcsr() -> u32 {
+        // SAFETY: reading MXCSR cannot fault on x86-64.
+        unsafe { std::arch::x86_64::_mm_getcsr() }
+    }
+    let m = cullproof::plugin::load(&compile_text(FTZ, "ftz")).expect("load the FTZ plugin");
+    assert_eq!(mxcsr() & 0x8040, 0, "the loading thread runs without FTZ/DAZ after the load");
+    let after_load = cullproof::plugin::breaches();
+    let b = after_load.iter().find(|b| b.method == "c-ftz").expect("the load is reported");
+    assert_eq!(b.kinds["fp-environment"], 1, "{b:?}");
+    let r = gate(m, 48);
+    assert_eq!(mxcsr() & 0x8040, 0, "this thread runs without FTZ/DAZ after the calls");
+    let b = r.contract_breaches.iter().find(|b| b.method == "c-ftz").expect("the calls are reported");
+    assert!(b.kinds["fp-environment"] >= 48, "{b:?}");
+    assert!(b.line().contains("flush-to-zero"), "{}", b.line());
+    // The answers themselves (the whole domain) are judged as given: proven.
+    assert!(r.rows.iter().all(|x| x.violations == 0), "{:?}", r.rows.iter().map(|x| x.violations).collect::<Vec<_>>());
+}

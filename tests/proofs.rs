@@ -67,6 +67,24 @@ fn a_false_lemma_is_refuted() {
     assert!(matches!(o.verdict, run::Verdict::Refuted(_)), "{o:?}");
 }
 
+/// The overflow threshold T = MAX + ulp/2: RN rounds T to +inf (ties to even), yet STEP's
+/// hypothesis also admits the pair (T, MAX), which the step from binary64 to the reals
+/// needs (a real just below T rounds to MAX). Both as ground z3 facts; and STEP stays
+/// proven with the pair (the whole STEP run is in the test above).
+#[test]
+fn steps_hypothesis_covers_the_overflow_threshold_both_ways() {
+    let prelude = cullproof::bounds::proofs::PRELUDE;
+    for fact in ["(near thr (f #x7f7fffff))", "(near (fp.neg thr) (f #xff7fffff))", "(fp.isInfinite (rn thr))"] {
+        let text = format!("{prelude}(assert (not {fact}))\n(check-sat)\n");
+        let o = run::run_text(Tool::Z3, &text, LIMIT);
+        assert_eq!(o.verdict, run::Verdict::Proven, "{fact}: {o:?}");
+    }
+    // Without near_top the pair is not admitted (so the test can fail).
+    let without = prelude.replace("(near_top z r)", "false");
+    let text = format!("{without}(assert (not (near thr (f #x7f7fffff))))\n(check-sat)\n");
+    assert!(matches!(run::run_text(Tool::Z3, &text, LIMIT).verdict, run::Verdict::Refuted(_)));
+}
+
 #[test]
 fn the_scripts_constants_are_the_codes() {
     check::constants().unwrap();

@@ -136,7 +136,8 @@ pub struct CheckReport {
     pub run: RunInfo,
     pub rows: Vec<Row>,
     /// Per method, the strongest verdict it reaches ([`super::strength`]): violated,
-    /// proven for all inputs in ranges (symbolic), proven on the run's cases, unproven.
+    /// machine-checked for all inputs in ranges, rounding lemmas checked (composition
+    /// argued), proven on N cases, unproven.
     #[serde(default)]
     pub methods: Vec<super::strength::MethodStrength>,
     /// The sampled cross-check of Embree against the exact oracle, per regime.

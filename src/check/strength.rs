@@ -7,12 +7,19 @@
 //! 1. **violated**: some case of this run has a witness confirmed exactly. A violation
 //!    outranks everything, a proof included (a proven variant that is violated means
 //!    the proof and the code have parted, and the gate says so).
-//! 2. **proven for all inputs in ranges R (symbolic)**: the method has a proof whose
-//!    lemmas z3 and Gappa check (`cullproof proofs` re-runs them), and no case of this
-//!    run contradicts it. Unproven cases of the run are the judge's limits, counted but
-//!    covered by the proof.
-//! 3. **proven on N cases (certified)**: every case of this run proven.
-//! 4. **unproven**: no violation, some cases neither proven nor violated.
+//! 2. **machine-checked for all inputs in ranges**: the method has a proof whose every
+//!    step, the composition over the method's code included, z3 and Gappa check
+//!    (`cullproof proofs` re-runs them), and no case of this run contradicts it.
+//! 3. **rounding lemmas checked, composition argued**: the method has a proof for all
+//!    inputs in its ranges whose rounding lemmas z3 and Gappa check, while how the
+//!    method's code composes them is an argument (`docs/proofs.md`, the method's file)
+//!    that no machine checks; no case of this run contradicts it. A change to the code
+//!    that the argument no longer fits is caught only by the gate's cases.
+//! 4. **proven on N cases**: every case of this run proven (certified).
+//! 5. **unproven**: no violation, some cases neither proven nor violated.
+//!
+//! Under 2 and 3, unproven cases of the run are the judge's limits, counted and shown
+//! beside the proof.
 
 use super::report::Row;
 use crate::bounds::proofs;
@@ -24,8 +31,12 @@ use serde::{Deserialize, Serialize};
 pub enum Strength {
     /// A witness confirmed exactly in this run.
     Violated,
-    /// A proof for every f32 input in stated ranges, and no violation in this run.
-    ProvenForAllInputs,
+    /// A proof for every f32 input in stated ranges, composition included, checked by
+    /// machine; no violation in this run.
+    MachineChecked,
+    /// A proof for every f32 input in stated ranges whose rounding lemmas are checked by
+    /// machine and whose composition is argued; no violation in this run.
+    LemmasChecked,
     /// Every case of this run proven.
     ProvenOnCases,
     /// No violation; some cases neither proven nor violated.
@@ -37,8 +48,9 @@ impl Strength {
     pub fn name(self) -> &'static str {
         match self {
             Strength::Violated => "violated",
-            Strength::ProvenForAllInputs => "proven for all inputs in ranges (symbolic)",
-            Strength::ProvenOnCases => "proven on the run's cases (certified)",
+            Strength::MachineChecked => "machine-checked for all inputs in ranges",
+            Strength::LemmasChecked => "rounding lemmas checked, composition argued",
+            Strength::ProvenOnCases => "proven on N cases",
             Strength::Unproven => "unproven",
         }
     }
@@ -56,10 +68,11 @@ pub struct MethodStrength {
     /// Regimes with a violation, of the regimes run.
     pub violated_regimes: u64,
     pub regimes: u64,
-    /// For [`Strength::ProvenForAllInputs`]: the ranges, as "inputs: range".
+    /// With a proof ([`Strength::MachineChecked`], [`Strength::LemmasChecked`]): the
+    /// ranges, as "inputs: range".
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub ranges: Vec<String>,
-    /// For [`Strength::ProvenForAllInputs`]: the scripts of the proof.
+    /// With a proof: the scripts of the proof.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub scripts: Vec<String>,
     /// The verdict in words, with its numbers.
@@ -90,8 +103,11 @@ fn of_method<'a>(method: &str, rows: impl Iterator<Item = &'a Row>) -> MethodStr
     let proof = proofs::variant(method);
     let strength = if violations > 0 {
         Strength::Violated
-    } else if proof.is_some() {
-        Strength::ProvenForAllInputs
+    } else if let Some(p) = proof {
+        match p.level {
+            proofs::Level::MachineChecked => Strength::MachineChecked,
+            proofs::Level::LemmasChecked => Strength::LemmasChecked,
+        }
     } else if unproven == 0 && cases > 0 {
         Strength::ProvenOnCases
     } else {
@@ -103,19 +119,19 @@ fn of_method<'a>(method: &str, rows: impl Iterator<Item = &'a Row>) -> MethodStr
                 if proof.is_some() { " (contradicts its proof for all inputs: code and proof differ)" } else { "" };
             format!("violated in {violated_regimes} of {regimes} regimes ({violations} of {cases} cases){against}")
         }
-        Strength::ProvenForAllInputs => {
+        Strength::MachineChecked | Strength::LemmasChecked => {
             let run = if unproven == 0 {
                 format!("all {cases} cases proven")
             } else {
                 format!("{proven} of {cases} cases proven, {unproven} unproven by the judge")
             };
-            format!("proven for all inputs in its ranges (symbolic; `cullproof proofs`); this run: {run}")
+            format!("{} (`cullproof proofs`); this run: {run}", strength.name())
         }
-        Strength::ProvenOnCases => format!("proven on {cases} cases (certified)"),
+        Strength::ProvenOnCases => format!("proven on {cases} cases"),
         Strength::Unproven => format!("no violation; {unproven} of {cases} cases unproven"),
     };
     let (ranges, scripts) = match (strength, proof) {
-        (Strength::ProvenForAllInputs, Some(v)) => (
+        (Strength::MachineChecked | Strength::LemmasChecked, Some(v)) => (
             v.ranges.iter().map(|r| format!("{}: {}", r.inputs, r.range)).collect(),
             v.scripts.iter().map(|s| s.to_string()).collect(),
         ),
@@ -168,7 +184,7 @@ mod tests {
             by,
             vec![
                 ("bbox", Strength::Violated),
-                ("bbox-safe", Strength::ProvenForAllInputs),
+                ("bbox-safe", Strength::LemmasChecked),
                 ("la2011", Strength::ProvenOnCases),
                 ("lb2011", Strength::Unproven),
                 ("wu2013-safe", Strength::Violated),

@@ -148,6 +148,27 @@ pub struct Range {
     pub range: &'static str,
 }
 
+/// How much of a proof for all inputs a machine checks (see
+/// [`crate::check::strength`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Level {
+    /// Every step, the composition over the method's code included.
+    MachineChecked,
+    /// The rounding lemmas; their composition over the code is an argument.
+    LemmasChecked,
+}
+
+impl Level {
+    /// The words used in tables, JSON and the README.
+    pub fn name(self) -> &'static str {
+        match self {
+            Level::MachineChecked => "machine-checked for all inputs in ranges",
+            Level::LemmasChecked => "rounding lemmas checked, composition argued",
+        }
+    }
+}
+
 /// A `-safe` variant proven for all inputs in its ranges.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Variant {
@@ -161,6 +182,8 @@ pub struct Variant {
     pub mechanical: &'static str,
     /// What the proof takes from an argument (`docs/proofs.md` and the method's file).
     pub by_argument: &'static str,
+    /// How much of it a machine checks.
+    pub level: Level,
 }
 
 /// Every finite f32 input; non-finite input: the full domain.
@@ -197,6 +220,7 @@ pub const VARIANTS: &[Variant] = &[
                      FLOOR and step count)",
         by_argument: "collecting the error terms into g1 B + g2 / w + g3 (docs/proofs.md); the exact box is \
                       the hull of the exact corner values (bbox.rs derivation); tile comparisons are exact",
+        level: Level::LemmasChecked,
     },
     Variant {
         id: "la2011-safe",
@@ -205,6 +229,7 @@ pub const VARIANTS: &[Variant] = &[
         mechanical: "every rounded result stepped outward encloses the exact result (STEP), rounding is \
                      monotone (MONO)",
         by_argument: STEPS_ARGUMENT,
+        level: Level::LemmasChecked,
     },
     Variant {
         id: "mam2012-safe",
@@ -213,6 +238,7 @@ pub const VARIANTS: &[Variant] = &[
         mechanical: "STEP for every interval operation; MONO for the lines (b = RN(l0 - pad) <= l0) and \
                      for the per-sample value (an f32 difference of ordered values is >= 0)",
         by_argument: STEPS_ARGUMENT,
+        level: Level::LemmasChecked,
     },
     Variant {
         id: "wu2013-safe",
@@ -229,6 +255,7 @@ pub const VARIANTS: &[Variant] = &[
                      that the lines' pad covers their f32 evaluation for every |l| <= 1 (wu2013_safe.g, \
                      with the code's PAD and FLOOR); MONO for the sign of the last difference",
         by_argument: STEPS_ARGUMENT,
+        level: Level::LemmasChecked,
     },
     Variant {
         id: "nilsson2012-depth-safe",
@@ -236,6 +263,7 @@ pub const VARIANTS: &[Variant] = &[
         scripts: &["STEP"],
         mechanical: "every rounded result stepped outward encloses the exact result (STEP)",
         by_argument: STEPS_ARGUMENT,
+        level: Level::LemmasChecked,
     },
     Variant {
         id: "gdam2010-safe",
@@ -244,6 +272,7 @@ pub const VARIANTS: &[Variant] = &[
         mechanical: "STEP for the fused multiply-adds and the interval cross products; MONO for g(s) >= 0 \
                      (an f32 difference of ordered f32 values)",
         by_argument: STEPS_ARGUMENT,
+        level: Level::LemmasChecked,
     },
 ];
 
@@ -260,9 +289,11 @@ pub fn variant(id: &str) -> Option<&'static Variant> {
 /// The strongest verdict a method can reach: proven for all inputs in ranges (these
 /// scripts), or only what the gate certifies on its cases.
 pub fn strength(id: &str) -> &'static str {
-    if variant(id).is_some() {
-        "proven for all inputs in its ranges (symbolic: rounding lemmas by z3/gappa, their composition argued in docs/proofs.md)"
-    } else {
-        "no proof for all inputs (its verdict is the gate's, on its cases: `cullproof check`)"
+    match variant(id).map(|v| v.level) {
+        Some(Level::MachineChecked) => "machine-checked for all inputs in ranges (z3 and gappa check every step)",
+        Some(Level::LemmasChecked) => {
+            "rounding lemmas checked, composition argued (z3/gappa check the lemmas; docs/proofs.md argues their composition)"
+        }
+        None => "no proof for all inputs (its verdict is the gate's, on its cases: `cullproof check`)",
     }
 }

@@ -22,7 +22,15 @@
   (let ((lo ((_ to_fp 8 24) RTN z)) (hi ((_ to_fp 8 24) RTP z)))
     (and (= r hi) (not (fp.isInfinite lo)) (not (fp.isInfinite hi))
          (fp.leq (fp.sub RTN (wide hi) z) (fp.sub RTP z (wide lo))))))
-(define-fun near ((z W) (r F)) Bool (or (near_lo z r) (near_hi z r)))
+; At the overflow threshold T = MAX + ulp/2 (= MAX + 2^103) the two nearest values
+; are MAX and 2^128 (the grid continued past MAX): RN rounds T itself to +inf, but a
+; real just below T rounds to MAX, and the step from W to the reals needs the lemma
+; for the pair (T, MAX). near_top admits r = +-MAX for every z from +-MAX out to +-T.
+(define-fun thr () W (fp.add RNE (wide (f #x7f7fffff)) (wide (f #x73000000))))
+(define-fun near_top ((z W) (r F)) Bool
+  (or (and (= r (f #x7f7fffff)) (fp.leq (wide r) z) (fp.leq z thr))
+      (and (= r (f #xff7fffff)) (fp.leq (fp.neg thr) z) (fp.leq z (wide r)))))
+(define-fun near ((z W) (r F)) Bool (or (near_lo z r) (near_hi z r) (near_top z r)))
 ; next_down / next_up on the bits of a non-NaN f32, as Rust's f32::next_down /
 ; f32::next_up: +-0 go to -+2^-149, -inf and +inf stay, otherwise one unit of the
 ; magnitude's bits towards (next_up: away from) -inf.
