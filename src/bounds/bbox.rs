@@ -161,7 +161,12 @@ impl Corner for SafeCorner {
             lo = ar.next_down(&lo);
             hi = ar.next_up(&hi);
         }
-        [lo, hi]
+        // w = +inf is outside the error analysis (finite inputs): n / w = 0 and a pad of
+        // 0 would give a finite, culling box. NaN makes the axis never cull, as for
+        // every other non-finite input.
+        let nan = ar.lit(f32::NAN);
+        let finite = ar.is_finite(w);
+        [ar.select(&finite, &lo, &nan), ar.select(&finite, &hi, &nan)]
     }
 }
 
@@ -441,6 +446,20 @@ mod tests {
     /// sums and within 2^-53 for the quotient, far below an f32 ulp) of random
     /// triangles of every scale, including subnormal and huge coordinates, and holds
     /// the unpadded box.
+    #[test]
+    fn bbox_safe_never_culls_with_an_infinite_w() {
+        // w = +inf at one vertex and shutter end: every corner value of the other
+        // vertices is finite, yet the axis must not cull (non-finite input).
+        let tri = Triangle::fixed([[10.0, 10.0, 0.5, f32::INFINITY], [20.0, 10.0, 0.5, 1.0], [10.0, 20.0, 0.5, 1.0]]);
+        let bx = aabb_safe(&tri).expect("w > 0 everywhere: enabled");
+        assert!(bx.iter().all(|v| v.is_nan()), "{bx:?}");
+        let far = Tile::square(1000.0, 1000.0, 4.0);
+        assert!(matches!(METHOD_SAFE.setup(&tri).tile(&far), TileResult::Bounds(_)));
+        // The same triangle with a finite w culls that tile.
+        let tri = Triangle::fixed([[10.0, 10.0, 0.5, 1.0], [20.0, 10.0, 0.5, 1.0], [10.0, 20.0, 0.5, 1.0]]);
+        assert!(matches!(METHOD_SAFE.setup(&tri).tile(&far), TileResult::Empty));
+    }
+
     #[test]
     fn the_safe_box_encloses_the_exact_corners() {
         let mut seed = 0x1234_5678_9abc_def1u64;
