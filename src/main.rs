@@ -275,9 +275,16 @@ enum Cmd {
         /// the concolic plan (about 0.5 to 1 s of z3 CPU), none for `whole`.
         #[arg(long)]
         rlimit: Option<u64>,
-        /// Queries run at once (z3 processes; default 2).
+        /// Queries run at once (default 2; each runs one process per solver).
         #[arg(long, default_value_t = 2)]
         jobs: usize,
+        /// The solvers each query runs on, first `sat` or `unsat` wins: `z3`, `bitwuzla`
+        /// or `z3,bitwuzla`. Default: z3 for the concolic plan (its resource limit keeps
+        /// the report the same on any machine), both for `whole`. Bitwuzla is the PyPI
+        /// wheel `bitwuzla` run by `python3` (or CULLPROOF_PYTHON). An `unsat` counts only
+        /// when the same solver finds the query's ranges alone satisfiable.
+        #[arg(long)]
+        solvers: Option<String>,
         /// One range per input, a=LO:HI,c=LO:HI,w=LO:HI,t=LO:HI (half-open; c and w
         /// positive), queried on both x sides; default: a middle and a wide set.
         #[arg(long)]
@@ -703,6 +710,7 @@ fn run() -> Result<()> {
             timeout,
             rlimit,
             jobs,
+            solvers,
             ranges,
             out,
             dry_run,
@@ -735,7 +743,12 @@ fn run() -> Result<()> {
                 (Some(r), _) => Some(r),
                 (None, prove::Strategy::Concolic) => Some(prove::DEFAULT_RLIMIT),
             };
-            let limits = prove::Limits { timeout, rlimit, jobs };
+            let solvers = match (solvers.as_deref(), strategy) {
+                (Some(s), _) => cullproof::symbolic::solver::Solvers::parse("--solvers", s)?,
+                (None, prove::Strategy::Concolic) => cullproof::symbolic::solver::Solvers::Z3,
+                (None, prove::Strategy::Whole) => cullproof::symbolic::solver::Solvers::BOTH,
+            };
+            let limits = prove::Limits { timeout, rlimit, jobs, solvers };
             let r = prove::prove(
                 m,
                 strategy,

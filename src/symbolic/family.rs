@@ -85,6 +85,23 @@ pub fn script(f: &dyn Family, q: &Query) -> (String, Vec<String>) {
     (smt.script(&shown), shown)
 }
 
+/// The hypotheses of a query alone: its free inputs in their ranges (the fixed ones
+/// are literals), without the claim that the method culls a reached tile. An `unsat`
+/// of the query counts only when this script is `sat` with the same solver: an
+/// encoding whose hypotheses contradict each other would make every claim `unsat`.
+pub fn hypotheses_script(f: &dyn Family, q: &Query) -> String {
+    let smt = Smt::folding();
+    let mut shown = Vec::new();
+    for (k, name) in f.inputs().iter().enumerate() {
+        if q.fixed[k].is_none() {
+            let n = smt.var(name);
+            smt.range(&n, q.ranges[k][0], q.ranges[k][1]);
+            shown.push(n);
+        }
+    }
+    smt.script(&shown)
+}
+
 /// Every literal constant the method's and the template's code use on a side (the
 /// `lit()` calls of the encoding with every input free).
 pub fn literals(f: &dyn Family, side: usize) -> Vec<f32> {

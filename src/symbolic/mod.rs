@@ -40,4 +40,5 @@ pub mod la2011_query;
 pub mod planted;
 pub mod prove;
 pub mod smt;
+pub mod solver;
 pub mod z3;

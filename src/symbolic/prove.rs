@@ -18,6 +18,7 @@ use super::bbox_query::TemplateFamily;
 use super::concolic;
 use super::family::{self, Family, Query};
 use super::planted::{BandSlip, EqSlip};
+use super::solver::{self, Solver, Solvers};
 use super::z3::{self, Answer};
 use crate::bounds::bbox::{Corner, PlainCorner, SafeCorner};
 use crate::bounds::{shared, Method, TileResult};
@@ -140,8 +141,11 @@ pub struct Limits {
     pub timeout: f64,
     /// z3's resource limit per query (None: the time limit only).
     pub rlimit: Option<u64>,
-    /// Queries run at once (separate z3 processes).
+    /// Queries run at once (each a solver process, or one per solver of the portfolio).
     pub jobs: usize,
+    /// The solvers each query runs on (the first `sat` or `unsat` wins). z3 alone keeps
+    /// a concolic run deterministic (its resource limit); Bitwuzla has a time limit only.
+    pub solvers: Solvers,
 }
 
 /// What became of one query.
@@ -153,9 +157,15 @@ pub struct QueryReport {
     /// The free inputs' ranges and the fixed inputs' values (`a=LO:HI,c=V,...`).
     pub query: String,
     pub answer: Answer,
+    /// The solver whose answer this is.
+    pub solver: Solver,
+    /// On `unsat`: whether the query's hypotheses alone (its ranges and fixed values)
+    /// were found satisfiable by the same solver. An `unsat` whose hypotheses are not
+    /// shown satisfiable is reported as `unknown`, with this false.
+    pub hypotheses_sat: Option<bool>,
     /// Wall-clock seconds of the query.
     pub seconds: f64,
-    /// z3's CPU seconds (see [`z3::Run::cpu_seconds`]).
+    /// The answering solver's CPU seconds (see [`z3::Run::cpu_seconds`]).
     pub cpu_seconds: Option<f64>,
     /// The model's inputs, in the family's order (on `sat`).
     pub inputs: Option<Vec<f32>>,
@@ -182,7 +192,7 @@ pub struct ProveReport {
     pub first_confirmed: Option<usize>,
     /// Wall-clock seconds of the whole run.
     pub seconds: f64,
-    /// z3's CPU seconds over the queries reported.
+    /// The answering solvers' CPU seconds over the queries reported.
     pub cpu_seconds: f64,
 }
 
@@ -208,13 +218,23 @@ fn run_one(
         let p = dir.join(format!("{}-{qi}-{side}.smt2", m.info().id.replace('/', "_")));
         std::fs::write(&p, &script).with_context(|| format!("writing {}", p.display()))?;
     }
-    let run = z3::run_limited(&script, limits.timeout, limits.rlimit)?;
+    let run = solver::run(&script, limits.timeout, limits.rlimit, limits.solvers)?;
     let text = q.text(f);
+    let (mut answer, mut hypotheses_sat) = (run.answer, None);
+    if answer == Answer::Unsat {
+        let h = solver::run_one(run.solver, &family::hypotheses_script(f, q), limits.timeout, None, None)?;
+        hypotheses_sat = Some(h.answer == Answer::Sat);
+        if h.answer != Answer::Sat {
+            answer = Answer::Unknown;
+        }
+    }
     let mut rep = QueryReport {
         index: qi,
         side,
         query: text.clone(),
-        answer: run.answer,
+        answer,
+        solver: run.solver,
+        hypotheses_sat,
         seconds: run.seconds,
         cpu_seconds: run.cpu_seconds,
         inputs: None,
@@ -271,7 +291,8 @@ fn run_one(
                         ("symbolic", qi as u64, format!("symbolic {side} {text}")),
                         steps,
                         format!(
-                            "z3 model {inputs} of the {side} template (src/symbolic/), confirmed by the exact judge"
+                            "{} model {inputs} of the {side} template (src/symbolic/), confirmed by the exact judge",
+                            run.solver.name()
                         ),
                     ));
                 }
@@ -372,8 +393,12 @@ impl ProveReport {
             None => format!("{} s per query", self.limits.timeout),
         };
         let mut s = format!(
-            "prove --symbolic {} (strategy {:?}, seed {}, {lim}, {} jobs)\n",
-            self.method, self.strategy, self.seed, self.limits.jobs
+            "prove --symbolic {} (strategy {:?}, seed {}, {lim}, {} jobs, solvers {})\n",
+            self.method,
+            self.strategy,
+            self.seed,
+            self.limits.jobs,
+            self.limits.solvers.name()
         )
         .replace("Concolic", "concolic")
         .replace("Whole", "whole");
@@ -384,11 +409,12 @@ impl ProveReport {
             }
             let cpu = q.cpu_seconds.map_or("-".to_string(), |c| format!("{c:.2}"));
             s += &format!(
-                "  {:>4} {:<6} {:<56} {:<7} {:>7.2} s (cpu {:>6} s)",
+                "  {:>4} {:<6} {:<56} {:<7} {:<8} {:>7.2} s (cpu {:>6} s)",
                 q.index,
                 q.side,
                 q.query,
                 q.answer.name(),
+                q.solver.name(),
                 q.seconds,
                 cpu
             );
@@ -405,13 +431,16 @@ impl ProveReport {
                     s += "  no input of this template and ranges makes the method cull a reached tile"
                 }
                 Answer::Unsat => s += "  none with these fixed values",
+                Answer::Unknown if q.hypotheses_sat == Some(false) => {
+                    s += "  unsat not counted: the ranges alone were not shown satisfiable"
+                }
                 Answer::Unknown | Answer::Timeout | Answer::Budget => s += "  undecided",
             }
             s.push('\n');
         }
         let count = |a: Answer| self.queries.iter().filter(|q| q.answer == a).count();
         s += &format!(
-            "{} of {} planned queries run: {} sat, {} unsat, {} budget, {} timeout, {} unknown; {:.2} s wall, {:.2} s z3 CPU\n",
+            "{} of {} planned queries run: {} sat, {} unsat, {} budget, {} timeout, {} unknown; {:.2} s wall, {:.2} s solver CPU\n",
             self.queries.len(),
             self.planned,
             count(Answer::Sat),

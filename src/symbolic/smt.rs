@@ -117,7 +117,10 @@ impl Smt {
         let mut l = self.lines.borrow_mut();
         self.defs.borrow_mut().insert(name.clone(), l.len());
         l.push(format!("(declare-const {name} {sort})"));
-        l.push(format!("(assert (= {name} {body}))"));
+        match body.strip_prefix("BITS ") {
+            Some(a) => l.push(format!("(assert (= ((_ to_fp 8 24) {name}) {a}))")),
+            None => l.push(format!("(assert (= {name} {body}))")),
+        }
         if let Some(k) = key {
             self.seen.borrow_mut().insert(k, name.clone());
         }
@@ -125,6 +128,13 @@ impl Smt {
     }
     fn f(&self, body: String) -> String {
         self.define(F32, body)
+    }
+    /// The bits of an f32 term in standard SMT-LIB (which has no conversion from a float
+    /// to its bits): a fresh 32-bit constant whose float is the term. Every value but
+    /// NaN has one bit pattern, so the constant is the term's bits; for NaN it is any
+    /// NaN pattern, and the callers never use it then.
+    fn bits(&self, a: &String) -> String {
+        self.define("(_ BitVec 32)", format!("BITS {a}"))
     }
     fn b(&self, body: String) -> String {
         self.define("Bool", body)
@@ -197,7 +207,7 @@ impl Smt {
     /// The whole script: the definitions so far (with folding, those the assertions
     /// depend on), then `check-sat` and the values of `show`.
     pub fn script(&self, show: &[String]) -> String {
-        let mut s = String::from("(set-logic QF_FPBV)\n");
+        let mut s = String::from("(set-logic QF_BVFP)\n");
         let keep = self.live_lines(show);
         for (l, k) in self.lines.borrow().iter().zip(keep) {
             if k {
@@ -292,22 +302,22 @@ impl F32Arith for Smt {
         }
         // On the bits: a zero goes to the smallest subnormal, a positive value one
         // step up, a negative one one step down (towards -0); NaN and +inf stay.
+        let b = self.bits(a);
         self.f(format!(
             "(ite (or (fp.isNaN {a}) (and (fp.isInfinite {a}) (fp.isPositive {a}))) {a} \
              (ite (fp.isZero {a}) (fp #b0 #b00000000 #b00000000000000000000001) \
-             ((_ to_fp 8 24) (ite (fp.isPositive {a}) (bvadd (fp.to_ieee_bv {a}) #x00000001) \
-             (bvsub (fp.to_ieee_bv {a}) #x00000001)))))"
+             ((_ to_fp 8 24) (ite (fp.isPositive {a}) (bvadd {b} #x00000001) (bvsub {b} #x00000001)))))"
         ))
     }
     fn next_down(&self, a: &String) -> String {
         if let Some(l) = self.fold_f(&[a], |v| Plain.next_down(&v[0])) {
             return l;
         }
+        let b = self.bits(a);
         self.f(format!(
             "(ite (or (fp.isNaN {a}) (and (fp.isInfinite {a}) (fp.isNegative {a}))) {a} \
              (ite (fp.isZero {a}) (fp #b1 #b00000000 #b00000000000000000000001) \
-             ((_ to_fp 8 24) (ite (fp.isNegative {a}) (bvadd (fp.to_ieee_bv {a}) #x00000001) \
-             (bvsub (fp.to_ieee_bv {a}) #x00000001)))))"
+             ((_ to_fp 8 24) (ite (fp.isNegative {a}) (bvadd {b} #x00000001) (bvsub {b} #x00000001)))))"
         ))
     }
     fn lt(&self, a: &String, b: &String) -> String {

@@ -2,10 +2,11 @@
 //! (z3's own `-T:` and a wall-clock guard that kills the process), and the f32 values
 //! of a model read back bit for bit.
 
+use super::solver::{drive, first_answer, Solver};
 use anyhow::{anyhow, bail, Context, Result};
-use std::io::{Read, Write};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
+use std::sync::atomic::AtomicBool;
+use std::time::Duration;
 
 /// What z3 answered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -42,32 +43,13 @@ pub struct Run {
     /// neither is readable). On a busy machine this is the figure to compare.
     pub cpu_seconds: Option<f64>,
     pub output: String,
+    /// The solver that gave this answer.
+    pub solver: Solver,
 }
 
-/// User + system CPU seconds of this process's waited-for children (Linux; the kernel
-/// reports them in units of 1/100 s).
-fn children_cpu() -> Option<f64> {
-    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
-    let rest = &stat[stat.rfind(')')? + 1..];
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    let cu: f64 = f.get(13)?.parse().ok()?;
-    let cs: f64 = f.get(14)?.parse().ok()?;
-    Some((cu + cs) / 100.0)
-}
-
-/// The z3 binary to run (`CULLPROOF_Z3` overrides `z3` on the PATH).
-pub fn binary() -> String {
+/// The z3 binary: `CULLPROOF_Z3` or `z3` on the PATH.
+fn binary() -> String {
     std::env::var("CULLPROOF_Z3").unwrap_or_else(|_| "z3".into())
-}
-
-/// User + system CPU seconds of a running (or exited, not yet waited-for) process.
-fn process_cpu(pid: u32) -> Option<f64> {
-    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
-    let rest = &stat[stat.rfind(')')? + 1..];
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    let u: f64 = f.get(11)?.parse().ok()?;
-    let s: f64 = f.get(12)?.parse().ok()?;
-    Some((u + s) / 100.0)
 }
 
 /// Run a script with a time limit of `seconds` (a positive number).
@@ -80,10 +62,13 @@ pub fn run(script: &str, seconds: f64) -> Result<Run> {
 /// query that exhausts it answers [`Answer::Budget`]). The CPU seconds are this z3
 /// process's own (sampled while it runs), so queries may run in parallel.
 pub fn run_limited(script: &str, seconds: f64, rlimit: Option<u64>) -> Result<Run> {
+    run_cancellable(script, seconds, rlimit, None)
+}
+
+/// [`run_limited`], stopped early (answer `unknown`) when `cancel` is set.
+pub fn run_cancellable(script: &str, seconds: f64, rlimit: Option<u64>, cancel: Option<&AtomicBool>) -> Result<Run> {
     let bin = binary();
     let secs = seconds.ceil().max(1.0) as u64;
-    let start = Instant::now();
-    let cpu0 = children_cpu();
     let mut cmd = Command::new(&bin);
     cmd.arg("-in").arg(format!("-T:{secs}"));
     let mut script = script.to_string();
@@ -91,65 +76,23 @@ pub fn run_limited(script: &str, seconds: f64, rlimit: Option<u64>) -> Result<Ru
         cmd.arg(format!("rlimit={r}"));
         script += "(get-info :reason-unknown)\n";
     }
-    let mut child =
-        cmd.stdin(Stdio::piped()).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().with_context(|| {
-            format!("cannot start `{bin}` (install z3, e.g. `apt-get install z3`, or set CULLPROOF_Z3)")
-        })?;
-    // Feed the script and drain both outputs on their own threads: a long script and
-    // a long answer must not wait for each other through full pipes.
-    let mut stdin = child.stdin.take().expect("piped");
-    let text = script;
-    let pid = child.id();
-    let mut own_cpu = None;
-    let writer = std::thread::spawn(move || stdin.write_all(text.as_bytes()));
-    let drain = |mut r: Box<dyn Read + Send>| {
-        std::thread::spawn(move || {
-            let mut s = String::new();
-            let _ = r.read_to_string(&mut s);
-            s
-        })
-    };
-    let reader = drain(Box::new(child.stdout.take().expect("piped")));
-    let err_reader = drain(Box::new(child.stderr.take().expect("piped")));
     // z3 stops itself at -T; the guard only catches a z3 that does not.
     let guard = Duration::from_secs_f64(secs as f64 + 10.0);
-    let mut killed = false;
-    loop {
-        own_cpu = process_cpu(pid).or(own_cpu);
-        if child.try_wait()?.is_some() {
-            break;
-        }
-        if start.elapsed() > guard {
-            let _ = child.kill();
-            let _ = child.wait();
-            killed = true;
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    let output = reader.join().map_err(|_| anyhow!("reading z3's output failed"))?;
-    let err = err_reader.join().unwrap_or_default();
-    // A z3 that stopped early (its time limit) closes its input: a failed write then
-    // only matters when no answer came.
-    let written = writer.join().map_err(|_| anyhow!("writing the query to `{bin}` failed"))?;
-    let seconds = start.elapsed().as_secs_f64();
-    let cpu_seconds = own_cpu.or_else(|| cpu0.zip(children_cpu()).map(|(a, b)| (b - a).max(0.0)));
-    let first = output.lines().next().unwrap_or("").trim();
-    let answer = match first {
-        _ if killed => Answer::Timeout,
-        "sat" => Answer::Sat,
-        "unsat" => Answer::Unsat,
-        "unknown" if rlimit.is_some() && (output.contains("resource limit") || output.contains("\"canceled\"")) => {
+    let p = drive(&mut cmd, script, guard, cancel)
+        .with_context(|| format!("cannot start `{bin}` (install z3, e.g. `apt-get install z3`, or set CULLPROOF_Z3)"))?;
+    let output = p.output;
+    let answer = match first_answer(&output) {
+        _ if p.cancelled => Answer::Unknown,
+        _ if p.killed => Answer::Timeout,
+        Some(Answer::Unknown)
+            if rlimit.is_some() && (output.contains("resource limit") || output.contains("\"canceled\"")) =>
+        {
             Answer::Budget
         }
-        "unknown" => Answer::Unknown,
-        "timeout" => Answer::Timeout,
-        _ => {
-            written.with_context(|| format!("writing the query to `{bin}`"))?;
-            bail!("z3 did not answer sat/unsat/unknown/timeout: {} {}", output.trim(), err.trim())
-        }
+        Some(a) => a,
+        None => bail!("z3 did not answer sat/unsat/unknown/timeout: {} {}", output.trim(), p.err.trim()),
     };
-    Ok(Run { answer, seconds, cpu_seconds, output })
+    Ok(Run { answer, seconds: p.seconds, cpu_seconds: p.cpu_seconds, output, solver: Solver::Z3 })
 }
 
 /// The f32 value z3 printed for `name` in a `(get-value ...)` answer.
