@@ -243,7 +243,8 @@ enum Cmd {
     /// is shrunk and written to corpus/cases/<method>/<hash>.json (never overwriting);
     /// a model the judge does not confirm is reported as such. Methods with an
     /// encoding: bbox, bbox-safe, la2011, la2011-safe, broken/planted-eq/bbox-safe,
-    /// broken/planted-band/bbox-safe.
+    /// broken/planted-band/bbox-safe, broken/planted-no-up/la2011-safe,
+    /// broken/planted-no-dn/la2011-safe.
     #[command(allow_negative_numbers = true)]
     Prove {
         /// The method id.

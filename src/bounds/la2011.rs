@@ -558,13 +558,14 @@ impl<R: Round> TileGrid for AxisGrid<'_, R> {
     }
 }
 
-/// la2011 (`R = Nearest`) or la2011-safe (`R = Outward`): one algorithm, two arithmetics.
-struct La2011<R> {
-    info: &'static MethodInfo,
-    round: PhantomData<fn() -> R>,
+/// la2011 (`R = Nearest`) or la2011-safe (`R = Outward`): one algorithm, two arithmetics
+/// (the planted slips of [`crate::symbolic::planted`] are a third and fourth).
+pub(crate) struct La2011<R> {
+    pub(crate) info: &'static MethodInfo,
+    pub(crate) round: PhantomData<fn() -> R>,
 }
 
-static INFO: MethodInfo = MethodInfo {
+pub(crate) static INFO: MethodInfo = MethodInfo {
     id: "la2011",
     source: "reconstruction of Laine, Aila, Karras, Lehtinen 2011, Clipless Dual-Space \
              Bounds (LAKL11), as described in Munkberg & Akenine-Möller 2012 §1, Fig. 1, \

@@ -120,6 +120,7 @@ impl<C: TemplateCull> Family for TemplateFamily<C> {
         let (tri, tile) = template(smt, side, &v);
         self.0.assert_cull(smt, side, &tri, &tile);
         assert_reach(smt, side, &v);
+        assert_far_reach(smt, side, &v, &tri, &tile);
     }
     fn instance(&self, side: usize, v: &[f32]) -> (crate::model::Triangle, crate::model::Tile) {
         instance(Side::of(side), [v[0], v[1], v[2], v[3]])
@@ -196,6 +197,32 @@ pub fn assert_reach(smt: &Smt, side: Side, v: &[String; 4]) {
         }
     };
     smt.assert(&reach);
+}
+
+/// Assert the other half of "reached": the tile's far edge lies inside the triangle's
+/// largest extent over the lens. For x-min the vertices' x are `a, a, far` (`far` the
+/// f32 `a + 64 w` of the template, the largest), shifted by at most `c` over the lens,
+/// so a covered sample of the tile has `x0 < x < (far + c) / w`; x-max mirrors it with
+/// `x1 > (far - c) / w`. Rounded away from the tile (RTP for x-min, RTN for x-max) the
+/// bound is only looser, so no reached tile is excluded. Without it a solver may place
+/// the tile far beyond the triangle, where every method culls it rightly (a model the
+/// judge then finds empty, not a violation): the query would stay satisfiable on wide
+/// ranges and an `unsat` could not be had there.
+fn assert_far_reach(smt: &Smt, side: Side, v: &[String; 4], tri: &TriOf<String>, tile: &[String; 4]) {
+    let (c, w, far) = (&v[1], &v[2], &tri.q[2][0]);
+    let cond = match side {
+        Side::XMin => {
+            let n = smt.op_mode("fp.add", "RTP", far, c);
+            let e = smt.op_mode("fp.div", "RTP", &n, w);
+            format!("(fp.lt {} {e})", tile[0])
+        }
+        Side::XMax => {
+            let n = smt.op_mode("fp.sub", "RTN", far, c);
+            let e = smt.op_mode("fp.div", "RTN", &n, w);
+            format!("(fp.gt {} {e})", tile[2])
+        }
+    };
+    smt.assert(&cond);
 }
 
 /// The triangle and tile of a model's inputs, computed in f32 by the same template.

@@ -19,21 +19,29 @@
 
 use super::arith::TriOf;
 use super::bbox_query::{Side, TemplateCull, TemplateFamily};
+use super::planted::{NoDn, NoUp};
 use super::smt::Smt;
 use crate::bounds::la2011::{setup_of, Nearest, Outward, Round};
 
-/// la2011's cull on the template: `safe` false for `la2011`, true for `la2011-safe`.
-#[derive(Clone, Copy, Debug)]
-pub struct La2011Cull {
-    pub safe: bool,
+/// la2011's cull on the template, in one of its arithmetics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum La2011Cull {
+    /// `la2011`: rounded to nearest.
+    Nearest,
+    /// `la2011-safe`: every rounding stepped outward.
+    Outward,
+    /// The planted slips of [`super::planted`]: the upper (lower) ends' steps dropped.
+    NoUp,
+    NoDn,
 }
 
 impl TemplateCull for La2011Cull {
     fn assert_cull(&self, smt: &Smt, _side: Side, tri: &TriOf<String>, tile: &[String; 4]) {
-        if self.safe {
-            assert_time_reject::<Outward>(smt, tri, tile)
-        } else {
-            assert_time_reject::<Nearest>(smt, tri, tile)
+        match self {
+            La2011Cull::Nearest => assert_time_reject::<Nearest>(smt, tri, tile),
+            La2011Cull::Outward => assert_time_reject::<Outward>(smt, tri, tile),
+            La2011Cull::NoUp => assert_time_reject::<NoUp>(smt, tri, tile),
+            La2011Cull::NoDn => assert_time_reject::<NoDn>(smt, tri, tile),
         }
     }
 }
@@ -48,8 +56,10 @@ fn assert_time_reject<R: Round>(smt: &Smt, tri: &TriOf<String>, tile: &[String; 
 /// The family of `id`, if it is la2011 or la2011-safe.
 pub fn family_of(id: &str) -> Option<TemplateFamily<La2011Cull>> {
     match id {
-        "la2011" => Some(TemplateFamily(La2011Cull { safe: false })),
-        "la2011-safe" => Some(TemplateFamily(La2011Cull { safe: true })),
+        "la2011" => Some(TemplateFamily(La2011Cull::Nearest)),
+        "la2011-safe" => Some(TemplateFamily(La2011Cull::Outward)),
+        "broken/planted-no-up/la2011-safe" => Some(TemplateFamily(La2011Cull::NoUp)),
+        "broken/planted-no-dn/la2011-safe" => Some(TemplateFamily(La2011Cull::NoDn)),
         _ => None,
     }
 }

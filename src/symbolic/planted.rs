@@ -10,9 +10,17 @@
 //!   equality of two f32 inputs.
 //! - `broken/planted-band/bbox-safe`: the shear dropped for a vertex whose depth lies in the
 //!   narrow band `2 <= w < 2 + 2^-14` (a term wrong in a band of relative width 2^-15).
+//!
+//! And two slips in `la2011-safe`'s arithmetic, for the proofs tied to the code
+//! ([`crate::bounds::proofs`]): `broken/planted-no-up/la2011-safe` keeps every lower
+//! end's outward step but drops the upper ends' (each upper end is the value rounded
+//! to nearest, as in `la2011`), `broken/planted-no-dn/la2011-safe` the reverse. Each is
+//! one outward step dropped from half of the operations: the kind of edit a proof of
+//! the variant must notice.
 
 use super::arith::F32Arith;
 use crate::bounds::bbox::{BBox, Corner, SafeCorner};
+use crate::bounds::la2011::{La2011, Round};
 use crate::bounds::{Method, MethodInfo, Outputs};
 use crate::model::Dims;
 
@@ -45,6 +53,38 @@ impl Corner for BandSlip {
     }
 }
 
+/// `la2011-safe` with the upper ends' steps dropped.
+pub struct NoUp;
+
+impl Round for NoUp {
+    fn dn<A: F32Arith>(ar: &A, x: &A::F) -> A::F {
+        ar.next_down(x)
+    }
+    fn up<A: F32Arith>(_: &A, x: &A::F) -> A::F {
+        x.clone()
+    }
+    fn bad<A: F32Arith>(ar: &A, x: &A::F) -> A::B {
+        ar.not(&ar.is_finite(x))
+    }
+    const GUARD: bool = true;
+}
+
+/// `la2011-safe` with the lower ends' steps dropped.
+pub struct NoDn;
+
+impl Round for NoDn {
+    fn dn<A: F32Arith>(_: &A, x: &A::F) -> A::F {
+        x.clone()
+    }
+    fn up<A: F32Arith>(ar: &A, x: &A::F) -> A::F {
+        ar.next_up(x)
+    }
+    fn bad<A: F32Arith>(ar: &A, x: &A::F) -> A::B {
+        ar.not(&ar.is_finite(x))
+    }
+    const GUARD: bool = true;
+}
+
 const OUTPUTS: Outputs = Outputs { tile_reject: true, lens: false, time: false, depth: false, per_sample: false };
 const DIMS: &[Dims] = &[Dims::Static, Dims::Motion, Dims::Defocus, Dims::Both];
 
@@ -63,6 +103,22 @@ static INFO_BAND: MethodInfo = MethodInfo {
     outputs: OUTPUTS,
 };
 
+static INFO_NO_UP: MethodInfo = MethodInfo {
+    id: "broken/planted-no-up/la2011-safe",
+    source: "la2011-safe with the outward step of every upper end dropped",
+    ..crate::bounds::la2011::INFO
+};
+static INFO_NO_DN: MethodInfo = MethodInfo {
+    id: "broken/planted-no-dn/la2011-safe",
+    source: "la2011-safe with the outward step of every lower end dropped",
+    ..crate::bounds::la2011::INFO
+};
+
+/// `broken/planted-no-up/la2011-safe`.
+pub static NO_UP: &dyn Method = &La2011::<NoUp> { info: &INFO_NO_UP, round: std::marker::PhantomData };
+/// `broken/planted-no-dn/la2011-safe`.
+pub static NO_DN: &dyn Method = &La2011::<NoDn> { info: &INFO_NO_DN, round: std::marker::PhantomData };
+
 /// `broken/planted-eq/bbox-safe`.
 pub static EQ: &dyn Method = &BBox { info: &INFO_EQ, corner: EqSlip };
 /// `broken/planted-band/bbox-safe`.
@@ -70,5 +126,5 @@ pub static BAND: &dyn Method = &BBox { info: &INFO_BAND, corner: BandSlip };
 
 /// The planted variant with this id, if it is one.
 pub fn parse(id: &str) -> Option<&'static dyn Method> {
-    [EQ, BAND].into_iter().find(|m| m.info().id == id)
+    [EQ, BAND, NO_UP, NO_DN].into_iter().find(|m| m.info().id == id)
 }

@@ -54,8 +54,16 @@ impl Corner for Rule {
 
 /// The methods with a symbolic encoding (setup and tile reject, over
 /// [`super::arith::F32Arith`]).
-pub const ENCODED: [&str; 6] =
-    ["bbox", "bbox-safe", "la2011", "la2011-safe", "broken/planted-eq/bbox-safe", "broken/planted-band/bbox-safe"];
+pub const ENCODED: [&str; 8] = [
+    "bbox",
+    "bbox-safe",
+    "la2011",
+    "la2011-safe",
+    "broken/planted-eq/bbox-safe",
+    "broken/planted-band/bbox-safe",
+    "broken/planted-no-up/la2011-safe",
+    "broken/planted-no-dn/la2011-safe",
+];
 
 /// The encoding of a bbox-like method, or an error naming the ones there are.
 pub fn rule(id: &str) -> Result<Rule> {

@@ -20,6 +20,11 @@ use std::collections::{BTreeSet, HashMap};
 
 /// The sort of an f32 value.
 pub const F32: &str = "(_ FloatingPoint 8 24)";
+/// 2^-149, the smallest positive f32, and its negation; f32::MAX and its negation.
+const TINY: &str = "(fp #b0 #b00000000 #b00000000000000000000001)";
+const NEG_TINY: &str = "(fp #b1 #b00000000 #b00000000000000000000001)";
+const MAX: &str = "(fp #b0 #b11111110 #b11111111111111111111111)";
+const NEG_MAX: &str = "(fp #b1 #b11111110 #b11111111111111111111111)";
 
 /// The SMT-LIB2 literal of an f32 value, bit for bit (`(fp sign exponent significand)`;
 /// every NaN is the one NaN of the theory).
@@ -117,10 +122,7 @@ impl Smt {
         let mut l = self.lines.borrow_mut();
         self.defs.borrow_mut().insert(name.clone(), l.len());
         l.push(format!("(declare-const {name} {sort})"));
-        match body.strip_prefix("BITS ") {
-            Some(a) => l.push(format!("(assert (= ((_ to_fp 8 24) {name}) {a}))")),
-            None => l.push(format!("(assert (= {name} {body}))")),
-        }
+        l.push(format!("(assert (= {name} {body}))"));
         if let Some(k) = key {
             self.seen.borrow_mut().insert(k, name.clone());
         }
@@ -128,13 +130,6 @@ impl Smt {
     }
     fn f(&self, body: String) -> String {
         self.define(F32, body)
-    }
-    /// The bits of an f32 term in standard SMT-LIB (which has no conversion from a float
-    /// to its bits): a fresh 32-bit constant whose float is the term. Every value but
-    /// NaN has one bit pattern, so the constant is the term's bits; for NaN it is any
-    /// NaN pattern, and the callers never use it then.
-    fn bits(&self, a: &String) -> String {
-        self.define("(_ BitVec 32)", format!("BITS {a}"))
     }
     fn b(&self, body: String) -> String {
         self.define("Bool", body)
@@ -300,24 +295,23 @@ impl F32Arith for Smt {
         if let Some(l) = self.fold_f(&[a], |v| Plain.next_up(&v[0])) {
             return l;
         }
-        // On the bits: a zero goes to the smallest subnormal, a positive value one
-        // step up, a negative one one step down (towards -0); NaN and +inf stay.
-        let b = self.bits(a);
+        // In floating-point terms only (standard SMT-LIB has no float-to-bits
+        // conversion): rounding a + 2^-149 upwards gives the next float above a, for
+        // every a but two, which are spelt out: -inf goes to -MAX (the sum stays -inf)
+        // and -2^-149 goes to -0 (the exact sum is +0).
         self.f(format!(
-            "(ite (or (fp.isNaN {a}) (and (fp.isInfinite {a}) (fp.isPositive {a}))) {a} \
-             (ite (fp.isZero {a}) (fp #b0 #b00000000 #b00000000000000000000001) \
-             ((_ to_fp 8 24) (ite (fp.isPositive {a}) (bvadd {b} #x00000001) (bvsub {b} #x00000001)))))"
+            "(ite (= {a} (_ -oo 8 24)) {NEG_MAX} (ite (= {a} {NEG_TINY}) (_ -zero 8 24) \
+             (fp.add RTP {a} {TINY})))"
         ))
     }
     fn next_down(&self, a: &String) -> String {
         if let Some(l) = self.fold_f(&[a], |v| Plain.next_down(&v[0])) {
             return l;
         }
-        let b = self.bits(a);
+        // The mirror image: +inf goes to MAX and 2^-149 to +0.
         self.f(format!(
-            "(ite (or (fp.isNaN {a}) (and (fp.isInfinite {a}) (fp.isNegative {a}))) {a} \
-             (ite (fp.isZero {a}) (fp #b1 #b00000000 #b00000000000000000000001) \
-             ((_ to_fp 8 24) (ite (fp.isNegative {a}) (bvadd {b} #x00000001) (bvsub {b} #x00000001)))))"
+            "(ite (= {a} (_ +oo 8 24)) {MAX} (ite (= {a} {TINY}) (_ +zero 8 24) \
+             (fp.sub RTN {a} {TINY})))"
         ))
     }
     fn lt(&self, a: &String, b: &String) -> String {
