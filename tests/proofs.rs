@@ -110,3 +110,33 @@ fn a_missing_tool_is_a_failure_that_says_how_to_install() {
         assert!(m.contains("apt-get install z3"), "{m}");
     }
 }
+
+/// The composition over the code, on the template: `la2011-safe`'s own f32 code is
+/// proven on both sides, and each planted slip in that code (one outward step dropped,
+/// upwards or downwards) makes the obligation fail with a counterexample the exact
+/// judge confirms; `cullproof proofs` then reports the failure.
+#[test]
+fn a_dropped_outward_step_in_la2011_safe_fails_the_template_obligation() {
+    use cullproof::bounds::proofs::composition;
+    let ok = composition::run("la2011-safe", LIMIT);
+    assert_eq!(ok.len(), 2, "{ok:?}");
+    for s in &ok {
+        assert!(s.error.is_none(), "{s:?}");
+        assert_eq!((s.answer, s.hypotheses_sat), ("unsat", Some(true)), "{s:?}");
+    }
+    for slip in ["broken/planted-no-up/la2011-safe", "broken/planted-no-dn/la2011-safe"] {
+        assert!(composition::applies(slip));
+        let r = cli::run(&[slip], LIMIT, 100, 2, false);
+        assert!(!r.ok(), "{slip}: {}", cli::render(&r));
+        assert_eq!(r.methods[0].rerun_ok, Some(false), "{slip}");
+        assert!(
+            r.composition
+                .iter()
+                .any(|s| s.answer == "sat" && s.error.as_deref().is_some_and(|e| e.starts_with("counterexample"))),
+            "{slip}: {:?}",
+            r.composition
+        );
+    }
+    // Methods with no encoding have no obligation.
+    assert!(!composition::applies("mam2012-safe") && !composition::applies("la2011"));
+}

@@ -516,7 +516,8 @@ fn the_scripts_are_standard_and_bitwuzla_agrees_with_z3() {
         let f = family(id).unwrap();
         for side in 0..f.sides().len() {
             for r in f.default_ranges(side) {
-                let (s, _) = cullproof::symbolic::family::script(f.as_ref(), &cullproof::symbolic::family::Query::free(side, r));
+                let (s, _) =
+                    cullproof::symbolic::family::script(f.as_ref(), &cullproof::symbolic::family::Query::free(side, r));
                 assert!(s.starts_with("(set-logic QF_BVFP)"), "{id}: {}", &s[..60]);
                 assert!(!s.contains("to_ieee_bv"), "{id}: a z3-only function in the script");
             }

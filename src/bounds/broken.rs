@@ -21,8 +21,10 @@
 //!   the tightness signature must see it at any seed and case count). Not in
 //!   `cullproof power`'s list.
 //!
-//! Two more, `broken/planted-eq/bbox-safe` and `broken/planted-band/bbox-safe`, are rare
-//! slips planted in `bbox-safe` itself (`crate::symbolic::planted`), not in `cullproof power`.
+//! Four more, `broken/planted-eq/bbox-safe`, `broken/planted-band/bbox-safe`,
+//! `broken/planted-no-up/la2011-safe` and `broken/planted-no-dn/la2011-safe`, are rare
+//! slips planted in the `-safe` variants themselves (`crate::symbolic::planted`), not in
+//! `cullproof power`.
 
 use super::{by_id, Method, MethodInfo, Prepared, TileResult};
 use crate::model::{Tile, Triangle};

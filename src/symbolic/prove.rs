@@ -462,7 +462,17 @@ impl ProveReport {
         );
         s += &match self.first_confirmed {
             Some(i) => format!("first confirmed violation: query {i}\n"),
-            None => "no confirmed violation within the plan (not a proof: a budget or a fixed input is no statement for all inputs)\n".into(),
+            None if self.strategy == Strategy::Whole
+                && self.queries.len() == self.planned
+                && self.queries.iter().all(|q| q.answer == Answer::Unsat && q.hypotheses_sat == Some(true)) =>
+            {
+                "every query unsat with satisfiable ranges: no input in these ranges of the template makes the \
+                 method cull a tile the exact footprint reaches\n"
+                    .into()
+            }
+            None => "no confirmed violation within the plan (not a proof: a budget, a timeout or a fixed input is \
+                     no statement for all inputs)\n"
+                .into(),
         };
         s
     }

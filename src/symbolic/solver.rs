@@ -55,7 +55,11 @@ impl Solvers {
             match w {
                 "z3" => out.z3 = true,
                 "bitwuzla" => out.bitwuzla = true,
-                _ => bail!("{flag} {}: `{}` is not a solver (z3, bitwuzla)", crate::quote::clip(s), crate::quote::clip(w)),
+                _ => bail!(
+                    "{flag} {}: `{}` is not a solver (z3, bitwuzla)",
+                    crate::quote::clip(s),
+                    crate::quote::clip(w)
+                ),
             }
         }
         Ok(out)

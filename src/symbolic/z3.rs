@@ -78,8 +78,9 @@ pub fn run_cancellable(script: &str, seconds: f64, rlimit: Option<u64>, cancel: 
     }
     // z3 stops itself at -T; the guard only catches a z3 that does not.
     let guard = Duration::from_secs_f64(secs as f64 + 10.0);
-    let p = drive(&mut cmd, script, guard, cancel)
-        .with_context(|| format!("cannot start `{bin}` (install z3, e.g. `apt-get install z3`, or set CULLPROOF_Z3)"))?;
+    let p = drive(&mut cmd, script, guard, cancel).with_context(|| {
+        format!("cannot start `{bin}` (install z3, e.g. `apt-get install z3`, or set CULLPROOF_Z3)")
+    })?;
     let output = p.output;
     let answer = match first_answer(&output) {
         _ if p.cancelled => Answer::Unknown,

@@ -2,6 +2,7 @@
 //! their scripts (with their verdicts and times) and the checks that tie the scripts
 //! to the code, and print each method's strongest verdict.
 
+use super::composition::{self, SideRun};
 use super::run::{self, Outcome, Verdict};
 use super::{check, strength, Script, Tool, Variant, SCRIPTS, VARIANTS};
 use anyhow::{bail, Result};
@@ -13,10 +14,13 @@ use std::time::{Duration, Instant};
 #[derive(clap::Args, Debug, Clone)]
 pub struct ProofsArgs {
     /// Methods: `all`, or comma-separated ids (see `cullproof methods`). A method without
-    /// a proof for all inputs is listed with its strength and has no scripts to run.
+    /// a proof for all inputs is listed with its strength and has no scripts to run. A
+    /// planted slip of a variant with a template obligation
+    /// (`broken/planted-no-up/la2011-safe`, ...) runs that obligation, which must fail.
     #[arg(long, default_value = "all")]
     pub method: String,
-    /// Time limit per script, in seconds (a script that takes longer is a failure).
+    /// Time limit per script and per template query, in seconds (one that takes longer
+    /// is a failure).
     #[arg(long, default_value_t = 300.0)]
     pub timeout: f64,
     /// Triangles (and lines) on which `bbox-safe`'s setup (and `wu2013-safe`'s lines) are
@@ -62,15 +66,19 @@ pub struct MethodStrength {
 pub struct Report {
     pub scripts: Vec<ScriptRun>,
     pub checks: Vec<CheckRun>,
+    /// The composition over the code on the template (see [`composition`]): one query
+    /// per side of each variant that has one.
+    pub composition: Vec<SideRun>,
     pub methods: Vec<MethodStrength>,
     pub seconds: f64,
 }
 
 impl Report {
-    /// Every script proven and every check passed.
+    /// Every script proven, every check passed and every template query proven.
     pub fn ok(&self) -> bool {
         self.scripts.iter().all(|s| s.outcome.verdict == Verdict::Proven)
             && self.checks.iter().all(|c| c.error.is_none())
+            && self.composition.iter().all(|c| c.error.is_none())
     }
 }
 
@@ -134,22 +142,32 @@ pub fn run(ids: &[&'static str], limit: Duration, triangles: usize, jobs: usize,
         let has = |id| chosen.iter().any(|v| v.id == id);
         run_checks(triangles, has("bbox-safe"), has("wu2013-safe"), limit)
     };
+    let mut comp = Vec::new();
+    for id in ids.iter().filter(|id| composition::applies(id)) {
+        pb.set_message(format!("template {id}"));
+        comp.extend(composition::run(id, limit));
+    }
     pb.finish_and_clear();
     let checks_ok = checks.iter().all(|c| c.error.is_none());
+    let comp_ok = |id: &str| comp.iter().filter(|c| c.method == id).all(|c| c.error.is_none());
     let methods = ids
         .iter()
         .map(|&id| {
             let proof = super::variant(id).copied();
-            let rerun_ok = proof.map(|v| {
-                checks_ok
-                    && v.scripts.iter().all(|n| {
-                        runs.iter().any(|r: &ScriptRun| r.script.name == *n && r.outcome.verdict == Verdict::Proven)
-                    })
-            });
+            let rerun_ok = match proof {
+                Some(v) => Some(
+                    checks_ok
+                        && comp_ok(id)
+                        && v.scripts.iter().all(|n| {
+                            runs.iter().any(|r: &ScriptRun| r.script.name == *n && r.outcome.verdict == Verdict::Proven)
+                        }),
+                ),
+                None => composition::applies(id).then(|| comp_ok(id)),
+            };
             MethodStrength { id, strength: strength(id), proof, rerun_ok }
         })
         .collect();
-    Report { scripts: runs, checks, methods, seconds: start.elapsed().as_secs_f64() }
+    Report { scripts: runs, checks, composition: comp, methods, seconds: start.elapsed().as_secs_f64() }
 }
 
 /// The tables.
@@ -183,6 +201,25 @@ pub fn render(r: &Report) -> String {
             );
         }
     }
+    if !r.composition.is_empty() {
+        s += &format!(
+            "\nComposition over the code, on the template (a static triangle, {}; one query per side, \
+             z3 and Bitwuzla, first answer wins):\n",
+            composition::TEMPLATE_RANGES
+        );
+        for c in &r.composition {
+            s += &format!(
+                "  {:<8} {:<34} {:<6} {:<8} {:<9} {:>8.2}{}\n",
+                if c.error.is_none() { "proven" } else { "FAILED" },
+                c.method,
+                c.side,
+                c.answer,
+                c.solver,
+                c.seconds,
+                c.error.as_deref().map(|e| format!("  {e}")).unwrap_or_default()
+            );
+        }
+    }
     s += "\nStrongest verdict per method:\n";
     for m in &r.methods {
         match (&m.proof, m.rerun_ok) {
@@ -191,12 +228,16 @@ pub fn render(r: &Report) -> String {
                     "{:<24} {} — re-run: {}\n",
                     m.id,
                     m.strength,
-                    if ok { "every script proven" } else { "FAILED" }
+                    if ok { "every script and template query proven" } else { "FAILED" }
                 );
                 for rg in v.ranges {
                     s += &format!("    {}: {}\n", rg.inputs, rg.range);
                 }
                 s += &format!("    scripts: {}\n", v.scripts.join(", "));
+            }
+            (None, Some(ok)) => {
+                s +=
+                    &format!("{:<24} {} — template query: {}\n", m.id, m.strength, if ok { "proven" } else { "FAILED" })
             }
             _ => s += &format!("{:<24} {}\n", m.id, m.strength),
         }
@@ -207,7 +248,7 @@ pub fn render(r: &Report) -> String {
 
 /// `cullproof proofs`: exit status 1 (through the caller) when a proof failed.
 pub fn run_cli(args: &ProofsArgs) -> Result<bool> {
-    let methods = crate::args::methods("--method", &args.method, false)?;
+    let methods = crate::args::methods("--method", &args.method, true)?;
     crate::args::time("--timeout", args.timeout, 3600.0)?;
     if args.triangles == 0 || args.triangles > 10_000_000 {
         bail!("--triangles {}: must be 1..=10000000", args.triangles);

@@ -12,6 +12,9 @@
 //! - `wu2013_safe.g`: Gappa, `wu2013-safe`'s line pad against the error of the line's
 //!   per-sample evaluation.
 //!
+//! - [`composition`]: for `la2011-safe`, the composition over the method's own f32
+//!   code, as SMT queries on a template's ranges.
+//!
 //! [`VARIANTS`] declares, per variant, the input ranges, the scripts, and the code
 //! facts the scripts assume; [`check`] compares the scripts' constants and formulas with
 //! the code, [`run`] runs a script with its tool. `cullproof proofs` ([`cli`]) and
@@ -19,6 +22,7 @@
 
 pub mod check;
 pub mod cli;
+pub mod composition;
 pub mod run;
 
 use serde::Serialize;
@@ -227,7 +231,9 @@ pub const VARIANTS: &[Variant] = &[
         ranges: ALL_FINITE,
         scripts: &["STEP", "MONO"],
         mechanical: "every rounded result stepped outward encloses the exact result (STEP), rounding is \
-                     monotone (MONO)",
+                     monotone (MONO); on the template ranges (a static triangle, see composition.rs), the \
+                     composition over the method's own f32 code: no input culls a tile the exact footprint \
+                     reaches (SMT-LIB 2 query per side, z3 and Bitwuzla)",
         by_argument: STEPS_ARGUMENT,
         level: Level::LemmasChecked,
     },
