@@ -65,8 +65,10 @@ enum Cmd {
     #[command(allow_negative_numbers = true)]
     Check {
         /// `all`, a method id (see `cullproof methods`) or ids separated by commas.
-        #[arg(long, default_value = "all")]
-        method: String,
+        /// Default: `all` built-in methods; with --plugin or --exec, only the plugged
+        /// bounds.
+        #[arg(long)]
+        method: Option<String>,
         /// A regime or `all`: static, motion, defocus, both, focal-crossing, behind-lens,
         /// sliver, tiny, huge, perspective, facing-flip, huge-coc, tiny-coc,
         /// far-from-origin, degenerate, screen-parallel.
@@ -505,14 +507,17 @@ fn run() -> Result<()> {
         cullproof::args::time("--plugin-timeout", cli.plugin_timeout, 86400.0)?;
         cullproof::plugin::set_timeout(std::time::Duration::from_secs_f64(cli.plugin_timeout));
     }
+    // The ids of the bounds plugged in by --plugin and --exec (what `check` gates when
+    // no --method is given).
+    let mut plugged: Vec<&'static str> = Vec::new();
     for p in &cli.plugins {
-        cullproof::plugin::load_and_plug(p)?;
+        plugged.push(cullproof::plugin::load_and_plug(p)?.info().id);
     }
     if !cli.execs.is_empty() {
         cullproof::args::time("--exec-timeout", cli.exec_timeout, 86400.0)?;
     }
     for c in &cli.execs {
-        cullproof::exec::start_and_plug(c, std::time::Duration::from_secs_f64(cli.exec_timeout))?;
+        plugged.push(cullproof::exec::start_and_plug(c, std::time::Duration::from_secs_f64(cli.exec_timeout))?.info().id);
     }
     match cli.cmd {
         Cmd::OracleAgree { samples, seed, json, jobs } => {
@@ -550,6 +555,7 @@ fn run() -> Result<()> {
             sample,
         } => {
             use cullproof::args;
+            let method = method.unwrap_or_else(|| if plugged.is_empty() { "all".into() } else { plugged.join(",") });
             let methods = args::methods("--method", &method, true)?;
             let mut cfg = cullproof::check::CheckConfig::default_with(methods);
             sample.parse()?.apply(&mut cfg);

@@ -109,3 +109,22 @@ fn a_bad_greeting_is_an_error_naming_the_command() {
     .unwrap();
     assert!(format!("{e:#}").contains("protocol version 9"), "{e:#}");
 }
+
+/// `--exec` with no `--method` gates only the plugged bound, not every built-in method.
+#[test]
+fn exec_alone_gates_only_the_plugged_bound() {
+    let json = std::env::temp_dir().join(format!("cullproof-exec-alone-{}.json", std::process::id()));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_cullproof"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(["--exec", &python(""), "check", "--cases", "16", "--jobs", "1", "--json", json.to_str().unwrap()])
+        .output()
+        .expect("runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{text}\n{}", String::from_utf8_lossy(&out.stderr));
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).expect("JSON");
+    std::fs::remove_file(&json).ok();
+    let mut ids: Vec<String> =
+        j["rows"].as_array().unwrap().iter().map(|r| r["method"].as_str().unwrap().to_string()).collect();
+    ids.dedup();
+    assert_eq!(ids, vec!["py-bbox".to_string()], "{ids:?}");
+}
