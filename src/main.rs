@@ -252,7 +252,8 @@ enum Cmd {
         /// The method id.
         #[arg(long)]
         method: String,
-        /// Search symbolically (the only mode so far; required).
+        /// Search symbolically: the only mode so far, so this is the default (the flag is
+        /// accepted and changes nothing).
         #[arg(long)]
         symbolic: bool,
         /// How the queries are made: `concolic` (many small queries, some inputs fixed
@@ -517,7 +518,8 @@ fn run() -> Result<()> {
         cullproof::args::time("--exec-timeout", cli.exec_timeout, 86400.0)?;
     }
     for c in &cli.execs {
-        plugged.push(cullproof::exec::start_and_plug(c, std::time::Duration::from_secs_f64(cli.exec_timeout))?.info().id);
+        plugged
+            .push(cullproof::exec::start_and_plug(c, std::time::Duration::from_secs_f64(cli.exec_timeout))?.info().id);
     }
     match cli.cmd {
         Cmd::OracleAgree { samples, seed, json, jobs } => {
@@ -724,7 +726,7 @@ fn run() -> Result<()> {
             emit_smt,
             json,
         } => {
-            anyhow::ensure!(symbolic, "prove: only the symbolic search exists so far; add --symbolic");
+            let _ = symbolic; // the only mode: on with or without the flag
             anyhow::ensure!(
                 timeout.is_finite() && (1.0..=3600.0).contains(&timeout),
                 "--timeout {timeout}: give seconds from 1 to 3600"

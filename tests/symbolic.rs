@@ -568,3 +568,20 @@ fn the_portfolio_finds_bbox_f32_tile_cull_in_narrow_ranges() {
     assert!(edge_inside(q.side, q.inputs.as_ref().unwrap(), &tile), "{}", r.render());
     eprintln!("{}", r.render());
 }
+
+/// `prove` searches symbolically without being told (`--symbolic` is the only mode and
+/// optional): a short concolic run answers, with its report.
+#[test]
+fn prove_runs_without_the_symbolic_flag() {
+    let json = std::env::temp_dir().join(format!("cullproof-prove-noflag-{}.json", std::process::id()));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_cullproof"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(["prove", "--method", "bbox", "--queries", "3", "--dry-run", "--json", json.to_str().unwrap()])
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    std::fs::remove_file(&json).ok();
+    assert_eq!(j["method"], "bbox");
+    assert!(j["queries"].as_array().is_some_and(|q| !q.is_empty()), "{j}");
+}
