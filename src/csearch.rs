@@ -1,21 +1,27 @@
 //! Certified search for a covered sample that a per-sample constraint culls.
 //!
-//! Branch and bound over the sample boxes of one tile that pass a method's intervals:
-//! a box is dropped when the exact coverage enclosures of the `oracles` crate rule out
-//! every interior sample in it, or when every constraint's interval evaluation
-//! ([`SampleConstraint::eval_box`](crate::bounds::SampleConstraint::eval_box), f32 rounding included) is `>= 0` over it (nothing
-//! in it is culled). Boxes are taken most-culled first (the lowest constraint lower
-//! bound), so a violation surfaces early; in each, a few f32 samples are judged
-//! exactly (coverage by the exact oracle, the constraint by the method's own f32
-//! evaluation). The search ends with a witness, with every box decided, with the rest
-//! at the smallest box size (counted as within the resolution), or at the budget
-//! (undecided, and said so).
+//! Branch and bound over the sample boxes of one tile that pass a method's intervals.
+//! A box is dropped when the exact coverage enclosures of the `oracles` crate rule out
+//! every interior sample in it, when every constraint's interval evaluation
+//! ([`SampleConstraint::eval_box`](crate::bounds::SampleConstraint::eval_box), f32
+//! rounding included) is `>= 0` over it (nothing in it is culled), or when every
+//! constraint that may cull there offers a multilinear lower bound
+//! ([`SampleConstraint::lower_cut`](crate::bounds::SampleConstraint::lower_cut)) and the
+//! exact (x, y) elimination certifies that no interior sample of the box makes that
+//! bound negative. When no constraint's lower bound depends on x or y, the pixels are
+//! never split (the elimination decides the whole pixel rectangle at once) and witness
+//! samples are proposed inside the covered polygon. Boxes are taken most-culled first
+//! (the lowest constraint lower bound), so a violation surfaces early; in each, a few
+//! f32 samples are judged exactly (coverage by the exact oracle, the constraint by the
+//! method's own f32 evaluation). The search ends with a witness, with every box
+//! decided, with the rest at the smallest box size (counted as within the resolution),
+//! or at the budget (undecided, and said so).
 
 use crate::bounds::{SampleBox, TileBounds};
 use crate::model::{Sample, Tile};
 use crate::Interval;
 use oracles::extents::bnb::{self, Flow, Frontier, Open, Problem, Ties};
-use oracles::extents::{box_values_with, classify_values, Box5, BoxClass};
+use oracles::extents::{box_values_cutting, classify_values, covered_point, Box5, BoxClass, Cut};
 use oracles::{classify, Coverage, Tri};
 use std::cmp::Ordering;
 
@@ -103,8 +109,25 @@ impl Problem for ConstraintProblem<'_> {
             self.ended = Some(ConstraintVerdict::Undecided);
             return Flow::Stop;
         }
-        let bv = box_values_with(tri, &b, false);
-        if classify_values(&bv) == BoxClass::Empty {
+        // The constraints that may cull in the box, with their multilinear lower bounds
+        // where they offer one; the box is decided when every one of them is certified
+        // to cull no interior sample (or the box holds none).
+        let sb = sample_box(&b);
+        let mut cuts = Vec::new();
+        let mut all_cut = true;
+        for c in &self.bounds.constraints {
+            let lo = c.eval_box(&sb).lo;
+            if lo >= 0.0 {
+                continue;
+            }
+            match c.lower_cut(&sb) {
+                Some(cut) => cuts.push(cut),
+                None => all_cut = false,
+            }
+        }
+        let mut ok = vec![false; cuts.len()];
+        let bv = box_values_cutting(tri, &b, &cuts, &mut ok);
+        if classify_values(&bv) == BoxClass::Empty || (all_cut && ok.iter().all(|&o| o)) {
             return Flow::Continue;
         }
         // Samples of the box: its centre and two scattered points.
@@ -116,6 +139,17 @@ impl Problem for ConstraintProblem<'_> {
                 self.seed ^= self.seed << 17;
                 b[k].lo + (self.seed >> 11) as f64 / (1u64 << 53) as f64 * b[k].width()
             }));
+        }
+        if !self.cover_dims[0] {
+            // (x, y) is not split: at each point's (u, v, t), the middle of the covered
+            // polygon within the box's pixels.
+            for i in 0..pts.len() {
+                if let Some((x, y)) = covered_point(tri, pts[i], &b) {
+                    let mut p = pts[i];
+                    (p[0], p[1]) = (x, y);
+                    pts.push(p);
+                }
+            }
         }
         for p in pts {
             let s = f32_in(p, &b);
@@ -183,13 +217,20 @@ pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_wi
         iv(bounds.t[0], bounds.t[1]),
     ];
     let (lens, time) = (!tri.is_pinhole(), !tri.is_static());
+    // When no constraint depends on (x, y) (each offers a cut without x or y terms),
+    // the pixels are never split: the (x, y) elimination decides a box's whole pixel
+    // rectangle at once, and witnesses are proposed inside the covered polygon.
+    let init_box = sample_box(&init);
+    let xy_free = bounds.constraints.iter().all(|c| {
+        c.lower_cut(&init_box).is_some_and(|cut| (0..32).all(|m| m & (Cut::X | Cut::Y) == 0 || cut.coef[m] == 0.0))
+    });
     let mut p = ConstraintProblem {
         tri,
         bounds,
         init,
         budget,
         min_width,
-        cover_dims: [true, true, lens, lens, time],
+        cover_dims: [!xy_free, !xy_free, lens, lens, time],
         boxes: 0,
         small: false,
         seed: 0x2545_F491_4F6C_DD1D,

@@ -1,4 +1,5 @@
-//! Every per-sample constraint of every registered method: `eval_box` encloses `eval`.
+//! Every per-sample constraint of every registered method: `eval_box` encloses `eval`,
+//! and its cut never vouches for a sample `eval` culls.
 //!
 //! The contract of [`SampleConstraint::eval_box`] (`src/bounds/mod.rs`) is that it
 //! encloses *every value `eval` can return* for a sample in the box, f32 rounding
@@ -40,11 +41,18 @@
 //! constraint's name and kind, the case (regime, seed, index), the tile, the box, the
 //! sample, `eval` and the enclosure.
 //!
+//! The same boxes check the multilinear cuts ([`SampleConstraint::lower_cut`]) the judge
+//! uses to decide boxes close to the covered set: wherever a cut vouches for a sample
+//! (`P(s) >= err`, enclosed with outward rounding), `eval` must not cull it. Besides the
+//! box's own samples, the f32 values on and around the cut's level set `P = err` along
+//! each coordinate are tried, so the check reaches the rounding the cut's `err` allows
+//! for ([`a_wrong_cut_is_caught`]: raised cuts and cuts without their error are caught).
+//!
 //! `CULLPROOF_CONSTRAINT_SEEDS=N` runs seeds 1..=N instead of the 8 fixed ones (a longer
 //! search; about 35 s for N = 1000 in release). [`a_wrong_enclosure_is_caught`] checks
 //! the harness: deliberately wrong enclosures must be caught.
 
-use cullproof::bounds::{registry, SampleBox, SampleConstraint, TileResult};
+use cullproof::bounds::{registry, Cut, SampleBox, SampleConstraint, TileResult};
 use cullproof::check::{bound_kind, boundary_tile};
 use cullproof::gen::{physical_case, rng_for, Regime};
 use cullproof::model::{Sample, Tile};
@@ -100,6 +108,14 @@ struct Tally {
     /// Failures: a finite eval outside its enclosure, or with a NaN enclosure.
     outside: u64,
     nan_failures: u64,
+    /// Boxes on which the constraint offered a [`Cut`].
+    cuts: u64,
+    /// Samples where a cut vouches (`P(s) >= err`, enclosed exactly) ...
+    cut_checks: u64,
+    /// ... of which within `2^-12` of the cut's magnitude of its zero set ...
+    cut_near: u64,
+    /// ... and those that `eval` culls all the same (failures).
+    cut_failures: u64,
 }
 
 /// How many failures keep their full description.
@@ -218,6 +234,128 @@ fn samples_in(rng: &mut ChaCha8Rng, b: &SampleBox) -> Vec<Sample> {
     out
 }
 
+/// `P(s)` of a cut at a sample, enclosed with outward rounding (exact coefficients and
+/// f32 coordinates, so the enclosure is as tight as f64 allows).
+fn cut_value(cut: &Cut, s: [f64; 5]) -> Interval {
+    let mut sum = Interval::point(0.0);
+    for (m, &c) in cut.coef.iter().enumerate() {
+        if c == 0.0 {
+            continue;
+        }
+        let term = (0..5).filter(|i| m >> i & 1 == 1).fold(Interval::point(c), |a, i| a * Interval::point(s[i]));
+        sum = sum + term;
+    }
+    sum
+}
+
+/// The largest `|term|` sum of a cut over a box (the scale its zero set is judged at).
+fn cut_magnitude(cut: &Cut, b: &SampleBox) -> f64 {
+    let sides = [b.x, b.y, b.u, b.v, b.t];
+    (0..32)
+        .map(|m| {
+            (0..5)
+                .filter(|i| m >> i & 1 == 1)
+                .fold(cut.coef[m].abs(), |a, i| a * sides[i].lo.abs().max(sides[i].hi.abs()))
+        })
+        .sum()
+}
+
+/// Samples of the box on and next to the cut's level set `P = err`: from each base
+/// sample, along each coordinate `P` depends on (it is affine in each), the f32 values
+/// around the solution, kept inside the box.
+fn cut_level_samples(cut: &Cut, b: &SampleBox, base: &[Sample]) -> Vec<Sample> {
+    let sides = [b.x, b.y, b.u, b.v, b.t];
+    let mut out = Vec::new();
+    for s in base {
+        let p = s.to_oracle();
+        for i in 0..5 {
+            let at = |v: f64| {
+                let mut q = p;
+                q[i] = v;
+                cut.estimate(q)
+            };
+            let (a0, slope) = (at(0.0), at(1.0) - at(0.0));
+            if slope == 0.0 || !slope.is_finite() {
+                continue;
+            }
+            let r = ((cut.err - a0) / slope) as f32;
+            let mut cands = vec![r];
+            let (mut up, mut dn) = (r, r);
+            for _ in 0..3 {
+                up = up.next_up();
+                dn = dn.next_down();
+                cands.push(up);
+                cands.push(dn);
+            }
+            for v in cands {
+                if v.is_finite() && sides[i].contains(v as f64) {
+                    let mut c = [s.x, s.y, s.u, s.v, s.t];
+                    c[i] = v;
+                    out.push(Sample::new(c[0], c[1], c[2], c[3], c[4]));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Check the cut a constraint offers on a box, if any: at every sample (the box's own
+/// and those on the cut's level set) where it vouches, `eval` must not cull.
+#[allow(clippy::too_many_arguments)]
+fn check_cut(
+    c: &dyn SampleConstraint,
+    bx: &SampleBox,
+    samples: &[Sample],
+    origin: &Origin,
+    tally: &mut Tally,
+    failures: &mut Vec<Failure>,
+) {
+    let Some(cut) = c.lower_cut(bx) else {
+        return;
+    };
+    tally.cuts += 1;
+    assert!(cut.err >= 0.0 && cut.err.is_finite(), "{}: cut with error {}", origin.method, cut.err);
+    let scale = cut_magnitude(&cut, bx);
+    let mut all = samples.to_vec();
+    let bases: Vec<Sample> = samples.iter().step_by(4).copied().collect();
+    all.extend(cut_level_samples(&cut, bx, &bases));
+    for s in all {
+        let pv = cut_value(&cut, s.to_oracle());
+        if !(pv.lo >= cut.err) {
+            continue;
+        }
+        tally.cut_checks += 1;
+        if pv.lo - cut.err <= scale * 2f64.powi(-12) {
+            tally.cut_near += 1;
+        }
+        let g = c.eval(&s);
+        if g < 0.0 {
+            tally.cut_failures += 1;
+            if failures.len() < SHOWN {
+                failures.push(Failure {
+                    what: "culled where its cut vouches",
+                    text: format!(
+                        "method {} constraint {:?}, case regime {} seed {:#x} index {}, tile {:?}\n  box {:?}\n  \
+                         sample {:?}: eval {:e}, P in [{:e}, {:e}], err {:e}",
+                        origin.method,
+                        c.name(),
+                        origin.regime.name(),
+                        origin.seed,
+                        origin.index,
+                        origin.tile,
+                        bx,
+                        s,
+                        g,
+                        pv.lo,
+                        pv.hi,
+                        cut.err
+                    ),
+                });
+            }
+        }
+    }
+}
+
 /// Check one constraint on `BOXES` boxes; failures are counted in the tally and the
 /// first [`SHOWN`] described in `failures`.
 fn check_constraint(
@@ -258,7 +396,11 @@ fn check_constraint(
         } else if !enc.lo.is_finite() || !enc.hi.is_finite() {
             tally.unbounded_enclosure += 1;
         }
-        for s in samples_in(rng, &bx) {
+        let samples = samples_in(rng, &bx);
+        if !samples.is_empty() {
+            check_cut(c, &bx, &samples, origin, tally, failures);
+        }
+        for s in samples {
             let g = c.eval(&s);
             if !g.is_finite() {
                 tally.nonfinite_eval += 1;
@@ -323,7 +465,7 @@ struct Run {
     answers: u64,
 }
 
-/// A deliberately wrong enclosure (the harness's own check: it must be caught).
+/// A deliberately wrong enclosure or cut (the harness's own check: it must be caught).
 #[derive(Clone, Copy, Debug)]
 enum Mutation {
     /// Narrowed by this fraction of its width at each end.
@@ -331,6 +473,11 @@ enum Mutation {
     /// On a box that is a single point, the midpoint of the enclosure only: about the
     /// real value with the f32 rounding allowance dropped.
     PointMidpoint,
+    /// Cuts raised by `2^-12` of their magnitude over the box (they vouch for samples
+    /// just beyond their level set); enclosures untouched.
+    CutRaise,
+    /// Cuts with their error (the rounding allowance) dropped.
+    CutNoErr,
 }
 
 #[derive(Debug)]
@@ -353,6 +500,7 @@ impl SampleConstraint for Mutated<'_> {
                 let d = frac * (e.hi - e.lo);
                 Interval::new(e.lo + d, e.hi - d)
             }
+            Mutation::CutRaise | Mutation::CutNoErr => e,
             Mutation::PointMidpoint => {
                 let point = [b.x, b.y, b.u, b.v, b.t].iter().all(|i| i.lo == i.hi);
                 if point {
@@ -362,6 +510,16 @@ impl SampleConstraint for Mutated<'_> {
                 }
             }
         }
+    }
+    fn lower_cut(&self, b: &SampleBox) -> Option<Cut> {
+        let mut cut = self.inner.lower_cut(b)?;
+        if let Mutation::CutRaise = self.mutation {
+            cut.coef[0] += cut_magnitude(&cut, b) * 2f64.powi(-12);
+        }
+        if let Mutation::CutNoErr = self.mutation {
+            cut.err = 0.0;
+        }
+        Some(cut)
     }
 }
 
@@ -446,6 +604,10 @@ fn eval_box_encloses_eval_for_every_method() {
             t.outside + t.nan_failures
         );
     }
+    eprintln!("cuts (lower_cut): method, boxes with a cut, samples vouched for, of them near the level set, culled");
+    for (id, t) in per_method.iter().filter(|(_, t)| t.cuts > 0) {
+        eprintln!("  {id:<26} {:>8} {:>10} {:>9} {:>6}", t.cuts, t.cut_checks, t.cut_near, t.cut_failures);
+    }
     eprintln!("(method, constraint kind) pairs exercised: {}", per_kind.len());
     for ((id, kind), (n, checks)) in &per_kind {
         eprintln!("  {id:<24} {kind:<36} {n:>6} constraints {checks:>9} checks");
@@ -465,6 +627,27 @@ fn eval_box_encloses_eval_for_every_method() {
         if n < MIN_CONSTRAINTS_PER_METHOD || checks < MIN_CHECKS_PER_METHOD {
             thin.push(format!("{id}: {n} constraints, {checks} checks"));
         }
+    }
+
+    // The cuts the judge relies on: offered where documented, reaching their level
+    // set, and never vouching for a culled sample.
+    for id in [
+        "lb2011",
+        "lb2011-safe",
+        "mam2012-safe",
+        "mam2012-hyperplane-ps",
+        "mam2012-hyperplane-ps-safe",
+        "wu2013",
+        "wu2013-safe",
+    ] {
+        let t = per_method.get(id);
+        let (cuts, near) = t.map_or((0, 0), |t| (t.cuts, t.cut_near));
+        assert!(cuts >= 100 && near >= 100, "{id}: {cuts} boxes with a cut, {near} samples near a level set");
+    }
+    let cut_failures: u64 = per_method.values().map(|t| t.cut_failures).sum();
+    if cut_failures > 0 {
+        let shown: Vec<String> = failures.iter().map(|f| format!("{}:\n  {}", f.what, f.text)).collect();
+        panic!("{cut_failures} samples culled where a cut vouches; the first {}:\n{}", shown.len(), shown.join("\n"));
     }
 
     let outside: u64 = per_method.values().map(|t| t.outside).sum();
@@ -502,5 +685,31 @@ fn a_wrong_enclosure_is_caught() {
             }
             assert!(checks > 0 && caught > 0, "{id}: {mutation:?} went unnoticed ({checks} checks)");
         }
+    }
+}
+
+/// The cut check itself, on 2 of the seeds:
+/// - cuts raised by `2^-12` of their magnitude (vouching for samples just beyond their
+///   level set, where the constraint culls) must be caught for every method that offers
+///   cuts;
+/// - cuts with their rounding allowance dropped must be caught for every method whose
+///   cut needs one (its `eval` rounds to nearest): the level-set samples reach the
+///   rounding. The directed-rounding cuts (`mam2012-safe`, `mam2012-new-safe`,
+///   `mam2012-hyperplane-ps-safe`) have none to drop.
+#[test]
+fn a_wrong_cut_is_caught() {
+    let r = run(&SEEDS[..2], Some(Mutation::CutRaise));
+    let mut offered = 0;
+    for (id, t) in r.per_method.iter().filter(|(_, t)| t.cuts > 0) {
+        offered += 1;
+        eprintln!("CutRaise, {id}: {} of {} vouched samples culled", t.cut_failures, t.cut_checks);
+        assert!(t.cut_failures > 0, "{id}: a raised cut went unnoticed ({} checks)", t.cut_checks);
+    }
+    assert!(offered >= 7, "only {offered} methods offered cuts");
+    let r = run(&SEEDS[..2], Some(Mutation::CutNoErr));
+    for id in ["lb2011", "lb2011-safe", "lc", "lc-safe", "mam2012-hyperplane-ps", "wu2013", "wu2013-safe"] {
+        let (caught, checks) = r.per_method.get(id).map_or((0, 0), |t| (t.cut_failures, t.cut_checks));
+        eprintln!("CutNoErr, {id}: {caught} of {checks} vouched samples culled");
+        assert!(caught > 0, "{id}: a cut without its rounding allowance went unnoticed ({checks} checks)");
     }
 }

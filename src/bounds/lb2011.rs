@@ -305,6 +305,15 @@ impl Patch {
         let m = [self.p, self.q, self.r, self.s].iter().map(|c| c.abs() as f64).sum::<f64>();
         m < 2f64.powi(125)
     }
+    /// The magnitude sum over lens values `l` and times `t` and the bound on `eval`'s
+    /// error it gives (module doc, "Per-sample evaluation").
+    fn error_over(&self, l: Interval, t: Interval) -> (f64, f64) {
+        let lm = l.lo.abs().max(l.hi.abs());
+        let tm = t.lo.abs().max(t.hi.abs());
+        let a = |x: f32| (x as f64).abs();
+        let mag = a(self.p) + a(self.q) * lm + tm.max(1.0) * (a(self.r) + a(self.s) * lm);
+        (mag, mag * 2f64.powi(-20) + 2f64.powi(-126) * (1.0 + lm) * (1.0 + tm))
+    }
     fn lens_of(&self, smp: &Sample) -> f32 {
         match self.lens {
             Lens::U => smp.u,
@@ -341,15 +350,35 @@ impl SampleConstraint for Patch {
         let t = b.t;
         let pt = |x: f32| Interval::point(x as f64);
         let val = (pt(self.p) + pt(self.q) * l) + t * (pt(self.r) + pt(self.s) * l);
-        let lm = l.lo.abs().max(l.hi.abs());
-        let tm = t.lo.abs().max(t.hi.abs());
-        let a = |x: f32| (x as f64).abs();
-        let mag = a(self.p) + a(self.q) * lm + tm.max(1.0) * (a(self.r) + a(self.s) * lm);
-        let err = mag * 2f64.powi(-20) + 2f64.powi(-126) * (1.0 + lm) * (1.0 + tm);
+        let (mag, err) = self.error_over(l, t);
         if mag.is_nan() || mag >= 2f64.powi(126) || val.lo.is_nan() || val.hi.is_nan() || !err.is_finite() {
             return Interval::new(f64::NEG_INFINITY, f64::INFINITY);
         }
         val + Interval::new(-err, err)
+    }
+    /// The exact patch `P + Q l + R t + S l t`, less the error bound of
+    /// [`eval_box`](Self::eval_box) over the box (None where that gives up).
+    fn lower_cut(&self, b: &SampleBox) -> Option<Cut> {
+        let e = self.eval_box(b);
+        if !(e.lo.is_finite() && e.hi.is_finite()) {
+            return None;
+        }
+        let l = match self.lens {
+            Lens::U => b.u,
+            Lens::V => b.v,
+        };
+        let (_, err) = self.error_over(l, b.t);
+        let lb = match self.lens {
+            Lens::U => Cut::U,
+            Lens::V => Cut::V,
+        };
+        let mut cut = Cut::zero();
+        cut.coef[0] = self.p as f64;
+        cut.coef[lb] = self.q as f64;
+        cut.coef[Cut::T] = self.r as f64;
+        cut.coef[lb | Cut::T] = self.s as f64;
+        cut.err = err;
+        Some(cut)
     }
 }
 

@@ -948,6 +948,20 @@ impl SampleConstraint for SafeLine {
         };
         Interval::new(f32_down(exact.lo), g.hi)
     }
+    /// The exact `g` (`w - (a t + b)` or `(a t + b) - w`) with no error: `eval` rounds
+    /// to nearest the difference of `w` and a line stepped outward (`a t` and the sum
+    /// each rounded and stepped one f32 away), a value `>= g` (`+inf` when the line
+    /// overflows), and rounding to nearest keeps the sign of a non-negative value. So
+    /// where `g >= 0`, `eval >= 0`: the sign is exact, and the cut needs no error term.
+    fn lower_cut(&self, _bx: &SampleBox) -> Option<Cut> {
+        let Line { is_v, upper, a, b } = self.0;
+        let sign = if upper { 1.0 } else { -1.0 };
+        let mut cut = Cut::zero();
+        cut.coef[0] = sign * b as f64;
+        cut.coef[Cut::T] = sign * a as f64;
+        cut.coef[if is_v { Cut::V } else { Cut::U }] = -sign;
+        Some(cut)
+    }
 }
 
 /// One axis's part of a `mam2012-safe` tile answer, from that axis's tile sides only.

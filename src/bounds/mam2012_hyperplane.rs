@@ -757,6 +757,26 @@ struct Plane {
     safe: bool,
 }
 
+impl Plane {
+    /// The exact `a . (1, s)` over the box (outward-rounded) and the bound on how far
+    /// `-eval` lies from it (see the module doc).
+    fn sum_and_err(&self, b: &SampleBox) -> (Interval, f64) {
+        let p = |i: usize| Interval::point(self.a[i] as f64);
+        let terms = [p(0), p(1) * b.x, p(2) * b.y, p(3) * b.u, p(4) * b.v, p(5) * b.t];
+        let mut sum = Interval::point(0.0);
+        let mut mag = Interval::point(0.0);
+        for t in terms {
+            sum = sum + t;
+            mag = mag + Interval::point(t.lo.abs().max(t.hi.abs()));
+        }
+        // Rounded to nearest: gamma_6 < 2^-21 of the magnitudes (see the module doc);
+        // rounded down with a step after each of the 10 operations: below 2^-19 (`-safe`).
+        let rel = if self.safe { 2f64.powi(-19) } else { 2f64.powi(-20) };
+        let err = (Interval::point(mag.hi) * Interval::point(rel) + Interval::point(2f64.powi(-140))).hi;
+        (sum, err)
+    }
+}
+
 impl SampleConstraint for Plane {
     fn name(&self) -> String {
         format!("edge {} hyperplane", self.edge)
@@ -809,19 +829,22 @@ impl SampleConstraint for Plane {
         }
     }
     fn eval_box(&self, b: &SampleBox) -> Interval {
-        let p = |i: usize| Interval::point(self.a[i] as f64);
-        let terms = [p(0), p(1) * b.x, p(2) * b.y, p(3) * b.u, p(4) * b.v, p(5) * b.t];
-        let mut sum = Interval::point(0.0);
-        let mut mag = Interval::point(0.0);
-        for t in terms {
-            sum = sum + t;
-            mag = mag + Interval::point(t.lo.abs().max(t.hi.abs()));
-        }
-        // Rounded to nearest: gamma_6 < 2^-21 of the magnitudes (see the module doc);
-        // rounded down with a step after each of the 10 operations: below 2^-19 (`-safe`).
-        let rel = if self.safe { 2f64.powi(-19) } else { 2f64.powi(-20) };
-        let err = (Interval::point(mag.hi) * Interval::point(rel) + Interval::point(2f64.powi(-140))).hi;
+        let (sum, err) = self.sum_and_err(b);
         -(sum + Interval::new(-err, err))
+    }
+    /// `-(a . (1, s))` exactly, less the error bound of [`eval_box`](Self::eval_box)
+    /// over the box (the same analysis: `eval` lies within it of the exact value). In
+    /// `-safe` with no error: every product and partial sum is stepped down, so the
+    /// f32 sum is at most the exact `a . (1, s)` (an overflow steps to `-inf` or
+    /// `f32::MAX`, still below), and `eval`, its negation, is at least `-(a . (1, s))`.
+    fn lower_cut(&self, b: &SampleBox) -> Option<Cut> {
+        let err = if self.safe { 0.0 } else { self.sum_and_err(b).1 };
+        let mut cut = Cut::zero();
+        for (m, a) in [0, Cut::X, Cut::Y, Cut::U, Cut::V, Cut::T].into_iter().zip(self.a) {
+            cut.coef[m] = -(a as f64);
+        }
+        cut.err = err;
+        Some(cut)
     }
 }
 

@@ -13,6 +13,7 @@
 
 use crate::model::{Dims, Sample, Tile, Triangle};
 use crate::Interval;
+pub use oracles::extents::Cut;
 use serde::Serialize;
 
 pub mod bbox;
@@ -127,6 +128,19 @@ pub trait SampleConstraint: Send + Sync + std::fmt::Debug {
     /// box, f32 rounding included (compute in outward-rounded f64 and widen by a
     /// documented bound on the f32 evaluation error).
     fn eval_box(&self, b: &SampleBox) -> Interval;
+    /// Optionally, a multilinear polynomial `P` and an error `err >= 0` (a [`Cut`])
+    /// that vouch for [`eval`](Self::eval) over the box: at every sample `s` of the box
+    /// with `P(s) >= err`, `eval(s)` is NaN or `>= 0` (the sample is not culled), f32
+    /// rounding included. A lower bound `eval(s) >= P(s) - err` gives that; so does an
+    /// evaluation whose sign is exact for a quantity `>= P(s)` (then `err = 0`). The judge uses it to certify that the
+    /// constraint culls no covered sample of a box that lies close to the covered set
+    /// (one combination with the triangle's edge values, see `oracles::extents::Cut`),
+    /// where [`eval_box`](Self::eval_box) alone would need the box split down to the
+    /// gap. The default offers none; a wrong bound would make the judge prove a false
+    /// claim, so give one only with its error analysis.
+    fn lower_cut(&self, _b: &SampleBox) -> Option<Cut> {
+        None
+    }
 }
 
 /// The non-empty answer of a tile test.

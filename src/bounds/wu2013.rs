@@ -355,6 +355,14 @@ impl TimeLine {
     fn line(&self, l: f32) -> f32 {
         self.a * l + self.b
     }
+    /// How far `eval` can lie from the exact value for lens values `l` and times `t`:
+    /// `2^-20 (|a| |l| + |b| + |t|)` (three f32 roundings of at most `2^-24` of partial
+    /// results bounded by those magnitudes) plus `2^-140` for subnormal results.
+    fn error_over(&self, l: Interval, t: Interval) -> f64 {
+        let lm = l.lo.abs().max(l.hi.abs());
+        let tm = t.lo.abs().max(t.hi.abs());
+        2f64.powi(-20) * ((self.a as f64).abs() * lm + (self.b as f64).abs() + tm) + 2f64.powi(-140)
+    }
 }
 
 impl SampleConstraint for TimeLine {
@@ -409,13 +417,30 @@ impl SampleConstraint for TimeLine {
         let p = |x: f32| Interval::point(x as f64);
         let line = p(self.a) * l + p(self.b);
         let g = if self.upper { line - bx.t } else { bx.t - line };
-        let lm = l.lo.abs().max(l.hi.abs());
-        let tm = bx.t.lo.abs().max(bx.t.hi.abs());
-        let err = 2f64.powi(-20) * ((self.a as f64).abs() * lm + (self.b as f64).abs() + tm) + 2f64.powi(-140);
+        let err = self.error_over(l, bx.t);
         if g.lo.is_nan() || g.hi.is_nan() || !err.is_finite() {
             return Interval::new(f64::NEG_INFINITY, f64::INFINITY);
         }
         g + Interval::new(-err, err)
+    }
+    /// The exact `+-(t - (a l + b))`, less the error bound of
+    /// [`eval_box`](Self::eval_box) over the box.
+    fn lower_cut(&self, bx: &SampleBox) -> Option<Cut> {
+        let (l, lb) = match self.lens {
+            Lens::U => (bx.u, Cut::U),
+            Lens::V => (bx.v, Cut::V),
+        };
+        let err = self.error_over(l, bx.t);
+        if !err.is_finite() {
+            return None;
+        }
+        let sign = if self.upper { 1.0 } else { -1.0 };
+        let mut cut = Cut::zero();
+        cut.coef[0] = sign * self.b as f64;
+        cut.coef[lb] = sign * self.a as f64;
+        cut.coef[Cut::T] = -sign;
+        cut.err = err;
+        Some(cut)
     }
 }
 

@@ -96,7 +96,7 @@ fn certified(ev: &[LPoly<3, 16>; 3], h: f64, sg: f64) -> Elimination {
 /// largest value over all 16 corner lanes. None when no candidate is negative there.
 /// The candidates are the vertices of that small linear programme: one function alone,
 /// two where two corners tie, three where three corners tie.
-fn multipliers<const F: usize>(a: &[[f64; 16]; F]) -> Option<[f64; F]> {
+pub(super) fn multipliers<const F: usize>(a: &[[f64; 16]; F]) -> Option<[f64; F]> {
     // Values at the (x, y) corners c = 2 ix + iy, at the middle of the lens box.
     let m: [[f64; 4]; F] =
         std::array::from_fn(|k| std::array::from_fn(|c| 0.25 * (a[k][c] + a[k][4 + c] + a[k][8 + c] + a[k][12 + c])));

@@ -1,6 +1,7 @@
 //! Box enclosures: the coverage values E_0, E_1, E_2, D (and the depth numerator) over
 //! a box of samples, and the judgement empty / full / undecided they imply.
 
+use super::cut::{cut_certified, Cut};
 use super::depth::covered_depth;
 use super::elimination::{no_covered_xy, Elimination};
 use super::lanes::{lconst, LPoly};
@@ -140,15 +141,30 @@ pub fn box_values_eliminating(tri: &Tri, b: &Box5, with_depth: bool) -> BoxValue
 /// other is infinite), and the corner quotient [`BoxValues::depth`] is left out (None,
 /// with a zero `depth_smear`): that end's bound has it among its candidates.
 pub(super) fn box_values_for_depth(tri: &Tri, b: &Box5, max: bool) -> BoxValues {
-    values_ends(tri, b, true, true, [!max, max])
+    values_ends(tri, b, true, true, [!max, max], &[], &mut [])
 }
 
 fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
-    values_ends(tri, b, with_depth, eliminate, [true, true])
+    values_ends(tri, b, with_depth, eliminate, [true, true], &[], &mut [])
+}
+
+/// [`box_values_eliminating`] (without depth), and for each of `cuts` whether it is
+/// certified to cull no interior sample of the box (`ok[i]`, see [`super::cut`]): all
+/// true when the box holds no interior sample. `ok` has the length of `cuts`.
+pub fn box_values_cutting(tri: &Tri, b: &Box5, cuts: &[Cut], ok: &mut [bool]) -> BoxValues {
+    values_ends(tri, b, false, true, [true, true], cuts, ok)
 }
 
 /// The box values; `depth_ends` says which ends (lower, upper) of the covered depth to certify.
-fn values_ends(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool, depth_ends: [bool; 2]) -> BoxValues {
+fn values_ends(
+    tri: &Tri,
+    b: &Box5,
+    with_depth: bool,
+    eliminate: bool,
+    depth_ends: [bool; 2],
+    cuts: &[Cut],
+    cut_ok: &mut [bool],
+) -> BoxValues {
     let tm = b[4].mid();
     let h = (b[4].hi - tm).max(tm - b[4].lo).max(0.0);
     let t = TPoly::t_at(tm);
@@ -378,6 +394,10 @@ fn values_ends(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool, depth_end
             Elimination::Open(s) => bv.elim_smear = s,
             Elimination::Unknown => {}
         }
+    }
+    let empty = classify_values(&bv) == BoxClass::Empty;
+    for (cut, ok) in cuts.iter().zip(cut_ok.iter_mut()) {
+        *ok = empty || cut_certified(&ev, &[lane_x, lane_y, lane_u, lane_v], tm, h, d, cut);
     }
     if let Some((n, dl)) = depth_lanes.filter(|_| !bv.eliminated && (d.lo > 0.0 || d.hi < 0.0)) {
         let cd = covered_depth(&ev, &n, &dl, h, depth_ends);

@@ -74,6 +74,7 @@
 //! - [`solver`]: the tile solver that runs the searches on demand and keeps them.
 
 pub mod bnb;
+mod cut;
 mod depth;
 mod elimination;
 pub mod enclosure;
@@ -87,7 +88,18 @@ pub mod solver;
 mod testgen;
 pub mod tpoly;
 
-pub use enclosure::{box_values, box_values_eliminating, box_values_with, classify_values, Box5, BoxClass, BoxValues};
+pub use cut::Cut;
+
+/// A proposal for a covered sample at (u, v, t) = `s[2..5]` within the (x, y) rectangle
+/// of `b`: the centroid of the covered polygon there, clamped into the rectangle (plain
+/// f64; None when nothing is covered there or D is 0). Only a proposal: judge it with
+/// the exact classifier.
+pub fn covered_point(tri: &crate::tri::Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
+    elimination::clipped_point(tri, s, b)
+}
+pub use enclosure::{
+    box_values, box_values_cutting, box_values_eliminating, box_values_with, classify_values, Box5, BoxClass, BoxValues,
+};
 pub use objective::Extent;
 pub use search::{search, solve_objective, ExtentsConfig, Extreme, ObjectiveResult, Search};
 pub use solver::{tile_extents, Occupancy, Side, TileExtents, TileSolver};
