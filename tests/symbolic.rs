@@ -37,7 +37,7 @@ fn eval(smt: &Smt, floats: &[String], bools: &[String]) -> (Vec<f32>, Vec<bool>)
     if let Ok(p) = std::env::var("SYMB_DUMP") {
         std::fs::write(p, &script).unwrap();
     }
-    let run = z3::run(&script, 60.0).expect("z3 runs (install z3)");
+    let run = z3::run(&script, 240.0).expect("z3 runs (install z3)");
     assert_eq!(run.answer, Answer::Sat, "{}", run.output);
     let f = floats.iter().map(|n| z3::value(&run.output, n).unwrap()).collect();
     let b = bools.iter().map(|n| z3::truth(&run.output, n).unwrap()).collect();

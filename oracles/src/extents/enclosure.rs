@@ -149,7 +149,7 @@ fn values(tri: &Tri, b: &Box5, with_depth: bool, eliminate: bool) -> BoxValues {
 }
 
 /// [`box_values_eliminating`] (without depth), and for each of `cuts` whether it is
-/// certified to cull no interior sample of the box (`ok[i]`, see [`super::cut`]): all
+/// certified to cull no interior sample of the box (`ok[i]`, see [`Cut`]): all
 /// true when the box holds no interior sample. `ok` has the length of `cuts`.
 pub fn box_values_cutting(tri: &Tri, b: &Box5, cuts: &[Cut], ok: &mut [bool]) -> BoxValues {
     values_ends(tri, b, false, true, [true, true], cuts, ok)
