@@ -125,6 +125,10 @@ impl Problem for ConstraintProblem<'_> {
                 None => all_cut = false,
             }
         }
+        if !all_cut {
+            // A constraint without a cut leaves the box open whatever the others show.
+            cuts.clear();
+        }
         let mut ok = vec![false; cuts.len()];
         let bv = box_values_cutting(tri, &b, &cuts, &mut ok);
         if classify_values(&bv) == BoxClass::Empty || (all_cut && ok.iter().all(|&o| o)) {

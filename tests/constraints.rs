@@ -301,7 +301,6 @@ fn cut_level_samples(cut: &Cut, b: &SampleBox, base: &[Sample]) -> Vec<Sample> {
 
 /// Check the cut a constraint offers on a box, if any: at every sample (the box's own
 /// and those on the cut's level set) where it vouches, `eval` must not cull.
-#[allow(clippy::too_many_arguments)]
 fn check_cut(
     c: &dyn SampleConstraint,
     bx: &SampleBox,

@@ -359,19 +359,15 @@ impl SampleConstraint for Patch {
     /// The exact patch `P + Q l + R t + S l t`, less the error bound of
     /// [`eval_box`](Self::eval_box) over the box (None where that gives up).
     fn lower_cut(&self, b: &SampleBox) -> Option<Cut> {
-        let e = self.eval_box(b);
-        if !(e.lo.is_finite() && e.hi.is_finite()) {
+        let (l, lb) = match self.lens {
+            Lens::U => (b.u, Cut::U),
+            Lens::V => (b.v, Cut::V),
+        };
+        // Where `eval_box` gives up (magnitudes near overflow, or NaN), so does the cut.
+        let (mag, err) = self.error_over(l, b.t);
+        if !(mag < 2f64.powi(126) && err.is_finite()) {
             return None;
         }
-        let l = match self.lens {
-            Lens::U => b.u,
-            Lens::V => b.v,
-        };
-        let (_, err) = self.error_over(l, b.t);
-        let lb = match self.lens {
-            Lens::U => Cut::U,
-            Lens::V => Cut::V,
-        };
         let mut cut = Cut::zero();
         cut.coef[0] = self.p as f64;
         cut.coef[lb] = self.q as f64;

@@ -132,11 +132,11 @@ pub trait SampleConstraint: Send + Sync + std::fmt::Debug {
     /// that vouch for [`eval`](Self::eval) over the box: at every sample `s` of the box
     /// with `P(s) >= err`, `eval(s)` is NaN or `>= 0` (the sample is not culled), f32
     /// rounding included. A lower bound `eval(s) >= P(s) - err` gives that; so does an
-    /// evaluation whose sign is exact for a quantity `>= P(s)` (then `err = 0`). The judge uses it to certify that the
-    /// constraint culls no covered sample of a box that lies close to the covered set
-    /// (one combination with the triangle's edge values, see `oracles::extents::Cut`),
-    /// where [`eval_box`](Self::eval_box) alone would need the box split down to the
-    /// gap. The default offers none; a wrong bound would make the judge prove a false
+    /// evaluation whose sign is exact for a quantity `>= P(s)` (then `err = 0`). The
+    /// judge uses it to certify that the constraint culls no covered sample of a box
+    /// that lies close to the covered set (one combination with the triangle's edge
+    /// values, see `oracles::extents::Cut`), where [`eval_box`](Self::eval_box) alone
+    /// would need the box split down to the gap. The default offers none; a wrong bound would make the judge prove a false
     /// claim, so give one only with its error analysis.
     fn lower_cut(&self, _b: &SampleBox) -> Option<Cut> {
         None

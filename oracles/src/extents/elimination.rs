@@ -198,7 +198,7 @@ pub(super) fn depth_extreme_points(tri: &Tri, s: [f64; 5], b: &Box5, max: bool) 
 /// `sigma E_k > 0` at (u, v, t) = `s[2..5]` (any signs of the `w_i`), clamped into the
 /// rectangle; None when the clipped polygon is empty or D is 0 there. Plain f64: it only
 /// proposes a point.
-pub(super) fn clipped_point(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
+pub fn clipped_point(tri: &Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
     let (poly, ..) = clipped_polygon(tri, s, b)?;
     let (cx, cy) = poly.centroid()?;
     Some((cx.clamp(b[0].lo, b[0].hi), cy.clamp(b[1].lo, b[1].hi)))

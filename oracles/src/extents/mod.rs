@@ -90,13 +90,7 @@ pub mod tpoly;
 
 pub use cut::Cut;
 
-/// A proposal for a covered sample at (u, v, t) = `s[2..5]` within the (x, y) rectangle
-/// of `b`: the centroid of the covered polygon there, clamped into the rectangle (plain
-/// f64; None when nothing is covered there or D is 0). Only a proposal: judge it with
-/// the exact classifier.
-pub fn covered_point(tri: &crate::tri::Tri, s: [f64; 5], b: &Box5) -> Option<(f64, f64)> {
-    elimination::clipped_point(tri, s, b)
-}
+pub use elimination::clipped_point as covered_point;
 pub use enclosure::{
     box_values, box_values_cutting, box_values_eliminating, box_values_with, classify_values, Box5, BoxClass, BoxValues,
 };
