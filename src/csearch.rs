@@ -212,6 +212,21 @@ impl Problem for ConstraintProblem<'_> {
 /// constraint culls. `min_width`: boxes narrower than this in every coordinate (pixels
 /// for x, y; units for u, v, t) are not split.
 pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_width: f64) -> ConstraintSearch {
+    search_with(tri, tile, bounds, budget, min_width, false)
+}
+
+/// [`search`], and with `split_pixels` the pixels are split like the other coordinates
+/// even when no constraint depends on x or y: a cut whose first-order part must cancel
+/// the edges' in u, v or t needs the (x, y) rectangle small too near the covered set's
+/// extreme point (the multipliers then hold at all its corners).
+pub fn search_with(
+    tri: &Tri,
+    tile: &Tile,
+    bounds: &TileBounds,
+    budget: usize,
+    min_width: f64,
+    split_pixels: bool,
+) -> ConstraintSearch {
     let iv = |a: f32, b: f32| Interval::new(a as f64, b as f64);
     let init: Box5 = [
         iv(tile.x0, tile.x1),
@@ -225,9 +240,10 @@ pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_wi
     // the pixels are never split: the (x, y) elimination decides a box's whole pixel
     // rectangle at once, and witnesses are proposed inside the covered polygon.
     let init_box = sample_box(&init);
-    let xy_free = bounds.constraints.iter().all(|c| {
-        c.lower_cut(&init_box).is_some_and(|cut| (0..32).all(|m| m & (Cut::X | Cut::Y) == 0 || cut.coef[m] == 0.0))
-    });
+    let xy_free = !split_pixels
+        && bounds.constraints.iter().all(|c| {
+            c.lower_cut(&init_box).is_some_and(|cut| (0..32).all(|m| m & (Cut::X | Cut::Y) == 0 || cut.coef[m] == 0.0))
+        });
     let mut p = ConstraintProblem {
         tri,
         bounds,

@@ -9,7 +9,7 @@
 //! - **Unproven**: anything else, with the reasons ([`Unproven`]). A budget, a stall or
 //!   the smallest box size never turns into a pass.
 
-use super::{CheckConfig, Witness};
+use super::{side_cut, CheckConfig, Witness};
 use crate::bounds::{TileBounds, TileResult};
 use crate::csearch::{self, ConstraintVerdict};
 use crate::model::{Case, Sample, Tile};
@@ -117,6 +117,10 @@ pub const TIGHT_DELTA: f64 = 2.5e-4;
 
 /// Boxes the search for a covered sample next to an end may examine.
 pub const TIGHT_BUDGET: usize = 200;
+
+/// Boxes the decision of a side left with a gap may take ([`super::side_cut`]), per box
+/// of `--side-budget`: it runs only where the extent search could not close the side.
+pub const SIDE_CUT_BUDGET_FACTOR: usize = 1;
 
 impl Judgement {
     pub fn verdict(&self) -> Verdict {
@@ -350,6 +354,14 @@ impl<'a> TileJudge<'a> {
         (e.0, e.1) = (e.0 + 1, e.1 + tight as u32);
     }
 
+    /// A u, v or t side whose extent search left a gap, decided by the constraint
+    /// search with the side's exact cut ([`super::side_cut`]).
+    fn decide_side(&self, coord: usize, bound: f32, is_max: bool) -> ConstraintVerdict {
+        let claim = side_cut::SideClaim { coord, bound, is_max };
+        let budget = SIDE_CUT_BUDGET_FACTOR * self.cfg.side_budget;
+        side_cut::decide(self.tri, &self.tile, claim, budget, self.cfg.constraint_min_width)
+    }
+
     /// Judge one tile answer.
     pub fn judge(&mut self, answer: &TileResult) -> Judgement {
         let mut j = Judgement { keep_by_kind: self.cfg.witnesses_per_kind, ..Judgement::default() };
@@ -428,7 +440,19 @@ impl<'a> TileJudge<'a> {
                 // Proven only when nothing beyond the claim is left open.
                 Side::Within { gap, .. } => {
                     if gap > 0.0 {
-                        j.add_unproven(Unproven::SideGap);
+                        // A gap: a claim within a rounding of the extent. Decide it as a
+                        // constraint with its exact linear cut (u, v and t sides).
+                        match coord.map(|c| self.decide_side(c, bound as f32, is_max)) {
+                            Some(ConstraintVerdict::Proved) => self.probe_tight(j, ext, bound, &name),
+                            Some(ConstraintVerdict::Violation(s)) => {
+                                let w = s.to_oracle();
+                                let e = j.tight.entry(name.clone()).or_insert((0, 0));
+                                (e.0, e.1) = (e.0 + 1, e.1 + 1);
+                                j.consider(self.witness(w, name, (w[coord.unwrap_or(4)] - bound).abs()));
+                                found.push(s);
+                            }
+                            _ => j.add_unproven(Unproven::SideGap),
+                        }
                     } else if coord.is_some() {
                         self.probe_tight(j, ext, bound, &name);
                     }

@@ -26,6 +26,7 @@ pub mod merge;
 pub mod power;
 pub mod report;
 pub mod samples;
+pub mod side_cut;
 pub mod strength;
 pub mod tiles;
 pub mod tool;

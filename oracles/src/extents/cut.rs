@@ -120,17 +120,124 @@ pub(super) fn cut_certified(
     signs.iter().all(|&sg| {
         let f = [ev[0], ev[1], ev[2], a3];
         let sgn = [sg, sg, sg, 1.0];
+        let holds = |lam: &[f64; 4]| {
+            let mut g = LPoly::<3, 16>::zero();
+            for k in 0..4 {
+                if lam[k] != 0.0 {
+                    g = g.add(&lconst(&[sgn[k] * lam[k]; 16]).mul::<3, 3>(&f[k]));
+                }
+            }
+            let (_, hi) = g.range(h);
+            hi.iter().all(|&v| v <= 0.0)
+        };
         let mid: [[f64; 16]; 4] = std::array::from_fn(|k| f[k].0[0].v.map(|v| sgn[k] * v));
-        let Some(lam) = super::elimination::multipliers(&mid) else { return false };
-        let mut g = LPoly::<3, 16>::zero();
-        for k in 0..4 {
-            if lam[k] != 0.0 {
-                g = g.add(&lconst(&[sgn[k] * lam[k]; 16]).mul::<3, 3>(&f[k]));
+        if super::elimination::multipliers(&mid).is_some_and(|lam| holds(&lam)) {
+            return true;
+        }
+        // The heuristic equalises the (x, y) corners only; where the cut shares its
+        // first-order part with the edges in u, v or t, the multipliers must cancel
+        // that too: the small linear programme over every corner and three times.
+        let vals: Vec<[f64; 4]> = [-h, 0.0, h]
+            .iter()
+            .flat_map(|&s| {
+                (0..16).map(move |n| {
+                    std::array::from_fn(|k| sgn[k] * (f[k].0[0].v[n] + s * (f[k].0[1].v[n] + s * f[k].0[2].v[n])))
+                })
+            })
+            .collect();
+        minimax_multipliers(&vals).is_some_and(|lam| holds(&lam))
+    })
+}
+
+/// Non-negative multipliers summing to 1 that minimise the largest of
+/// `sum_k lam_k rows[n][k]` over the rows (a matrix game, solved as the packing linear
+/// programme `max sum x` s.t. `B^T x <= 1`, `x >= 0` with `B = C - rows > 0`, by the
+/// simplex method; the multipliers are its dual values). None when the programme's
+/// value is not negative or the arithmetic breaks down. A heuristic: only the check of
+/// the combination certifies.
+fn minimax_multipliers<const F: usize>(rows: &[[f64; F]]) -> Option<[f64; F]> {
+    let n = rows.len();
+    let (mut amin, mut amax) = (f64::INFINITY, f64::NEG_INFINITY);
+    for r in rows {
+        for &v in r {
+            if !v.is_finite() {
+                return None;
+            }
+            amin = amin.min(v);
+            amax = amax.max(v);
+        }
+    }
+    let scale = (amax - amin).max(amax.abs()).max(amin.abs());
+    if scale <= 0.0 || amin >= 0.0 {
+        return None;
+    }
+    // B = (C - A) / scale with C above every value: entries in (0, 3].
+    let c = amax + 0.5 * scale;
+    // Tableau: F rows (one per multiplier), columns the n row weights x, then F slacks,
+    // then the right-hand side; the objective row holds the reduced costs.
+    let w = n + F + 1;
+    let mut t = vec![0.0f64; (F + 1) * w];
+    for k in 0..F {
+        for (j, r) in rows.iter().enumerate() {
+            t[k * w + j] = (c - r[k]) / scale;
+        }
+        t[k * w + n + k] = 1.0;
+        t[k * w + n + F] = 1.0;
+    }
+    for j in 0..n {
+        t[F * w + j] = -1.0;
+    }
+    for _ in 0..64 {
+        // Entering column: the most negative reduced cost.
+        let (mut col, mut best) = (usize::MAX, -1e-12);
+        for j in 0..n + F {
+            if t[F * w + j] < best {
+                best = t[F * w + j];
+                col = j;
             }
         }
-        let (_, hi) = g.range(h);
-        hi.iter().all(|&v| v <= 0.0)
-    })
+        if col == usize::MAX {
+            break;
+        }
+        // Leaving row: the least ratio.
+        let (mut row, mut ratio) = (usize::MAX, f64::INFINITY);
+        for k in 0..F {
+            let a = t[k * w + col];
+            if a > 1e-12 {
+                let r = t[k * w + n + F] / a;
+                if r < ratio {
+                    ratio = r;
+                    row = k;
+                }
+            }
+        }
+        if row == usize::MAX {
+            return None;
+        }
+        let p = t[row * w + col];
+        for j in 0..w {
+            t[row * w + j] /= p;
+        }
+        for k in 0..=F {
+            if k != row {
+                let f = t[k * w + col];
+                if f != 0.0 {
+                    for j in 0..w {
+                        t[k * w + j] -= f * t[row * w + j];
+                    }
+                }
+            }
+        }
+    }
+    // Dual values: the reduced costs of the slacks.
+    let y: [f64; F] = std::array::from_fn(|k| t[F * w + n + k].max(0.0));
+    let sum: f64 = y.iter().sum();
+    if !(sum.is_finite() && sum > 0.0) {
+        return None;
+    }
+    let lam = y.map(|v| v / sum);
+    let value = rows.iter().map(|r| (0..F).map(|k| lam[k] * r[k]).sum::<f64>()).fold(f64::NEG_INFINITY, f64::max);
+    (value < 0.0).then_some(lam)
 }
 
 #[cfg(test)]
@@ -202,6 +309,29 @@ mod tests {
         cut.coef[0] = c0 + shift * spread + cut.err;
         cut.coef[Cut::U | Cut::T] = (next() - 0.5) * 1e-3 * spread;
         cut
+    }
+
+    #[test]
+    fn minimax_multipliers_solve_small_games() {
+        // Two functions, each negative where the other is positive: the even mix is
+        // -0.5 everywhere, the best any mix can do.
+        let rows = [[1.0, -2.0], [-2.0, 1.0]];
+        let l = minimax_multipliers(&rows).expect("a negative value");
+        assert!((l[0] - 0.5).abs() < 1e-12 && (l[1] - 0.5).abs() < 1e-12, "{l:?}");
+        // A game whose value is 0: no multipliers.
+        assert!(minimax_multipliers(&[[1.0, -1.0], [-1.0, 1.0]]).is_none());
+        // One function negative everywhere: it alone.
+        let l = minimax_multipliers(&[[1.0, -1.0, 3.0], [2.0, -0.5, 1.0], [0.5, -2.0, 1.0]]).unwrap();
+        assert!(l[1] > 0.999, "{l:?}");
+        // Three functions, none negative alone or in pairs over all rows, the three
+        // together negative: the programme finds the mix (checked by its value).
+        let rows = [[1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, 1.0], [-0.2, -0.2, -0.2]];
+        let l = minimax_multipliers(&rows).unwrap();
+        let worst = rows.iter().map(|r| (0..3).map(|k| l[k] * r[k]).sum::<f64>()).fold(f64::MIN, f64::max);
+        // (the last row is -0.2 for every mix; the first three need all three weights)
+        assert!(worst < -0.2 + 1e-9 && l.iter().all(|&v| v > 0.0), "{l:?} {worst}");
+        // Non-finite values: none.
+        assert!(minimax_multipliers(&[[f64::NAN, -1.0]]).is_none());
     }
 
     #[test]
