@@ -384,6 +384,53 @@ pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared)
     })
 }
 
+/// The outcome of re-judging one file's case against another method
+/// (`replay --method ID`).
+#[derive(Clone, Debug, Serialize)]
+pub struct Rejudge {
+    pub path: String,
+    /// The method the file was written for.
+    pub found_for: String,
+    /// The method judged now.
+    pub method: String,
+    /// The stored witness (if any) under the new method: Ok((bound, margin)) when it
+    /// still culls it, or why not.
+    pub witness: Option<std::result::Result<(String, f64), String>>,
+    /// The fresh judgement: "violation", "proven", "unproven (reasons)".
+    pub judged: String,
+    /// "fixed" (proven afresh, the stored witness no longer culled), "still violated"
+    /// (a violation found afresh, or the stored witness still culled) or "unproven".
+    pub outcome: &'static str,
+}
+
+/// Re-judge the case of one file against `method` in place of the file's own (under
+/// the file's sample set, snap and viewport, or those in `over`), with the whole side
+/// budget: does a fixed bound still cull the stored witness, and is it proven on the
+/// case?
+pub fn rejudge(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared, method: &str) -> Result<Rejudge> {
+    let cf = CaseFile::load(path)?;
+    let m = method_of(method).ok_or_else(|| anyhow::anyhow!("--method {method}: no such method (see `cullproof methods`)"))?;
+    let mut cfg = CheckConfig { side_stall: 0, ..cf.settings(cfg) };
+    over.apply(&mut cfg);
+    let witness =
+        cf.witness.as_ref().map(|w| witness_holds_in(m, &cf.case, &cf.tile, w.sample, cfg.sample_set, cfg.snap));
+    let (js, _) = judge(&cfg, &[crate::bounds::shared(m)], &cf.case, &cf.tile, cf.provenance.case_index);
+    let j = &js[0];
+    let outcome = match (j.verdict(), &witness) {
+        (crate::check::Verdict::Violated, _) | (_, Some(Ok(_))) => "still violated",
+        (crate::check::Verdict::Proven, _) => "fixed",
+        (crate::check::Verdict::Unproven, _) => "unproven",
+    };
+    Ok(Rejudge {
+        path: path.display().to_string(),
+        found_for: cf.method,
+        method: method.to_string(),
+        witness,
+        judged: judged_word(j),
+        outcome,
+    })
+}
+
 /// Every `*.json` file under the paths (files are taken as given, directories walked).
 pub fn case_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
     let mut out = Vec::new();

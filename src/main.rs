@@ -314,6 +314,12 @@ enum Cmd {
     Replay {
         /// Case files or directories.
         paths: Vec<PathBuf>,
+        /// Re-judge every file's case against this method instead of the one the file
+        /// was written for (e.g. a fixed bound): one line per file, "fixed" (proven,
+        /// the stored witness no longer culled), "still violated" or "unproven"; exit 1
+        /// unless every file is fixed.
+        #[arg(long)]
+        method: Option<String>,
         /// Write the JSON report to this file ("-" for standard output).
         #[arg(long)]
         json: Option<PathBuf>,
@@ -773,12 +779,39 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
         }
-        Cmd::Replay { paths, json, sample } => {
+        Cmd::Replay { paths, method, json, sample } => {
             let over = sample.parse()?;
             check_json(&json)?;
             let paths = if paths.is_empty() { vec![PathBuf::from("corpus/cases")] } else { paths };
             let files = cullproof::corpus::case_files(&paths)?;
             let cfg = cullproof::check::CheckConfig::default_with(cullproof::bounds::registry());
+            if let Some(id) = method {
+                anyhow::ensure!(
+                    cullproof::corpus::method_of(&id).is_some(),
+                    "--method {id}: no such method (see `cullproof methods`)"
+                );
+                let mut out = Vec::new();
+                for f in &files {
+                    out.push(cullproof::corpus::rejudge(f, &cfg, &over, &id)?);
+                }
+                for r in &out {
+                    let w = match &r.witness {
+                        Some(Ok((b, m))) => format!("stored witness still culled ({b}, margin {m:.3e})"),
+                        Some(Err(e)) => format!("stored witness: {e}"),
+                        None => "no stored witness".into(),
+                    };
+                    println!("{:<14} {} (found for {}): judged {}; {}", r.outcome, r.path, r.found_for, r.judged, w);
+                }
+                let fixed = out.iter().filter(|r| r.outcome == "fixed").count();
+                println!("{} file(s) against {id}: {fixed} fixed, {} not", out.len(), out.len() - fixed);
+                if let Some(p) = &json {
+                    write_json(p, &serde_json::to_string_pretty(&out)?)?;
+                }
+                if fixed < out.len() {
+                    exit(1);
+                }
+                return Ok(());
+            }
             let mut out = Vec::new();
             for f in &files {
                 out.push(cullproof::corpus::replay_with(f, &cfg, &over)?);

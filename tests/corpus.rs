@@ -95,3 +95,23 @@ fn a_witness_outside_the_domain_does_not_replay() {
     assert_eq!(tried, 6);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn replay_with_another_method_says_fixed_or_still_violated() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("corpus/cases/la2011");
+    let files = case_files(&[dir]).unwrap();
+    assert!(!files.is_empty());
+    let cfg = CheckConfig::default_with(cullproof::bounds::registry());
+    let none = cullproof::args::Declared::default();
+    for f in &files {
+        // The safe variant admits every stored witness and is proven on the case.
+        let r = cullproof::corpus::rejudge(f, &cfg, &none, "la2011-safe").unwrap();
+        assert_eq!((r.outcome, r.found_for.as_str()), ("fixed", "la2011"), "{}: {r:?}", f.display());
+        assert!(matches!(r.witness, Some(Err(_))), "{r:?}");
+        // The published method still culls its own witness.
+        let r = cullproof::corpus::rejudge(f, &cfg, &none, "la2011").unwrap();
+        assert_eq!(r.outcome, "still violated", "{}: {r:?}", f.display());
+    }
+    let e = cullproof::corpus::rejudge(&files[0], &cfg, &none, "no-such-bound").unwrap_err().to_string();
+    assert!(e.contains("no-such-bound"), "{e}");
+}
