@@ -409,7 +409,8 @@ pub struct Rejudge {
 /// case?
 pub fn rejudge(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared, method: &str) -> Result<Rejudge> {
     let cf = CaseFile::load(path)?;
-    let m = method_of(method).ok_or_else(|| anyhow::anyhow!("--method {method}: no such method (see `cullproof methods`)"))?;
+    let m = method_of(method)
+        .ok_or_else(|| anyhow::anyhow!("--method {method}: no such method (see `cullproof methods`)"))?;
     let mut cfg = CheckConfig { side_stall: 0, ..cf.settings(cfg) };
     over.apply(&mut cfg);
     let witness =

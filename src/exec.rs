@@ -453,6 +453,18 @@ impl Prepared for ExecPrep {
         if a.empty {
             return TileResult::Empty;
         }
+        // An interval is `[lo, hi]` with lo <= hi (a tile with nothing in it is
+        // `"empty": true`): anything else breaks the protocol.
+        for (name, r) in [("u", a.u), ("v", a.v), ("t", a.t), ("z", a.z)] {
+            if let Some([lo, hi]) = r {
+                if !(lo <= hi) {
+                    self.m.fail(
+                        &req,
+                        &format!("answer field `{name}` = [{lo}, {hi}]: an interval needs lo <= hi (a tile with nothing in it is \"empty\": true)"),
+                    );
+                }
+            }
+        }
         let full = TileBounds::full();
         let constraints = a
             .constraints

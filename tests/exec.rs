@@ -89,6 +89,17 @@ fn an_error_answer_is_reported_with_its_message() {
 }
 
 #[test]
+fn an_inverted_interval_is_reported_with_its_field() {
+    let body = r#"for line in sys.stdin:
+    print(json.dumps({"n": json.loads(line)["n"], "t": [0.75, 0.25]}), flush=True)"#;
+    fails_with(
+        &format!("python3 -c '{HELLO}{body}'"),
+        4,
+        "answer field `t` = [0.75, 0.25]: an interval needs lo <= hi",
+    );
+}
+
+#[test]
 fn a_silent_process_is_reported_after_the_timeout() {
     let cmd = format!("python3 -c '{HELLO}import time\ntime.sleep(60)'");
     let m = cullproof::exec::start(&cmd, Duration::from_secs(3)).unwrap();
