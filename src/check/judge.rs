@@ -26,7 +26,9 @@ pub enum Unproven {
     /// A culled tile whose occupancy the solver could not settle within its budget.
     TileUnknown,
     /// An interval side whose search ended with boxes beyond the claim still open (its
-    /// budget, its stall limit or the smallest box size): a gap, however small.
+    /// budget, its stall limit or the smallest box size), and (u, v, t) that its
+    /// decision as a constraint with its exact cut ([`super::side_cut`]) left open too:
+    /// a gap, however small.
     SideGap,
     /// A depth witness beyond the bound that the exact depth check did not confirm.
     DepthUnconfirmed,
