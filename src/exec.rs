@@ -457,7 +457,7 @@ impl Prepared for ExecPrep {
         // `"empty": true`): anything else breaks the protocol.
         for (name, r) in [("u", a.u), ("v", a.v), ("t", a.t), ("z", a.z)] {
             if let Some([lo, hi]) = r {
-                if !(lo <= hi) {
+                if lo.partial_cmp(&hi).is_none_or(|o| o == std::cmp::Ordering::Greater) {
                     self.m.fail(
                         &req,
                         &format!("answer field `{name}` = [{lo}, {hi}]: an interval needs lo <= hi (a tile with nothing in it is \"empty\": true)"),
