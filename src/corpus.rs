@@ -344,6 +344,27 @@ fn judged_word(j: &Judgement) -> String {
     }
 }
 
+/// A stored witness re-decided: Ok((bound, margin)) when the method still culls it, or
+/// why not; None when the file holds no witness.
+pub type WitnessCheck = Option<std::result::Result<(String, f64), String>>;
+
+/// The stored witness re-decided under `m` and a fresh judgement of `m` on the file's
+/// case, under the file's settings (or those in `over`) with the whole side budget;
+/// with the settings used.
+fn judge_file(
+    cf: &CaseFile,
+    m: &'static dyn Method,
+    cfg: &CheckConfig,
+    over: &crate::args::Declared,
+) -> (WitnessCheck, Judgement, CheckConfig) {
+    let mut cfg = CheckConfig { side_stall: 0, ..cf.settings(cfg) };
+    over.apply(&mut cfg);
+    let witness =
+        cf.witness.as_ref().map(|w| witness_holds_in(m, &cf.case, &cf.tile, w.sample, cfg.sample_set, cfg.snap));
+    let (mut js, _) = judge(&cfg, &[crate::bounds::shared(m)], &cf.case, &cf.tile, cf.provenance.case_index);
+    (witness, js.swap_remove(0), cfg)
+}
+
 /// Re-judge one case file, with the whole side budget (one case: no stall cut-off).
 /// The file's sample set, snap and viewport are used.
 pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
@@ -355,12 +376,8 @@ pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
 pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared) -> Result<Replay> {
     let cf = CaseFile::load(path)?;
     let m = method_of(&cf.method).expect("checked at load");
-    let mut cfg = CheckConfig { side_stall: 0, ..cf.settings(cfg) };
-    over.apply(&mut cfg);
-    let witness =
-        cf.witness.as_ref().map(|w| witness_holds_in(m, &cf.case, &cf.tile, w.sample, cfg.sample_set, cfg.snap));
-    let (js, _) = judge(&cfg, &[crate::bounds::shared(m)], &cf.case, &cf.tile, cf.provenance.case_index);
-    let j = &js[0];
+    let (witness, j, cfg) = judge_file(&cf, m, cfg, over);
+    let j = &j;
     let judged = judged_word(j);
     let ok = match cf.expected {
         // The stored witness must still hold, and the fresh judgement must not
@@ -411,12 +428,8 @@ pub fn rejudge(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared, met
     let cf = CaseFile::load(path)?;
     let m = method_of(method)
         .ok_or_else(|| anyhow::anyhow!("--method {method}: no such method (see `cullproof methods`)"))?;
-    let mut cfg = CheckConfig { side_stall: 0, ..cf.settings(cfg) };
-    over.apply(&mut cfg);
-    let witness =
-        cf.witness.as_ref().map(|w| witness_holds_in(m, &cf.case, &cf.tile, w.sample, cfg.sample_set, cfg.snap));
-    let (js, _) = judge(&cfg, &[crate::bounds::shared(m)], &cf.case, &cf.tile, cf.provenance.case_index);
-    let j = &js[0];
+    let (witness, j, _) = judge_file(&cf, m, cfg, over);
+    let j = &j;
     let outcome = match (j.verdict(), &witness) {
         (crate::check::Verdict::Violated, _) | (_, Some(Ok(_))) => "still violated",
         (crate::check::Verdict::Proven, _) => "fixed",
