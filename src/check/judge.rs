@@ -138,6 +138,11 @@ impl Judgement {
     pub fn unproven(&self) -> Vec<Unproven> {
         Unproven::ALL.into_iter().filter(|r| self.unproven & r.bit() != 0).collect()
     }
+    /// Count one probed interval end of kind `name`, tight or not ([`Judgement::tight`]).
+    fn tally_end(&mut self, name: &str, tight: bool) {
+        let e = self.tight.entry(name.to_string()).or_insert((0, 0));
+        (e.0, e.1) = (e.0 + 1, e.1 + tight as u32);
+    }
     pub fn add_unproven(&mut self, r: Unproven) {
         self.unproven |= r.bit();
     }
@@ -352,8 +357,7 @@ impl<'a> TileJudge<'a> {
         }
         let w = self.solver.witness_near(ext, bound, TIGHT_DELTA, TIGHT_BUDGET);
         let tight = w.is_some_and(|w| in_domain(&self.tile, w));
-        let e = j.tight.entry(name.to_string()).or_insert((0, 0));
-        (e.0, e.1) = (e.0 + 1, e.1 + tight as u32);
+        j.tally_end(name, tight);
     }
 
     /// A u, v or t side whose extent search left a gap, decided by the constraint
@@ -426,8 +430,7 @@ impl<'a> TileJudge<'a> {
                         continue;
                     }
                     if coord.is_some() {
-                        let e = j.tight.entry(name.clone()).or_insert((0, 0));
-                        (e.0, e.1) = (e.0 + 1, e.1 + 1);
+                        j.tally_end(&name, true);
                     }
                     j.consider(self.witness(w, name, (value - bound).abs()));
                     let axis = coord.unwrap_or(5);
@@ -446,10 +449,9 @@ impl<'a> TileJudge<'a> {
                         // constraint with its exact linear cut (u, v and t sides).
                         match coord.map(|c| self.decide_side(c, bound as f32, is_max)) {
                             Some(ConstraintVerdict::Proved) => self.probe_tight(j, ext, bound, &name),
-                            Some(ConstraintVerdict::Violation(s)) => {
+                            Some(ConstraintVerdict::Violation(s)) if in_domain(&tile, s.to_oracle()) => {
                                 let w = s.to_oracle();
-                                let e = j.tight.entry(name.clone()).or_insert((0, 0));
-                                (e.0, e.1) = (e.0 + 1, e.1 + 1);
+                                j.tally_end(&name, true);
                                 j.consider(self.witness(w, name, (w[coord.unwrap_or(4)] - bound).abs()));
                                 found.push(s);
                             }
