@@ -6,70 +6,22 @@
 //! deadline; a run that would check its outputs only at the end is given work that
 //! takes far longer than the deadline, so it can pass only by failing first.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+#[allow(dead_code)]
+mod common;
+
+use common::{scratch, Cli, Run};
+use std::path::Path;
+use std::time::Duration;
 
 /// Every invocation here is an error before any work, or a tiny run.
 const DEADLINE: Duration = Duration::from_secs(60);
 
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-    what: String,
-}
-
+/// `cullproof ARGS` under [`DEADLINE`]; running past it fails the test.
 fn run(args: &[&str]) -> Run {
-    let what = format!("cullproof {}", args.join(" "));
-    let what = if what.len() > 300 { format!("{}...", &what[..300]) } else { what };
-    let mut child = Command::new(env!("CARGO_BIN_EXE_cullproof"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("RUST_BACKTRACE", "0")
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap_or_else(|e| panic!("{what}: cannot start: {e}"));
-    let mut out = child.stdout.take().unwrap();
-    let mut err = child.stderr.take().unwrap();
-    let to = std::thread::spawn(move || {
-        let mut s = Vec::new();
-        std::io::Read::read_to_end(&mut out, &mut s).ok();
-        String::from_utf8_lossy(&s).into_owned()
-    });
-    let te = std::thread::spawn(move || {
-        let mut s = Vec::new();
-        std::io::Read::read_to_end(&mut err, &mut s).ok();
-        String::from_utf8_lossy(&s).into_owned()
-    });
-    let start = Instant::now();
-    let status = loop {
-        if let Some(st) = child.try_wait().unwrap() {
-            break st;
-        }
-        if start.elapsed() > DEADLINE {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("{what}: still running after {DEADLINE:?} (killed): the error did not come before the work");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    };
-    Run { code: status.code(), stdout: to.join().unwrap(), stderr: te.join().unwrap(), what }
+    Cli::new(args).deadline(DEADLINE).late_means("the error did not come before the work").run()
 }
 
 impl Run {
-    fn no_panic(&self) -> &Self {
-        assert!(
-            !self.stderr.contains("panicked") && self.code.is_some() && self.code != Some(101),
-            "{}: panicked or aborted (exit {:?}):\n{}",
-            self.what,
-            self.code,
-            self.stderr
-        );
-        self
-    }
     /// Exit 2 with every `needle` on stderr, and nothing on stdout (no work reported).
     fn fails_first(&self, needles: &[&str]) -> &Self {
         self.no_panic();
@@ -80,24 +32,6 @@ impl Run {
         assert!(self.stdout.is_empty(), "{}: work was reported before the error:\n{}", self.what, self.stdout);
         self
     }
-    fn ran(&self) -> &Self {
-        self.no_panic();
-        assert!(
-            matches!(self.code, Some(0) | Some(1)),
-            "{}: expected a run (exit 0 or 1), got {:?}:\n{}",
-            self.what,
-            self.code,
-            self.stderr
-        );
-        self
-    }
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("cullproof-fail-early-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 fn entries(d: &Path) -> Vec<String> {

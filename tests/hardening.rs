@@ -4,71 +4,22 @@
 //! `corpus/expectations.json` is found) under a deadline; the ones that do run work use
 //! the smallest settings there are.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+#[allow(dead_code)]
+mod common;
+
+use common::{scratch, Run};
+use std::path::Path;
+use std::time::Duration;
 
 /// No invocation here may take longer (each is an error before any work, or a tiny run).
 const DEADLINE: Duration = Duration::from_secs(120);
 
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-    what: String,
-}
-
+/// `cullproof ARGS` under [`DEADLINE`]; running past it fails the test.
 fn run(args: &[&str]) -> Run {
-    let what = format!("cullproof {}", args.join(" "));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_cullproof"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("RUST_BACKTRACE", "0")
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap_or_else(|e| panic!("{what}: cannot start: {e}"));
-    // Drain the pipes on threads (a full pipe would stall the child).
-    let mut out = child.stdout.take().unwrap();
-    let mut err = child.stderr.take().unwrap();
-    let to = std::thread::spawn(move || {
-        let mut s = String::new();
-        std::io::Read::read_to_string(&mut out, &mut s).ok();
-        s
-    });
-    let te = std::thread::spawn(move || {
-        let mut s = String::new();
-        std::io::Read::read_to_string(&mut err, &mut s).ok();
-        s
-    });
-    let start = Instant::now();
-    let status = loop {
-        if let Some(st) = child.try_wait().unwrap() {
-            break st;
-        }
-        if start.elapsed() > DEADLINE {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("{what}: still running after {DEADLINE:?} (killed)");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    };
-    Run { code: status.code(), stdout: to.join().unwrap(), stderr: te.join().unwrap(), what }
+    common::run(args, DEADLINE)
 }
 
 impl Run {
-    /// Never a panic or an abort (a signal leaves no exit code).
-    fn no_panic(&self) -> &Self {
-        assert!(
-            !self.stderr.contains("panicked") && self.code.is_some() && self.code != Some(101),
-            "{}: panicked or aborted (exit {:?}):\n{}",
-            self.what,
-            self.code,
-            self.stderr
-        );
-        self
-    }
     /// A usage error: exit 2 and every `needle` on stderr.
     fn usage_error(&self, needles: &[&str]) -> &Self {
         self.no_panic();
@@ -87,24 +38,6 @@ impl Run {
         }
         self
     }
-    /// A run that did its work (0: pass, 1: a judged failure; not an error).
-    fn ran(&self) -> &Self {
-        self.no_panic();
-        assert!(
-            matches!(self.code, Some(0) | Some(1)),
-            "{}: expected a run (exit 0 or 1), got {:?}:\n{}",
-            self.what,
-            self.code,
-            self.stderr
-        );
-        self
-    }
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("cullproof-hardening-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 // ---------------------------------------------------------------------------

@@ -2,12 +2,14 @@
 //! proven by the gate, the broken one is caught, shrunk to a case file, and the file
 //! replays through the plugin.
 
+#[allow(dead_code)]
+mod common;
+
 use cullproof::bounds::{by_id, plug, Method};
 use cullproof::check::{run, CheckConfig, Expectations};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 use std::sync::OnceLock;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Compile `examples/c/bbox_safe.c` into a shared library (with `-DCULLPROOF_BROKEN`
 /// for the broken one) in this test's target directory.
@@ -197,46 +199,10 @@ fn a_library_of_another_abi_version_or_without_a_tile_test_is_refused() {
 
 // ---- Plugins held to their limits: caps, the watchdog, contract breaches. ----
 
-/// The exit code, stdout, stderr and wall time of the built binary on `args`, run from
-/// the repository root; killed (and the test failed) after `deadline`.
-fn cli(args: &[&str], deadline: Duration) -> (Option<i32>, String, String, Duration) {
-    let what = format!("cullproof {}", args.join(" "));
-    let start = Instant::now();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_cullproof"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("RUST_BACKTRACE", "0")
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap_or_else(|e| panic!("{what}: cannot start: {e}"));
-    let drain = |mut r: Box<dyn std::io::Read + Send>| {
-        std::thread::spawn(move || {
-            let mut s = String::new();
-            r.read_to_string(&mut s).ok();
-            s
-        })
-    };
-    let (out, err) = (drain(Box::new(child.stdout.take().unwrap())), drain(Box::new(child.stderr.take().unwrap())));
-    let status = loop {
-        if let Some(st) = child.try_wait().unwrap() {
-            break st;
-        }
-        if start.elapsed() > deadline {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("{what}: still running after {deadline:?} (killed)");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    };
-    let took = start.elapsed();
-    (status.code(), out.join().unwrap(), err.join().unwrap(), took)
-}
-
-/// A run that must stop with exit code 2 and a message, never a panic or an abort.
+/// A run that must stop with exit code 2 and a message within `deadline`, never a panic
+/// or an abort.
 fn stops_with(args: &[&str], deadline: Duration, needles: &[&str]) -> Duration {
-    let (code, _, err, took) = cli(args, deadline);
+    let common::Run { code, stderr: err, took, .. } = common::run(args, deadline);
     assert_eq!(code, Some(2), "cullproof {}: exit {code:?} (a signal leaves none), stderr:\n{err}", args.join(" "));
     assert!(!err.contains("panicked"), "{err}");
     for n in needles {
@@ -381,7 +347,7 @@ fn contract_breaches_are_counted_and_judged_fail_safe() {
 fn the_command_line_reports_contract_breaches_on_stderr_and_in_json() {
     let lib = compile_text(BREACH, "breach_cli");
     let json = Path::new(env!("CARGO_TARGET_TMPDIR")).join("breach-report.json");
-    let (code, _, err, _) = cli(
+    let common::Run { code, stderr: err, .. } = common::run(
         &[
             "check",
             "--plugin",
