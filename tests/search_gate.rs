@@ -3,34 +3,34 @@
 //! a case file and fails the run (exit 1), one inside it is only counted. Each test runs
 //! the built binary from the repository root with a short `--time`.
 
+#[allow(dead_code)]
+mod common;
+
+use common::{scratch, Cli, Run};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-struct Out {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
+/// `cullproof search --method METHOD --gate` for `time` seconds at `seed` on one job,
+/// then `extra`; no deadline (the search stops itself).
+fn gated_search(method: &str, time: &str, seed: &str, extra: &[&str]) -> Run {
+    Cli::new(&["search", "--method", method, "--gate", "--time", time, "--seed", seed, "--jobs", "1"]).args(extra).run()
 }
 
-fn cullproof(args: &[&str]) -> Out {
-    let o = Command::new(env!("CARGO_BIN_EXE_cullproof"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("RUST_BACKTRACE", "0")
-        .output()
-        .unwrap_or_else(|e| panic!("cullproof {}: cannot start: {e}", args.join(" ")));
-    Out {
-        code: o.status.code(),
-        stdout: String::from_utf8_lossy(&o.stdout).into(),
-        stderr: String::from_utf8_lossy(&o.stderr).into(),
-    }
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("cullproof-search-gate-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// Writes `dir/expectations.json`, a signature for `la2011-safe` (so for its planted
+/// slip) that lists every kind the slip can violate with a generous cap, in at most
+/// `max_rate` of the cases (`why` says what it is for); then runs the slip's gated
+/// search under it in the motion regime (8 s, seed 3) with `extra` flags.
+fn slip_under_every_kind(dir: &Path, why: &str, max_rate: &str, extra: &[&str]) -> Run {
+    let ex = dir.join("expectations.json");
+    let sig = format!(
+        r#"{{"expect": "violation", "why": "{why}",
+        "bounds": {{"u min": 10, "u max": 10, "v min": 10, "v max": 10, "t min": 10, "t max": 10,
+                   "tile culled": "inf", "NaN interval end": "inf"}}, "max_rate": {max_rate}}}"#
+    );
+    std::fs::write(&ex, format!(r#"{{"la2011-safe": {{"*": {sig}}}}}"#)).unwrap();
+    let ex = ex.to_str().unwrap();
+    let mut args = vec!["--expectations", ex, "--regime", "motion"];
+    args.extend_from_slice(extra);
+    gated_search("broken/shrink/la2011-safe", "8", "3", &args)
 }
 
 fn json_files(dir: &Path) -> Vec<PathBuf> {
@@ -47,24 +47,12 @@ fn a_planted_slip_is_beyond_the_signature_and_written() {
     let report = dir.join("report.json");
     let out = dir.join("cases");
     let id = "broken/shrink/la2011-safe";
-    let r = cullproof(&[
-        "search",
-        "--method",
+    let r = gated_search(
         id,
-        "--gate",
-        "--time",
         "25",
-        "--max",
-        "1",
-        "--seed",
         "3",
-        "--jobs",
-        "1",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-        report.to_str().unwrap(),
-    ]);
+        &["--max", "1", "--out", out.to_str().unwrap(), "--json", report.to_str().unwrap()],
+    );
     assert_eq!(r.code, Some(1), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
     let line = r.stdout.lines().find(|l| l.starts_with("beyond the signature:")).unwrap_or_else(|| {
         panic!("no finding line:\n{}", r.stdout);
@@ -95,20 +83,7 @@ fn a_planted_slip_is_beyond_the_signature_and_written() {
 fn a_clean_safe_method_passes_a_short_gated_search() {
     let dir = scratch("safe");
     let out = dir.join("cases");
-    let r = cullproof(&[
-        "search",
-        "--method",
-        "la2011-safe",
-        "--gate",
-        "--time",
-        "8",
-        "--seed",
-        "5",
-        "--jobs",
-        "1",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let r = gated_search("la2011-safe", "8", "5", &["--out", out.to_str().unwrap()]);
     assert_eq!(r.code, Some(0), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
     assert!(r.stdout.contains("0 finding(s) beyond the signature"), "{}", r.stdout);
     assert!(json_files(&out).is_empty());
@@ -121,33 +96,14 @@ fn a_clean_safe_method_passes_a_short_gated_search() {
 #[test]
 fn violations_inside_a_given_signature_are_only_counted() {
     let dir = scratch("within");
-    let ex = dir.join("expectations.json");
-    let sig = r#"{"expect": "violation", "why": "test: a planted slip, every kind listed",
-        "bounds": {"u min": 10, "u max": 10, "v min": 10, "v max": 10, "t min": 10, "t max": 10,
-                   "tile culled": "inf", "NaN interval end": "inf"}, "max_rate": 1}"#;
-    std::fs::write(&ex, format!(r#"{{"la2011-safe": {{"*": {sig}}}}}"#)).unwrap();
     let report = dir.join("report.json");
     let out = dir.join("cases");
-    let r = cullproof(&[
-        "search",
-        "--method",
-        "broken/shrink/la2011-safe",
-        "--gate",
-        "--expectations",
-        ex.to_str().unwrap(),
-        "--regime",
-        "motion",
-        "--time",
-        "8",
-        "--seed",
-        "3",
-        "--jobs",
+    let r = slip_under_every_kind(
+        &dir,
+        "test: a planted slip, every kind listed",
         "1",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-        report.to_str().unwrap(),
-    ]);
+        &["--out", out.to_str().unwrap(), "--json", report.to_str().unwrap()],
+    );
     assert_eq!(r.code, Some(0), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
     let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert!(j["violated_cases"].as_u64().unwrap() > 0, "the slip shows no violation in 8 s: {j}");
@@ -157,7 +113,7 @@ fn violations_inside_a_given_signature_are_only_counted() {
     assert!(json_files(&out).is_empty());
 
     let missing = dir.join("nope.json");
-    let r = cullproof(&[
+    let r = Cli::new(&[
         "search",
         "--method",
         "la2011",
@@ -167,7 +123,8 @@ fn violations_inside_a_given_signature_are_only_counted() {
         "1",
         "--expectations",
         missing.to_str().unwrap(),
-    ]);
+    ])
+    .run();
     assert_eq!(r.code, Some(2), "{}", r.stderr);
     assert!(r.stderr.contains("--expectations") && r.stderr.contains("nope.json"), "{}", r.stderr);
     std::fs::remove_dir_all(&dir).ok();
@@ -183,21 +140,7 @@ fn violations_inside_a_given_signature_are_only_counted() {
 fn a_looser_or_more_often_wrong_method_breaks_the_signature_as_a_whole() {
     let dir = scratch("whole");
     let report = dir.join("report.json");
-    let r = cullproof(&[
-        "search",
-        "--method",
-        "broken/loose/la2011",
-        "--gate",
-        "--time",
-        "10",
-        "--seed",
-        "7",
-        "--jobs",
-        "1",
-        "--dry-run",
-        "--json",
-        report.to_str().unwrap(),
-    ]);
+    let r = gated_search("broken/loose/la2011", "10", "7", &["--dry-run", "--json", report.to_str().unwrap()]);
     assert_eq!(r.code, Some(1), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
     assert!(
         r.stdout.lines().any(|l| l.starts_with("beyond the signature: broken/loose/la2011, looser over all regimes:")),
@@ -209,47 +152,12 @@ fn a_looser_or_more_often_wrong_method_breaks_the_signature_as_a_whole() {
     assert!(j["regimes"].as_array().unwrap().iter().any(|g| g["tight"]["u min"]["probed"].as_u64() > Some(20)));
 
     // The clean method on the same seed and time: no breach of the whole.
-    let r = cullproof(&[
-        "search",
-        "--method",
-        "la2011",
-        "--gate",
-        "--time",
-        "10",
-        "--seed",
-        "7",
-        "--jobs",
-        "1",
-        "--dry-run",
-        "--json",
-        report.to_str().unwrap(),
-    ]);
+    let r = gated_search("la2011", "10", "7", &["--dry-run", "--json", report.to_str().unwrap()]);
     let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert!(j["breaches"].as_array().unwrap().is_empty(), "{}", r.stdout);
 
     // Rate: every kind listed with a generous cap, but at most 1 % of cases.
-    let ex = dir.join("expectations.json");
-    let sig = r#"{"expect": "violation", "why": "test: a planted slip at a low rate cap",
-        "bounds": {"u min": 10, "u max": 10, "v min": 10, "v max": 10, "t min": 10, "t max": 10,
-                   "tile culled": "inf", "NaN interval end": "inf"}, "max_rate": 0.01}"#;
-    std::fs::write(&ex, format!(r#"{{"la2011-safe": {{"*": {sig}}}}}"#)).unwrap();
-    let r = cullproof(&[
-        "search",
-        "--method",
-        "broken/shrink/la2011-safe",
-        "--gate",
-        "--expectations",
-        ex.to_str().unwrap(),
-        "--regime",
-        "motion",
-        "--time",
-        "8",
-        "--seed",
-        "3",
-        "--jobs",
-        "1",
-        "--dry-run",
-    ]);
+    let r = slip_under_every_kind(&dir, "test: a planted slip at a low rate cap", "0.01", &["--dry-run"]);
     assert_eq!(r.code, Some(1), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
     assert!(
         r.stdout.contains("regime motion: violation rate") && r.stdout.contains("above the cap 0.01"),
