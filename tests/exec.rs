@@ -2,6 +2,10 @@
 //! conservative, its planted bug is caught, its declared constraint is certified, and a
 //! process that fails is reported, never taken for an answer.
 
+#[allow(dead_code)]
+mod common;
+
+use common::Cli;
 use cullproof::bounds::Method;
 use cullproof::check::{run, CheckConfig, CheckReport, Expectations};
 use std::path::Path;
@@ -125,13 +129,10 @@ fn a_bad_greeting_is_an_error_naming_the_command() {
 #[test]
 fn exec_alone_gates_only_the_plugged_bound() {
     let json = std::env::temp_dir().join(format!("cullproof-exec-alone-{}.json", std::process::id()));
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_cullproof"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(["--exec", &python(""), "check", "--cases", "16", "--jobs", "1", "--json", json.to_str().unwrap()])
-        .output()
-        .expect("runs");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(out.status.code(), Some(0), "{text}\n{}", String::from_utf8_lossy(&out.stderr));
+    let out =
+        Cli::new(&["--exec", &python(""), "check", "--cases", "16", "--jobs", "1", "--json", json.to_str().unwrap()])
+            .run();
+    assert_eq!(out.code, Some(0), "{}\n{}", out.stdout, out.stderr);
     let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).expect("JSON");
     std::fs::remove_file(&json).ok();
     let mut ids: Vec<String> =

@@ -4,9 +4,12 @@
 //! not a report). Each is refused with exit code 2 and an error naming the file and the
 //! field, never a panic; the untampered shards still merge into the unsharded run.
 
+#[allow(dead_code)]
+mod common;
+
+use common::{Cli, Run};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use std::sync::OnceLock;
 
 fn root() -> &'static Path {
@@ -26,17 +29,10 @@ fn dir() -> PathBuf {
 }
 
 /// `cullproof ARGS` with the corpus's expectations and baseline.
-fn cullproof(args: &[&str]) -> Output {
+fn cullproof(args: &[&str]) -> Run {
     let ex = root().join("corpus/expectations.json");
     let base = root().join("corpus/baseline.json");
-    Command::new(env!("CARGO_BIN_EXE_cullproof"))
-        .args(args)
-        .arg("--expectations")
-        .arg(&ex)
-        .arg("--baseline")
-        .arg(&base)
-        .output()
-        .unwrap()
+    Cli::new(args).args(&["--expectations", ex.to_str().unwrap(), "--baseline", base.to_str().unwrap()]).run()
 }
 
 /// `check` of a small run with `extra` flags, its JSON report written to `name`: unless
@@ -54,7 +50,7 @@ fn check(name: &str, extra: &[&str]) -> PathBuf {
     args.extend_from_slice(extra);
     let out = cullproof(&args);
     // 1: a row failed; the report is written all the same
-    assert!(matches!(out.status.code(), Some(0 | 1)), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(matches!(out.code, Some(0 | 1)), "{}", out.stderr);
     p
 }
 
@@ -89,7 +85,7 @@ fn tampered_shard(k: usize, name: &str, f: impl FnOnce(&mut Value)) -> PathBuf {
     p
 }
 
-fn merge(files: &[&Path]) -> Output {
+fn merge(files: &[&Path]) -> Run {
     let mut args = vec!["merge"];
     args.extend(files.iter().map(|p| p.to_str().unwrap()));
     cullproof(&args)
@@ -100,15 +96,15 @@ fn merge(files: &[&Path]) -> Output {
 fn refused(bad: &Path, words: &[&str]) -> String {
     let s = shards();
     let out = merge(&[&s[0], bad, &s[2]]);
-    let err = String::from_utf8_lossy(&out.stderr).to_string();
-    assert_eq!(out.status.code(), Some(2), "{}: {err}", bad.display());
+    let err = out.stderr.clone();
+    assert_eq!(out.code, Some(2), "{}: {err}", bad.display());
     assert!(!err.contains("panicked"), "{err}");
     let name = bad.file_name().unwrap().to_str().unwrap();
     assert!(err.contains(name), "the error names the file {name}: {err}");
     for w in words {
         assert!(err.contains(w), "the error says {w:?}: {err}");
     }
-    assert!(out.stdout.is_empty(), "no table for a refused merge: {}", String::from_utf8_lossy(&out.stdout));
+    assert!(out.stdout.is_empty(), "no table for a refused merge: {}", out.stdout);
     err
 }
 
@@ -126,8 +122,8 @@ fn a_clean_merge_passes_and_is_the_unsharded_run() {
     // any order
     args.extend([&s[2], &s[0], &s[1]].iter().map(|p| p.to_str().unwrap()));
     let out = cullproof(&args);
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(out.status.code(), Some(0), "{text}{}", String::from_utf8_lossy(&out.stderr));
+    let text = &out.stdout;
+    assert_eq!(out.code, Some(0), "{text}{}", out.stderr);
     assert!(text.contains("verdict: PASS"), "{text}");
     let (mut merged, mut whole) = (read(&out_json), read(&s[3]));
     merged["seconds"] = Value::Null;
@@ -246,22 +242,22 @@ fn every_shard_exactly_once() {
     let copy = dir().join("copy-of-shard-0.json");
     std::fs::copy(&s[0], &copy).unwrap();
     let out = merge(&[&s[0], &s[1], &s[2], &copy]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    let err = &out.stderr;
+    assert_eq!(out.code, Some(2), "{err}");
     assert!(err.contains("copy-of-shard-0.json: field `run.shard` = 0/3: shard 0 is also"), "{err}");
     assert!(err.contains(&format!("is also {} (each shard once)", s[0].display())), "{err}");
     // the same file twice: both arguments named
     let out = merge(&[&s[0], &s[1], &s[2], &s[0]]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    let err = &out.stderr;
+    assert_eq!(out.code, Some(2), "{err}");
     assert!(
         err.contains("(argument 4)") && err.contains("(argument 1)") && err.contains("the same file given twice"),
         "{err}"
     );
     // one missing
     let out = merge(&[&s[0], &s[2]]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    let err = &out.stderr;
+    assert_eq!(out.code, Some(2), "{err}");
     assert!(err.contains("shard 1/3 is missing"), "{err}");
     // a shard of another count
     let p = check("shard-1-of-2.json", &["--shard", "1/2"]);
@@ -310,8 +306,8 @@ fn what_is_not_a_report_is_refused_without_a_panic() {
     let a = tampered("boxes-max.json", |v| v["solver_boxes"] = json!(u64::MAX));
     let b = tampered_shard(2, "boxes-max-too.json", |v| v["solver_boxes"] = json!(u64::MAX));
     let out = merge(&[&shards()[0], &a, &b]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    let err = &out.stderr;
+    assert_eq!(out.code, Some(2), "{err}");
     assert!(err.contains("boxes-max-too.json: field `solver_boxes`") && err.contains("exceeds 2^64"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
     let p = tampered("rows-not-a-list.json", |v| v["rows"] = json!({"a": 1}));
@@ -355,7 +351,7 @@ fn shards_under_a_viewport_merge_with_their_unplaced_cases() {
     let mut args = vec!["merge", "--json", out_json.to_str().unwrap()];
     args.extend(s.iter().map(|p| p.to_str().unwrap()));
     let out = cullproof(&args);
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(out.code, Some(0), "{}", out.stderr);
     let (mut merged, mut whole) = (read(&out_json), read(&whole));
     merged["seconds"] = Value::Null;
     whole["seconds"] = Value::Null;
@@ -369,7 +365,7 @@ fn shards_under_a_viewport_merge_with_their_unplaced_cases() {
     let mut files: Vec<&Path> = s.iter().map(|p| p.as_path()).collect();
     files[k] = &bad;
     let out = merge(&files);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    let err = &out.stderr;
+    assert_eq!(out.code, Some(2), "{err}");
     assert!(err.contains("vp-outside.json: field `samples.outside_viewport` = 1000 exceeds the 32 cases"), "{err}");
 }

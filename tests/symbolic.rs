@@ -2,6 +2,10 @@
 //! meaning of the code evaluates to the same bits as the f32 meaning, and a z3 model of
 //! bbox's f32 tile cull is confirmed as a violation by the exact judge.
 
+#[allow(dead_code)]
+mod common;
+
+use common::Cli;
 use cullproof::bounds::bbox::{aabb_of, rejects};
 use cullproof::bounds::{by_id, TileResult};
 use cullproof::symbolic::arith::{F32Arith, Plain, TriOf};
@@ -574,12 +578,9 @@ fn the_portfolio_finds_bbox_f32_tile_cull_in_narrow_ranges() {
 #[test]
 fn prove_runs_without_the_symbolic_flag() {
     let json = std::env::temp_dir().join(format!("cullproof-prove-noflag-{}.json", std::process::id()));
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_cullproof"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(["prove", "--method", "bbox", "--queries", "3", "--dry-run", "--json", json.to_str().unwrap()])
-        .output()
-        .expect("runs");
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let out =
+        Cli::new(&["prove", "--method", "bbox", "--queries", "3", "--dry-run", "--json", json.to_str().unwrap()]).run();
+    assert_eq!(out.code, Some(0), "{}", out.stderr);
     let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     std::fs::remove_file(&json).ok();
     assert_eq!(j["method"], "bbox");
