@@ -10,7 +10,7 @@
 //! triangle's edges pass.
 //!
 //! The default run attacks a few hundred tiles; `CULLPROOF_ATTACK_TILES=N` attacks N
-//! (the README gives the count of the long run).
+//! (docs/findings.md gives the count of the long run).
 
 use oracles::coverage::{classify, depth_enclosure, Coverage};
 use oracles::extents::{search, Box5, Extent, ExtentsConfig, ObjectiveResult, Search, Side, TileSolver};
