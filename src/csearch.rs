@@ -5,8 +5,8 @@
 //! every interior sample in it, when every constraint's interval evaluation
 //! ([`SampleConstraint::eval_box`](crate::bounds::SampleConstraint::eval_box), f32
 //! rounding included) is `>= 0` over it (nothing in it is culled), or when every
-//! constraint that may cull there offers a multilinear lower bound
-//! ([`SampleConstraint::lower_cut`](crate::bounds::SampleConstraint::lower_cut)) and the
+//! constraint that may cull there offers lower bounds
+//! ([`SampleConstraint::lower_cuts`](crate::bounds::SampleConstraint::lower_cuts)) and the
 //! exact (x, y) elimination certifies that no interior sample of the box makes that
 //! bound negative. When no constraint's lower bound depends on x or y, the pixels are
 //! never split (the elimination decides the whole pixel rectangle at once) and witness
@@ -109,7 +109,7 @@ impl Problem for ConstraintProblem<'_> {
             self.ended = Some(ConstraintVerdict::Undecided);
             return Flow::Stop;
         }
-        // The constraints that may cull in the box, with their multilinear lower bounds
+        // The constraints that may cull in the box, with their lower bounds (cuts)
         // where they offer one; the box is decided when every one of them is certified
         // to cull no interior sample (or the box holds none).
         let sb = sample_box(&b);
@@ -120,9 +120,8 @@ impl Problem for ConstraintProblem<'_> {
             if lo >= 0.0 {
                 continue;
             }
-            match c.lower_cut(&sb) {
-                Some(cut) => cuts.push(cut),
-                None => all_cut = false,
+            if !c.lower_cuts(&sb, &mut cuts) {
+                all_cut = false;
             }
         }
         if !all_cut {
@@ -242,7 +241,10 @@ pub fn search_with(
     let init_box = sample_box(&init);
     let xy_free = !split_pixels
         && bounds.constraints.iter().all(|c| {
-            c.lower_cut(&init_box).is_some_and(|cut| (0..32).all(|m| m & (Cut::X | Cut::Y) == 0 || cut.coef[m] == 0.0))
+            c.lower_cut(&init_box).is_some_and(|cut| {
+                (0..32).all(|m| m & (Cut::X | Cut::Y) == 0 || cut.coef[m] == 0.0)
+                    && (0..16).all(|m| m & (Cut::X | Cut::Y) == 0 || cut.t2[m] == 0.0)
+            })
         });
     let mut p = ConstraintProblem {
         tri,

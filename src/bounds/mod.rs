@@ -141,6 +141,22 @@ pub trait SampleConstraint: Send + Sync + std::fmt::Debug {
     fn lower_cut(&self, _b: &SampleBox) -> Option<Cut> {
         None
     }
+    /// Optionally, several cuts that vouch together: at every sample of the box where
+    /// *every* one of them has `P(s) >= err`, [`eval`](Self::eval) is NaN or `>= 0`. The
+    /// judge then certifies each one alone (no interior sample of the box makes it
+    /// negative), which needs no common multiplier where the constraint culls beyond
+    /// several edges at once (near a vertex). Pushes them to `out` and returns true, or
+    /// returns false when it offers none. The default offers
+    /// [`lower_cut`](Self::lower_cut)'s one cut.
+    fn lower_cuts(&self, b: &SampleBox, out: &mut Vec<Cut>) -> bool {
+        match self.lower_cut(b) {
+            Some(c) => {
+                out.push(c);
+                true
+            }
+            None => false,
+        }
+    }
 }
 
 /// The non-empty answer of a tile test.

@@ -32,22 +32,32 @@
 use super::lanes::{lconst, LPoly};
 use crate::interval::Interval;
 
-/// What a multilinear polynomial vouches for a per-sample cull value over a box: at
-/// every sample `s = (x, y, u, v, t)` of the box with `P(s) >= err`, the value is `>= 0`
-/// or NaN (the sample is not culled; a lower bound `value >= P(s) - err` gives that),
-/// with `P(s) = sum over m of coef[m] * prod of s_i for the bits i of m`
-/// (bit 0 x, bit 1 y, bit 2 u, bit 3 v, bit 4 t). The coefficients and `err` are exact
-/// real numbers (f64 values); `err >= 0`.
+/// What a polynomial vouches for a per-sample cull value over a box: at every sample
+/// `s = (x, y, u, v, t)` of the box with `P(s) >= err`, the value is `>= 0` or NaN (the
+/// sample is not culled; a lower bound `value >= P(s) - err` gives that), with
+/// `P(s) = sum over m of coef[m] * prod of s_i for the bits i of m
+///       + t^2 sum over m < 16 of t2[m] * prod of s_i for the bits i of m`
+/// (bit 0 x, bit 1 y, bit 2 u, bit 3 v, bit 4 t): multilinear, plus a square in t (the
+/// edge values of a moving triangle are quadratic in t). The coefficients and `err`
+/// are exact real numbers (f64 values); `err >= 0`.
+///
+/// A cut with `d_sign` 1 (or -1) is certified only against the interior samples whose
+/// `D` is positive (negative): a constraint whose culls are bounded differently on the
+/// two sides of a facing flip offers one family of cuts per side.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cut {
     pub coef: [f64; 32],
+    /// The coefficients of `t^2` times the monomials in x, y, u, v.
+    pub t2: [f64; 16],
     pub err: f64,
+    /// 0: every interior sample; 1 or -1: those whose D has that sign.
+    pub d_sign: i8,
 }
 
 impl Cut {
     /// The zero polynomial with no error.
     pub fn zero() -> Self {
-        Cut { coef: [0.0; 32], err: 0.0 }
+        Cut { coef: [0.0; 32], t2: [0.0; 16], err: 0.0, d_sign: 0 }
     }
     /// Bit masks of the coordinates: x, y, u, v, t.
     pub const X: usize = 1;
@@ -58,42 +68,66 @@ impl Cut {
 
     /// `P(s)` in plain f64 (an estimate, for tests and proposals only).
     pub fn estimate(&self, s: [f64; 5]) -> f64 {
-        (0..32)
+        let lin: f64 = (0..32)
             .filter(|&m| self.coef[m] != 0.0)
             .map(|m| (0..5).filter(|i| m >> i & 1 == 1).fold(self.coef[m], |a, i| a * s[i]))
-            .sum()
+            .sum();
+        let sq: f64 = (0..16)
+            .filter(|&m| self.t2[m] != 0.0)
+            .map(|m| (0..4).filter(|i| m >> i & 1 == 1).fold(self.t2[m], |a, i| a * s[i]))
+            .sum();
+        lin + sq * s[4] * s[4]
     }
 
     /// Usable: finite coefficients and error, error not negative.
     fn usable(&self) -> bool {
-        self.err.is_finite() && self.err >= 0.0 && self.coef.iter().all(|c| c.is_finite())
+        matches!(self.d_sign, -1..=1)
+            && self.err.is_finite()
+            && self.err >= 0.0
+            && self.coef.iter().all(|c| c.is_finite())
+            && self.t2.iter().all(|c| c.is_finite())
     }
 }
 
 /// The lanes `err - P` at the 16 corners (lane `8 iu + 4 iv + 2 ix + iy`) as
-/// polynomials in `s = t - tm` of degree 1 (stored with a zero square coefficient),
-/// with rigorous rounding-error bounds.
+/// polynomials in `s = t - tm` of degree 2, with rigorous rounding-error bounds.
 fn cut_lanes(cut: &Cut, lane: &[[f64; 16]; 4], tm: f64) -> LPoly<3, 16> {
     // Non-t part of each monomial, per lane: coef * prod of the lane's corner values.
     let zero = lconst(&[0.0; 16]).0[0];
-    let mut p = LPoly::<2, 16>::zero();
+    let mut p = LPoly::<3, 16>::zero();
     let t = LPoly::<2, 16>([lconst(&[tm; 16]).0[0], lconst(&[1.0; 16]).0[0]]);
-    for m in 0..32 {
-        let c = cut.coef[m];
-        if c == 0.0 {
-            continue;
-        }
+    let part = |c: f64, m: usize| {
         let mut term: LPoly<1, 16> = lconst(&[c; 16]);
         for (i, vals) in lane.iter().enumerate() {
             if m >> i & 1 == 1 {
                 term = term.mul::<1, 1>(&lconst(vals));
             }
         }
-        let term2: LPoly<2, 16> = if m & Cut::T != 0 { term.mul::<2, 2>(&t) } else { LPoly([term.0[0], zero]) };
-        p = p.add(&term2);
+        term
+    };
+    for m in 0..32 {
+        let c = cut.coef[m];
+        if c == 0.0 {
+            continue;
+        }
+        let term = part(c, m);
+        let term3: LPoly<3, 16> = if m & Cut::T != 0 {
+            let tt: LPoly<2, 16> = term.mul::<2, 2>(&t);
+            LPoly([tt.0[0], tt.0[1], zero])
+        } else {
+            LPoly([term.0[0], zero, zero])
+        };
+        p = p.add(&term3);
     }
-    let a2 = LPoly::<2, 16>([lconst(&[cut.err; 16]).0[0], zero]).sub(&p);
-    LPoly([a2.0[0], a2.0[1], zero])
+    for m in 0..16 {
+        let c = cut.t2[m];
+        if c == 0.0 {
+            continue;
+        }
+        let tt: LPoly<2, 16> = part(c, m).mul::<2, 2>(&t);
+        p = p.add(&tt.mul::<2, 3>(&t));
+    }
+    LPoly::<3, 16>([lconst(&[cut.err; 16]).0[0], zero, zero]).sub(&p)
 }
 
 /// True when no sample of the box is both interior and culled by a value bounded
@@ -118,6 +152,10 @@ pub(super) fn cut_certified(
     };
     let a3 = cut_lanes(cut, lane, tm);
     signs.iter().all(|&sg| {
+        // A cut for one side of D answers only for the interior samples of that side.
+        if cut.d_sign != 0 && sg != cut.d_sign as f64 {
+            return true;
+        }
         let f = [ev[0], ev[1], ev[2], a3];
         let sgn = [sg, sg, sg, 1.0];
         let holds = |lam: &[f64; 4]| {
