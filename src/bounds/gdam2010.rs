@@ -940,11 +940,11 @@ impl SampleConstraint for SafeTimeSpans {
         };
         let start = out.len();
         for &(sigma, tag) in families {
-            for k in 0..3 {
+            for (k, (poly, &pad)) in self.poly.iter().zip(&pad).enumerate() {
                 if safe(sigma, k) {
                     continue;
                 }
-                match edge_cut(&self.poly[k], sigma, pad[k], b) {
+                match edge_cut(poly, sigma, pad, b) {
                     Some(mut c) => {
                         c.d_sign = tag;
                         out.push(c)
