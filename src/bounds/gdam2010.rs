@@ -176,7 +176,7 @@
 //! is doubled); a piece culled for edge j has `E_j >= pad_j / 2`. Without a pad the
 //! culled samples touch the covered ones along every edge, and no certificate with
 //! rounding in it can separate them; with it there is a gap the judge can certify.
-//! `pad_k = 2^-26 (m_i + m_j)^2 + 2^-48 (n_i + n_j)^2 + 2^-126` in f32 at the sample's
+//! `pad_k = 2^-26 (m_i + m_j)^2 + 2^-52 (n_i + n_j)^2 + 2^-126` in f32 at the sample's
 //! pixel, with `m_i = |A_i| + |B_i - A_i|` (1-norms of the vertex relative to the
 //! pixel and of its motion, the size of the edge's terms) and `n_i` the 1-norm of the
 //! vertex's screen coordinates at both ends plus its `|w|` at both ends times
@@ -460,7 +460,7 @@ fn cross2(p: [f32; 2], q: [f32; 2]) -> f32 {
 /// the pixel (module doc, "The pad").
 const PAD_REL: f32 = 1.0 / 67_108_864.0; // 2^-26
 /// ... plus this share of the square of the size of its terms in screen coordinates.
-const PAD_ABS: f32 = 1.0 / 281_474_976_710_656.0; // 2^-48
+const PAD_ABS: f32 = 1.0 / 4_503_599_627_370_496.0; // 2^-52
 
 /// Each edge's pad at pixel `(x, y)`, in f32: `PAD_REL (m_i + m_j)^2 +
 /// PAD_ABS (n_i + n_j)^2 + 2^-126` with `m_i = |a_i.x| + |a_i.y| + |b_i.x - a_i.x| +
