@@ -919,25 +919,18 @@ impl SampleConstraint for SafeTimeSpans {
     /// (or below half, for the other orientation) each get a cut `sigma E_k + pad_k / 4`
     /// (exact coefficients, quadratic in t, their rounding in `err`): where every cut is
     /// `>= err`, every edge is above minus half its pad (below half), so no piece is
-    /// culled (module doc, "What the gate can prove"). `sigma` is the sign of D over the
-    /// box where it has one (the interior's); across a facing flip each orientation
-    /// gives a family of cuts that answers for its side of D only.
+    /// culled (module doc, "What the gate can prove"). Each orientation `sigma` gives a
+    /// family, tagged with the side of D whose interior samples have `sigma E_k > 0`.
     fn lower_cuts(&self, b: &SampleBox, out: &mut Vec<Cut>) -> bool {
         if !(b.t.lo >= 0.0 && b.t.hi <= 1.0) {
             return false;
         }
         let (e, pad) = edge_ranges(&self.poly, b);
         let safe = |sigma: f64, j: usize| if sigma > 0.0 { e[j].lo > -0.5 * pad[j] } else { e[j].hi < 0.5 * pad[j] };
-        let d = self.det(b.t);
-        // One family of cuts per side of D the box may hold: where D has one sign, the
-        // family of that orientation; across a facing flip, both, each for its side.
-        let families: &[(f64, i8)] = if d.lo > 0.0 {
-            &[(1.0, 0)]
-        } else if d.hi < 0.0 {
-            &[(-1.0, 0)]
-        } else {
-            &[(1.0, 1), (-1.0, -1)]
-        };
+        // One family of cuts per side of D, each tagged with its side: the judge
+        // certifies a family only against the interior samples of its side (where its
+        // own enclosure of D has one sign, the other family is never needed).
+        let families: &[(f64, i8)] = &[(1.0, 1), (-1.0, -1)];
         let start = out.len();
         for &(sigma, tag) in families {
             for (k, (poly, &pad)) in self.poly.iter().zip(&pad).enumerate() {
@@ -957,36 +950,6 @@ impl SampleConstraint for SafeTimeSpans {
             }
         }
         true
-    }
-}
-
-impl SafeTimeSpans {
-    /// D, the determinant of the vertices' `(x, y, w)` rows, over the times `t`
-    /// (enclosed; the interior's edge values have its sign): a cubic in t whose
-    /// coefficients (each a sum of determinants with rows taken from the positions or
-    /// the motions) are enclosed first, so the large terms cancel before t enters.
-    fn det(&self, t: Interval) -> Interval {
-        let pt = |v: f32| Interval::point(v as f64);
-        let pos: [[Interval; 3]; 3] = self.q.map(|v| v.map(pt));
-        let mot: [[Interval; 3]; 3] = std::array::from_fn(|i| {
-            std::array::from_fn(|c| {
-                if self.q[i][c] == self.r[i][c] {
-                    pt(0.0)
-                } else {
-                    pt(self.r[i][c]) - pt(self.q[i][c])
-                }
-            })
-        });
-        let det3 = |a: [Interval; 3], b: [Interval; 3], c: [Interval; 3]| {
-            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])
-        };
-        let mut coef = [Interval::point(0.0); 4];
-        for pick in 0..8usize {
-            let row = |i: usize| if pick >> i & 1 == 1 { mot[i] } else { pos[i] };
-            let deg = pick.count_ones() as usize;
-            coef[deg] = coef[deg] + det3(row(0), row(1), row(2));
-        }
-        coef[0] + t * (coef[1] + t * (coef[2] + t * coef[3]))
     }
 }
 

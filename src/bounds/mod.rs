@@ -141,12 +141,15 @@ pub trait SampleConstraint: Send + Sync + std::fmt::Debug {
     fn lower_cut(&self, _b: &SampleBox) -> Option<Cut> {
         None
     }
-    /// Optionally, several cuts that vouch together: at every sample of the box where
-    /// *every* one of them has `P(s) >= err`, [`eval`](Self::eval) is NaN or `>= 0`. The
-    /// judge then certifies each one alone (no interior sample of the box makes it
-    /// negative), which needs no common multiplier where the constraint culls beyond
-    /// several edges at once (near a vertex). Pushes them to `out` and returns true, or
-    /// returns false when it offers none. The default offers
+    /// Optionally, several cuts that vouch together: for each sign `s` of D (1, -1), at
+    /// every sample of the box where every cut with `d_sign` 0 or `s` has
+    /// `P(s) >= err`, [`eval`](Self::eval) is NaN or `>= 0`. The judge then certifies
+    /// each cut alone against the interior samples of its side of D (or of both, for
+    /// `d_sign` 0), which needs no common multiplier where the constraint culls beyond
+    /// several edges at once (near a vertex). So a family tagged with one side must be
+    /// complete on its own, and offering cuts tagged with one side only claims that
+    /// the untagged ones alone vouch for the other side. Pushes them to `out` and
+    /// returns true, or returns false when it offers none. The default offers
     /// [`lower_cut`](Self::lower_cut)'s one cut.
     fn lower_cuts(&self, b: &SampleBox, out: &mut Vec<Cut>) -> bool {
         match self.lower_cut(b) {

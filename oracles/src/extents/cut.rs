@@ -150,6 +150,10 @@ pub(super) fn cut_certified(
         (_, true) => &[-1.0],
         _ => &[1.0, -1.0],
     };
+    if cut.d_sign != 0 && !signs.contains(&(cut.d_sign as f64)) {
+        // No interior sample of the box is on this cut's side of D.
+        return true;
+    }
     let a3 = cut_lanes(cut, lane, tm);
     signs.iter().all(|&sg| {
         // A cut for one side of D answers only for the interior samples of that side.
