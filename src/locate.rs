@@ -264,6 +264,45 @@ mod tests {
         assert_eq!(corpus_dir(Some(Path::new("mine")), true), Path::new("mine"));
     }
 
+    /// The repository's files as if built in, and `known` for the built-in ids.
+    fn repo_built_in() -> BuiltIn {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let read = |f: &str| -> &'static str { Box::leak(std::fs::read_to_string(root.join(f)).unwrap().into()) };
+        BuiltIn { expectations: read(EXPECTATIONS_FILE), baseline: read(BASELINE_FILE) }
+    }
+
+    fn known(id: &str) -> bool {
+        crate::bounds::by_id(id).is_some()
+    }
+
+    #[test]
+    fn built_in_copies_load_as_the_files_do() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let b = repo_built_in();
+        let ex = expectations(None, Some("required"), false, &b, &known).unwrap().unwrap();
+        assert_eq!(ex.name, "built-in corpus/expectations.json");
+        assert!(ex.note.is_none());
+        let file = Expectations::load(&root.join(EXPECTATIONS_FILE)).unwrap();
+        assert_eq!(crate::check::tool::hash(&ex.value), crate::check::tool::hash(&file));
+        let base = baseline(None, false, &b).unwrap();
+        assert_eq!(base.value.path, None, "the built-in baseline has no file to write");
+        assert_eq!(base.value.file.unwrap(), BaselineFile::load(&root.join(BASELINE_FILE)).unwrap());
+        // A file named with the flag wins, and a missing one is an error naming it only
+        // when required.
+        let nope = Path::new("/nonexistent-cullproof/ex.json");
+        let e = expectations(Some(nope), Some("because"), false, &b, &known).unwrap_err().to_string();
+        assert!(e.contains("--expectations /nonexistent-cullproof/ex.json: no such file (because)"), "{e}");
+        assert!(expectations(Some(nope), None, false, &b, &known).unwrap().is_none());
+        let base = baseline(Some(nope), false, &b).unwrap();
+        assert!(base.value.file.is_none() && base.value.path.as_deref() == Some(nope));
+        // A broken built-in text is an error naming it and the field.
+        let bad = BuiltIn { expectations: "{\"nope\": {}}", baseline: "{\"format\": 1}" };
+        let e = expectations(None, None, false, &bad, &known).unwrap_err().to_string();
+        assert!(e.starts_with("built-in corpus/expectations.json: method `nope`"), "{e}");
+        let e = baseline(None, false, &bad).unwrap_err().to_string();
+        assert!(e.starts_with("built-in corpus/baseline.json: field `format`"), "{e}");
+    }
+
     #[test]
     fn case_ids() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
