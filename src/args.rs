@@ -15,6 +15,8 @@
 //! - [`margin`]: a finite, non-negative margin.
 //! - [`SampleFlags`]: `--samples`, `--snap`, `--viewport` (the samples a bound promises
 //!   to keep), shared by `check`, `search`, `replay` and `explain`.
+//! - [`CorpusFlag`]: `--corpus DIR`, the corpus of case files of `search`, `prove`,
+//!   `replay` and `explain` ([`crate::locate`]).
 
 use crate::bounds::{self, Method};
 use crate::gen::Regime;
@@ -178,6 +180,28 @@ pub fn method(flag: &str, s: &str, broken: bool) -> Result<&'static dyn Method> 
             ms.len(),
             known_ids(broken)
         ),
+    }
+}
+
+/// `--corpus DIR`: the corpus of case files a command writes or reads (see
+/// [`crate::locate`]).
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct CorpusFlag {
+    /// Your corpus directory: case files are written to and read from
+    /// DIR/cases/<method>/<hash>.json. Default: `corpus` in the cullproof checkout (the
+    /// current directory holds its Cargo.toml), `cullproof-corpus` in the current
+    /// directory anywhere else.
+    #[arg(long = "corpus", value_name = "DIR")]
+    pub corpus: Option<std::path::PathBuf>,
+}
+
+impl CorpusFlag {
+    /// The corpus directory ([`crate::locate::corpus_dir`]); an empty path is an error.
+    pub fn dir(&self, in_checkout: bool) -> Result<std::path::PathBuf> {
+        if let Some(d) = &self.corpus {
+            ensure!(!d.as_os_str().is_empty(), "--corpus: the path is empty");
+        }
+        Ok(crate::locate::corpus_dir(self.corpus.as_deref(), in_checkout))
     }
 }
 

@@ -61,6 +61,8 @@ pub mod explain;
 #[doc(hidden)]
 pub mod gen;
 #[doc(hidden)]
+pub mod locate;
+#[doc(hidden)]
 pub mod output;
 #[doc(hidden)]
 pub mod plugin;

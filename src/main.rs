@@ -4,6 +4,15 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
+/// `corpus/expectations.json` and `corpus/baseline.json` as this binary was built with
+/// them: what `check`, `merge`, `power` and `search` use outside the checkout (see
+/// [`cullproof::locate`]). Included here, in the binary, so that editing them rebuilds
+/// only the command, not the library and every test.
+const BUILT_IN: cullproof::locate::BuiltIn = cullproof::locate::BuiltIn {
+    expectations: include_str!("../corpus/expectations.json"),
+    baseline: include_str!("../corpus/baseline.json"),
+};
+
 #[derive(Parser)]
 #[command(name = "cullproof", version, about = "Proves or breaks the conservativeness of culling bounds for stochastic rasterization (motion blur + depth of field).", long_about = None)]
 struct Cli {
@@ -97,9 +106,11 @@ enum Cmd {
         /// Write the JSON report to this file ("-" for standard output) as well.
         #[arg(long)]
         json: Option<PathBuf>,
-        /// The expectations file (it must exist).
-        #[arg(long, default_value = "corpus/expectations.json")]
-        expectations: PathBuf,
+        /// The expectations file (it must exist). Default: corpus/expectations.json in the
+        /// cullproof checkout (the current directory holds its Cargo.toml), the copy built
+        /// into the binary anywhere else.
+        #[arg(long)]
+        expectations: Option<PathBuf>,
         /// Boxes per certified interval-side search (more: fewer undecided sides and
         /// more rounding-size witnesses, slower).
         #[arg(long, default_value_t = 2000)]
@@ -126,12 +137,14 @@ enum Cmd {
         limit_every: u64,
         /// The baseline file: a run whose settings have an entry there fails on a row
         /// that got worse (a new kind of violated bound, a margin more than 2x, more
-        /// violations, a looser answer).
-        #[arg(long, default_value = "corpus/baseline.json")]
-        baseline: PathBuf,
+        /// violations, a looser answer). Default: corpus/baseline.json in the cullproof
+        /// checkout, the copy built into the binary anywhere else.
+        #[arg(long)]
+        baseline: Option<PathBuf>,
         /// Rewrite the baseline entry for this run's settings with this run's rows
         /// (after a deliberate change, once the table is understood). The rest of
-        /// the file is kept.
+        /// the file is kept. It writes --baseline FILE, or corpus/baseline.json in the
+        /// checkout; anywhere else give --baseline FILE (the built-in copy is read-only).
         #[arg(long)]
         write_baseline: bool,
         #[command(flatten)]
@@ -154,12 +167,15 @@ enum Cmd {
         /// The shard reports (JSON of `check --json`).
         #[arg(required = true)]
         reports: Vec<PathBuf>,
-        /// The expectations file (it must exist).
-        #[arg(long, default_value = "corpus/expectations.json")]
-        expectations: PathBuf,
-        /// The baseline file (compared when it holds the merged run's settings).
-        #[arg(long, default_value = "corpus/baseline.json")]
-        baseline: PathBuf,
+        /// The expectations file (it must exist). Default: corpus/expectations.json in the
+        /// cullproof checkout, the copy built into the binary anywhere else.
+        #[arg(long)]
+        expectations: Option<PathBuf>,
+        /// The baseline file (compared when it holds the merged run's settings). Default:
+        /// corpus/baseline.json in the cullproof checkout, the copy built into the binary
+        /// anywhere else.
+        #[arg(long)]
+        baseline: Option<PathBuf>,
         /// Write the merged JSON report to this file ("-" for standard output) as well.
         #[arg(long)]
         json: Option<PathBuf>,
@@ -171,8 +187,9 @@ enum Cmd {
     /// (or one), each judged like `check`; every violation is shrunk (freeze the motion,
     /// zero the CoC, snap coordinates to fewer mantissa bits, aspect 1, depths to w = 1,
     /// smaller tiles)
-    /// while it stays a violation at least half as large, then written to corpus/cases/<method>/<hash>.json
-    /// (an existing file is never overwritten). One file per regime and bound.
+    /// while it stays a violation at least half as large, then written to
+    /// DIR/cases/<method>/<hash>.json of the corpus (--corpus; an existing file is never
+    /// overwritten). One file per regime and bound.
     ///
     /// With --gate, every violation is held against the method's expected signature
     /// for its regime in the expectations file (as `check` holds a row): a kind of
@@ -202,7 +219,7 @@ enum Cmd {
         #[arg(long, default_value_t = 8)]
         max: usize,
         /// Keep only violations that need at least this margin (e.g. one beyond the cap
-        /// `corpus/expectations.json` allows, to back a new finding with a case file).
+        /// the expectations allow, to back a new finding with a case file).
         #[arg(long, default_value_t = 0.0)]
         min_margin: f64,
         /// Seed of the case streams.
@@ -214,9 +231,11 @@ enum Cmd {
         /// Tile size in pixels, at most 4096 (default: drawn from 1, 2, 4, 8, 16 per case).
         #[arg(long)]
         tile: Option<f32>,
-        /// Where to write the shrunk cases.
-        #[arg(long, default_value = "corpus/cases")]
-        out: PathBuf,
+        /// Where to write the shrunk cases (default: the corpus's cases/, see --corpus).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        #[command(flatten)]
+        corpus: cullproof::args::CorpusFlag,
         /// Do not write case files (report only).
         #[arg(long)]
         dry_run: bool,
@@ -233,16 +252,18 @@ enum Cmd {
         #[arg(long)]
         gate: bool,
         /// The expectations file (required with --gate; without it, findings are
-        /// annotated when the file exists).
-        #[arg(long, default_value = "corpus/expectations.json")]
-        expectations: PathBuf,
+        /// annotated when the file exists). Default: corpus/expectations.json in the
+        /// cullproof checkout, the copy built into the binary anywhere else.
+        #[arg(long)]
+        expectations: Option<PathBuf>,
     },
     /// Symbolic counterexample search (needs z3): asks z3, in queries with a resource
     /// and a time limit each (by default many small ones: a triangle drawn for the seed,
     /// the tile left to the solver), for f32 inputs in stated ranges where the method
     /// culls a tile that the exact footprint reaches (the method's own f32 code, encoded bit for bit; see
     /// src/symbolic/). Every model becomes a case judged exactly: a confirmed violation
-    /// is shrunk and written to corpus/cases/<method>/<hash>.json (never overwriting);
+    /// is shrunk and written to DIR/cases/<method>/<hash>.json of the corpus (--corpus;
+    /// never overwriting);
     /// a model the judge does not confirm is reported as such. Methods with an
     /// encoding: bbox, bbox-safe, la2011, la2011-safe, broken/planted-eq/bbox-safe,
     /// broken/planted-band/bbox-safe, broken/planted-no-up/la2011-safe,
@@ -293,9 +314,11 @@ enum Cmd {
         /// positive), queried on both x sides; default: a middle and a wide set.
         #[arg(long)]
         ranges: Option<String>,
-        /// Where to write the confirmed cases.
-        #[arg(long, default_value = "corpus/cases")]
-        out: PathBuf,
+        /// Where to write the confirmed cases (default: the corpus's cases/, see --corpus).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        #[command(flatten)]
+        corpus: cullproof::args::CorpusFlag,
         /// Do not write case files (report only).
         #[arg(long)]
         dry_run: bool,
@@ -307,13 +330,16 @@ enum Cmd {
         #[arg(long)]
         json: Option<PathBuf>,
     },
-    /// Re-judge case files (default: every file under corpus/cases). The stored witness
+    /// Re-judge case files (default: every file under the corpus's cases/, see --corpus:
+    /// corpus/cases in the cullproof checkout, cullproof-corpus/cases anywhere else). The stored witness
     /// is re-decided exactly and the method judged afresh; exit 1 when a file no longer
     /// shows what it expects. A file that does not parse is an error naming the file
     /// and the field.
     Replay {
-        /// Case files or directories.
+        /// Case files or directories (default: the corpus's cases/).
         paths: Vec<PathBuf>,
+        #[command(flatten)]
+        corpus: cullproof::args::CorpusFlag,
         /// Re-judge every file's case against this method instead of the one the file
         /// was written for (e.g. a fixed bound): one line per file, "fixed" (proven,
         /// the stored witness no longer culled), "still violated" or "unproven"; exit 1
@@ -332,8 +358,11 @@ enum Cmd {
     /// covered set over the tile, the witness decided exactly (and by Embree); with
     /// --svg, a picture of the sample space sliced through the witness.
     Explain {
-        /// The case file.
+        /// The case file, or a case id: HASH or METHOD/HASH (the name `search` gives the
+        /// file), looked up under the corpus's cases/ (see --corpus).
         case: PathBuf,
+        #[command(flatten)]
+        corpus: cullproof::args::CorpusFlag,
         /// Write the picture here (refuses to overwrite an existing file).
         #[arg(long)]
         svg: Option<PathBuf>,
@@ -400,12 +429,14 @@ enum Cmd {
         /// Seed of the case streams.
         #[arg(long, default_value_t = 1)]
         seed: u64,
-        /// The expectations file.
-        #[arg(long, default_value = "corpus/expectations.json")]
-        expectations: PathBuf,
-        /// The baseline file.
-        #[arg(long, default_value = "corpus/baseline.json")]
-        baseline: PathBuf,
+        /// The expectations file. Default: corpus/expectations.json in the cullproof
+        /// checkout, the copy built into the binary anywhere else.
+        #[arg(long)]
+        expectations: Option<PathBuf>,
+        /// The baseline file. Default: corpus/baseline.json in the cullproof checkout, the
+        /// copy built into the binary anywhere else.
+        #[arg(long)]
+        baseline: Option<PathBuf>,
         /// Write the JSON report to this file ("-" for standard output) as well.
         #[arg(long)]
         json: Option<PathBuf>,
@@ -432,6 +463,30 @@ fn set_jobs(jobs: Option<usize>) -> Result<()> {
         rayon::ThreadPoolBuilder::new().num_threads(j).build_global().context("setting the thread count")?;
     }
     Ok(())
+}
+
+/// Print a located file's note (a checkout file that differs from the copy built in).
+fn noted<T>(l: cullproof::locate::Located<T>) -> cullproof::locate::Located<T> {
+    if let Some(n) = &l.note {
+        eprintln!("{n}");
+    }
+    l
+}
+
+/// Is a method id known (built in or plugged)?
+fn known(id: &str) -> bool {
+    cullproof::bounds::by_id(id).is_some()
+}
+
+/// The expectations (required: an error says `why` when the file is missing).
+fn expectations_for(given: &Option<PathBuf>, in_checkout: bool, why: &str) -> Result<cullproof::check::Expectations> {
+    let ex = cullproof::locate::expectations(given.as_deref(), Some(why), in_checkout, &BUILT_IN, &known)?;
+    Ok(noted(ex.expect("required expectations are loaded or an error")).value)
+}
+
+/// The baseline compared with, and the file `--write-baseline` writes.
+fn baseline_for(given: &Option<PathBuf>, in_checkout: bool) -> Result<cullproof::locate::Baseline> {
+    Ok(noted(cullproof::locate::baseline(given.as_deref(), in_checkout, &BUILT_IN)?).value)
 }
 
 /// The regimes of `--regime` (`all`: every one).
@@ -585,19 +640,25 @@ fn run() -> Result<()> {
             // Every output is checked before the run, so none fails after it.
             check_json(&json)?;
             check_junit(&junit)?;
+            let in_checkout = cullproof::locate::in_checkout();
             if write_baseline {
                 anyhow::ensure!(
                     time.is_none() && (k, n) == (0, 1),
                     "--write-baseline: a baseline needs a fixed case count, not --time or --shard"
                 );
-                cullproof::output::file("--baseline", &baseline)?;
+                let target =
+                    baseline.clone().or_else(|| in_checkout.then(|| PathBuf::from(cullproof::locate::BASELINE_FILE)));
+                let Some(target) = target else {
+                    anyhow::bail!(
+                        "--write-baseline: no baseline file to write: the current directory is not the cullproof \
+                         checkout, so the baseline is the copy built into the binary, which is read-only; pass \
+                         --baseline FILE to write this run's entry to FILE (created if missing, its other entries kept)"
+                    );
+                };
+                cullproof::output::file("--baseline", &target)?;
             }
             set_jobs(jobs)?;
-            anyhow::ensure!(
-                expectations.is_file(),
-                "--expectations {}: no such file (the expectations file is required)",
-                expectations.display()
-            );
+            let ex = expectations_for(&expectations, in_checkout, "the expectations file is required")?;
             cfg.cases = cases;
             cfg.time = time;
             cfg.seed = seed;
@@ -609,17 +670,16 @@ fn run() -> Result<()> {
             cfg.side_stall = side_stall;
             cfg.extents.second_chance = second_chance;
             cfg.constraint_budget = constraint_budget;
-            let ex = cullproof::check::Expectations::load(&expectations)?;
             cfg.limit_every = limit_every;
-            let base =
-                if baseline.exists() { Some(cullproof::check::baseline::BaselineFile::load(&baseline)?) } else { None };
+            let cullproof::locate::Baseline { file: base, path: base_path } = baseline_for(&baseline, in_checkout)?;
             let r = cullproof::check::run_with_baseline(&cfg, &ex, base.as_ref(), true);
             print!("{}", cullproof::check::render(&r));
             if write_baseline {
+                let path = base_path.context("--write-baseline: checked before the run")?;
                 let mut f = base.unwrap_or_default();
                 f.record(&cfg, &r)?;
-                f.save(&baseline)?;
-                println!("wrote the baseline for these settings to {}", baseline.display());
+                f.save(&path)?;
+                println!("wrote the baseline for these settings to {}", path.display());
             }
             if let Some(p) = &json {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
@@ -635,13 +695,9 @@ fn run() -> Result<()> {
             use cullproof::check::{baseline::BaselineFile, merge, Expectations};
             check_json(&json)?;
             check_junit(&junit)?;
-            anyhow::ensure!(
-                expectations.is_file(),
-                "--expectations {}: no such file (the expectations file is required)",
-                expectations.display()
-            );
-            let ex = Expectations::load(&expectations)?;
-            let base = if baseline.exists() { Some(BaselineFile::load(&baseline)?) } else { None };
+            let in_checkout = cullproof::locate::in_checkout();
+            let ex: Expectations = expectations_for(&expectations, in_checkout, "the expectations file is required")?;
+            let base: Option<BaselineFile> = baseline_for(&baseline, in_checkout)?.file;
             let shards = reports.iter().map(|p| Ok((p.clone(), merge::load_report(p)?))).collect::<Result<Vec<_>>>()?;
             let r = merge::merge(shards, &ex, base.as_ref())?;
             print!("{}", cullproof::check::render(&r));
@@ -664,6 +720,7 @@ fn run() -> Result<()> {
             regime,
             tile,
             out,
+            corpus,
             dry_run,
             json,
             jobs,
@@ -683,27 +740,33 @@ fn run() -> Result<()> {
             args::count("--max", max as u64, u64::MAX, "violation to stop at")?;
             args::margin("--min-margin", min_margin)?;
             check_json(&json)?;
+            let in_checkout = cullproof::locate::in_checkout();
+            let (out_flag, out) = match out {
+                Some(o) => ("--out", o),
+                None => ("--corpus", corpus.dir(in_checkout)?.join("cases")),
+            };
             if !dry_run {
-                cullproof::output::dir("--out", &out)?;
+                cullproof::output::dir(out_flag, &out)?;
             }
             set_jobs(jobs)?;
-            anyhow::ensure!(
-                !gate || expectations.is_file(),
-                "--expectations {}: no such file (the expectations file is required with --gate)",
-                expectations.display()
-            );
-            let ex =
-                if expectations.is_file() { Some(cullproof::check::Expectations::load(&expectations)?) } else { None };
+            let why = "the expectations file is required with --gate";
+            let ex = cullproof::locate::expectations(
+                expectations.as_deref(),
+                gate.then_some(why),
+                in_checkout,
+                &BUILT_IN,
+                &known,
+            )?
+            .map(noted);
             cfg.seed = seed;
             cfg.tile = tile;
-            let name = expectations.display().to_string();
             let opts = cullproof::corpus::SearchOptions {
                 seconds: time,
                 max_found: max,
                 min_margin,
                 out: (!dry_run).then_some(out.as_path()),
                 progress: true,
-                expectations: ex.as_ref().map(|e| (e, name.as_str())),
+                expectations: ex.as_ref().map(|e| (&e.value, e.name.as_str())),
                 gate,
             };
             let r = cullproof::corpus::search_with(&cfg, cullproof::bounds::shared(m), &opts)?;
@@ -728,6 +791,7 @@ fn run() -> Result<()> {
             solvers,
             ranges,
             out,
+            corpus,
             dry_run,
             emit_smt,
             json,
@@ -741,8 +805,12 @@ fn run() -> Result<()> {
             anyhow::ensure!((1..=1_000_000).contains(&queries), "--queries {queries}: give 1 to 1000000");
             anyhow::ensure!((0.0..=1.0).contains(&free_share), "--free-share {free_share}: give 0 to 1");
             check_json(&json)?;
+            let (out_flag, out) = match out {
+                Some(o) => ("--out", o),
+                None => ("--corpus", corpus.dir(cullproof::locate::in_checkout())?.join("cases")),
+            };
             if !dry_run {
-                cullproof::output::dir("--out", &out)?;
+                cullproof::output::dir(out_flag, &out)?;
             }
             if let Some(d) = &emit_smt {
                 cullproof::output::dir("--emit-smt", d)?;
@@ -779,10 +847,21 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
         }
-        Cmd::Replay { paths, method, json, sample } => {
+        Cmd::Replay { paths, corpus, method, json, sample } => {
             let over = sample.parse()?;
             check_json(&json)?;
-            let paths = if paths.is_empty() { vec![PathBuf::from("corpus/cases")] } else { paths };
+            let paths = if paths.is_empty() {
+                let cases = corpus.dir(cullproof::locate::in_checkout())?.join("cases");
+                anyhow::ensure!(
+                    cases.is_dir(),
+                    "{}: no such directory, so no case files to replay (`search` writes them there; pass case \
+                     files or directories, or --corpus DIR)",
+                    cases.display()
+                );
+                vec![cases]
+            } else {
+                paths
+            };
             let files = cullproof::corpus::case_files(&paths)?;
             let cfg = cullproof::check::CheckConfig::default_with(cullproof::bounds::registry());
             if let Some(id) = method {
@@ -842,7 +921,7 @@ fn run() -> Result<()> {
                 exit(1);
             }
         }
-        Cmd::Explain { case, svg, sample } => {
+        Cmd::Explain { case, corpus, svg, sample } => {
             if let Some(out) = &svg {
                 anyhow::ensure!(
                     std::fs::symlink_metadata(out).is_err(),
@@ -851,6 +930,7 @@ fn run() -> Result<()> {
                 );
                 cullproof::output::file("--svg", out)?;
             }
+            let case = cullproof::locate::case_path(&case, &corpus.dir(cullproof::locate::in_checkout())?)?;
             let mut cf = cullproof::corpus::CaseFile::load(&case)?;
             let over = sample.parse()?;
             cf.samples = over.samples.unwrap_or(cf.samples);
@@ -887,9 +967,9 @@ fn run() -> Result<()> {
             let methods = cullproof::args::methods("--method", &method, false)?;
             let cases = cullproof::args::count("--cases", cases, 1_000_000, "cases")?;
             check_json(&json)?;
-            let ex = cullproof::check::Expectations::load(&expectations)?;
-            let base =
-                if baseline.exists() { Some(cullproof::check::baseline::BaselineFile::load(&baseline)?) } else { None };
+            let in_checkout = cullproof::locate::in_checkout();
+            let ex = expectations_for(&expectations, in_checkout, "the expectations file is required")?;
+            let base = baseline_for(&baseline, in_checkout)?.file;
             let mut cfg = cullproof::check::CheckConfig::default_with(methods);
             cfg.cases = cases;
             cfg.seed = seed;

@@ -122,13 +122,19 @@ pub struct BaselineFile {
 impl BaselineFile {
     pub fn load(path: &Path) -> Result<BaselineFile> {
         let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
-        let de = &mut serde_json::Deserializer::from_str(&text);
+        Self::parse(&text, &path.display().to_string())
+    }
+
+    /// Parse the text of a baseline file; `name` (the file, or what the text is) starts
+    /// every error, which then names the field.
+    pub fn parse(text: &str, name: &str) -> Result<BaselineFile> {
+        let de = &mut serde_json::Deserializer::from_str(text);
         let f: BaselineFile = serde_path_to_error::deserialize(de).map_err(|e| {
             let (field, why) = (e.path().to_string(), e.inner().to_string());
-            anyhow!("{}: field `{}`: {}", path.display(), clip(&field), clip(&why))
+            anyhow!("{name}: field `{}`: {}", clip(&field), clip(&why))
         })?;
         if f.format != FORMAT {
-            anyhow::bail!("{}: field `format` = {}: expected {FORMAT:?}", path.display(), quote(&f.format));
+            anyhow::bail!("{name}: field `format` = {}: expected {FORMAT:?}", quote(&f.format));
         }
         Ok(f)
     }

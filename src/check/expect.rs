@@ -254,16 +254,22 @@ impl Expectations {
     pub fn load_with(path: &Path, known: &dyn Fn(&str) -> bool) -> anyhow::Result<Self> {
         let text =
             std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("{}: cannot read: {e}", path.display()))?;
-        let raw: BTreeMap<String, BTreeMap<String, serde_json::Value>> = serde_json::from_str(&text)
-            .map_err(|e| anyhow::anyhow!("{}: not an expectations file: {}", path.display(), clip(&e.to_string())))?;
+        Self::parse_with(&text, &path.display().to_string(), known)
+    }
+
+    /// Parse the text of an expectations file; `name` (the file, or what the text is)
+    /// starts every error, which then names the method, the regime and the field.
+    pub fn parse_with(text: &str, name: &str, known: &dyn Fn(&str) -> bool) -> anyhow::Result<Self> {
+        let raw: BTreeMap<String, BTreeMap<String, serde_json::Value>> = serde_json::from_str(text)
+            .map_err(|e| anyhow::anyhow!("{name}: not an expectations file: {}", clip(&e.to_string())))?;
         let mut out = BTreeMap::new();
         for (m, regimes) in raw {
             if !known(&m) {
-                anyhow::bail!("{}: method `{}` is not a known method id (see `cullproof methods`; a plugin's id needs `--plugin LIB.so`)", path.display(), clip(&m));
+                anyhow::bail!("{name}: method `{}` is not a known method id (see `cullproof methods`; a plugin's id needs `--plugin LIB.so`)", clip(&m));
             }
             let mut rows = BTreeMap::new();
             for (r, v) in regimes {
-                let at = format!("{}: method `{m}`, regime `{}`", path.display(), clip(&r));
+                let at = format!("{name}: method `{m}`, regime `{}`", clip(&r));
                 if r != "*" && !Regime::ALL.iter().any(|x| x.name() == r) {
                     anyhow::bail!("{at}: not a known regime");
                 }

@@ -5,17 +5,18 @@
 //! (under `#[allow(dead_code)]` where it uses part of it).
 
 use std::io::{Read, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// How long the label of a run ([`Run::what`]) may grow before it is cut.
 const WHAT_MAX: usize = 300;
 
-/// One invocation of the built binary, run from the repository root with
-/// `RUST_BACKTRACE=0`; set up with the builder methods, then [`Cli::run`].
+/// One invocation of the built binary, run from the repository root (or [`Cli::dir`])
+/// with `RUST_BACKTRACE=0`; set up with the builder methods, then [`Cli::run`].
 pub struct Cli {
     args: Vec<String>,
+    dir: Option<PathBuf>,
     env: Vec<(String, String)>,
     stdin: Option<Vec<u8>>,
     deadline: Option<Duration>,
@@ -27,6 +28,7 @@ impl Cli {
     pub fn new<S: AsRef<str>>(args: &[S]) -> Self {
         Cli {
             args: args.iter().map(|a| a.as_ref().to_string()).collect(),
+            dir: None,
             env: Vec::new(),
             stdin: None,
             deadline: None,
@@ -37,6 +39,12 @@ impl Cli {
     /// More arguments after the ones given so far.
     pub fn args<S: AsRef<str>>(mut self, more: &[S]) -> Self {
         self.args.extend(more.iter().map(|a| a.as_ref().to_string()));
+        self
+    }
+
+    /// Run it with this current directory instead of the repository root.
+    pub fn dir(mut self, dir: &Path) -> Self {
+        self.dir = Some(dir.to_path_buf());
         self
     }
 
@@ -68,6 +76,10 @@ impl Cli {
     /// the binary cannot start or runs past the deadline.
     pub fn run(self) -> Run {
         let what = format!("cullproof {}", self.args.join(" "));
+        let what = match &self.dir {
+            Some(d) => format!("(in {}) {what}", d.display()),
+            None => what,
+        };
         let what = if what.len() > WHAT_MAX {
             let cut = (0..=WHAT_MAX).rev().find(|&i| what.is_char_boundary(i)).unwrap_or(0);
             format!("{}...", &what[..cut])
@@ -77,7 +89,7 @@ impl Cli {
         let start = Instant::now();
         let mut child = Command::new(env!("CARGO_BIN_EXE_cullproof"))
             .args(&self.args)
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .current_dir(self.dir.as_deref().unwrap_or(Path::new(env!("CARGO_MANIFEST_DIR"))))
             .env("RUST_BACKTRACE", "0")
             .envs(self.env.iter().map(|(k, v)| (k, v)))
             .stdin(if self.stdin.is_some() { Stdio::piped() } else { Stdio::null() })
@@ -135,7 +147,8 @@ pub struct Run {
     pub code: Option<i32>,
     pub stdout: String,
     pub stderr: String,
-    /// The command line, for failure messages (cut after 300 bytes).
+    /// The command line (and the directory, when not the repository root), for failure
+    /// messages (cut after 300 bytes).
     pub what: String,
     /// Wall time from the start to the exit.
     pub took: Duration,
