@@ -128,7 +128,8 @@ impl CheckConfig {
                 resolution: 1e-3,
                 max_boxes: 20_000,
                 min_fraction: 1e-9,
-                second_chance: false,
+                // On: the expectations and baselines are written with it.
+                second_chance: true,
                 occupancy_eliminates: false,
             },
             band: 0.0,
