@@ -188,7 +188,7 @@ pub fn method(flag: &str, s: &str, broken: bool) -> Result<&'static dyn Method> 
 #[derive(Clone, Debug, Default, clap::Args)]
 pub struct CorpusFlag {
     /// Your corpus directory: case files are written to and read from
-    /// DIR/cases/<method>/<hash>.json. Default: `corpus` in the cullproof checkout (the
+    /// `DIR/cases/<method>/<hash>.json`. Default: `corpus` in the cullproof checkout (the
     /// current directory holds its Cargo.toml), `cullproof-corpus` in the current
     /// directory anywhere else.
     #[arg(long = "corpus", value_name = "DIR")]
