@@ -110,7 +110,7 @@ fn junit_has_a_case_per_row_and_failures_name_a_replayable_witness() {
     let ex = expectations();
     let r = run_with_baseline(&config(), &ex, None, false);
     let path = dir.join("gate.xml");
-    junit::write(&r, &path).unwrap();
+    junit::write(&r, &path, "").unwrap();
     let xml = std::fs::read_to_string(&path).unwrap();
     assert!(xml.starts_with("<?xml"));
     assert_eq!(xml.matches("<testcase ").count(), r.rows.len());
@@ -139,6 +139,6 @@ fn junit_has_a_case_per_row_and_failures_name_a_replayable_witness() {
     let rep = cullproof::corpus::replay(mine, &config()).unwrap();
     assert!(rep.ok, "{rep:?}");
     // a second write keeps the files (never overwritten) and gives the same XML
-    junit::write(&r, &path).unwrap();
+    junit::write(&r, &path, "").unwrap();
     assert_eq!(std::fs::read_to_string(&path).unwrap(), xml);
 }

@@ -140,3 +140,33 @@ fn exec_alone_gates_only_the_plugged_bound() {
     ids.dedup();
     assert_eq!(ids, vec!["py-bbox".to_string()], "{ids:?}");
 }
+
+/// A failing row of the JUnit report names its witness with the command that re-judges
+/// it, and that command loads the same `--exec` bound: run as printed, it replays the
+/// case against the bound (no "unknown method").
+#[test]
+fn the_junit_hint_loads_the_exec_bound() {
+    let dir = std::env::temp_dir().join(format!("cullproof-exec-junit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let xml = dir.join("gate.xml");
+    let out =
+        Cli::new(&["--exec", &python("--broken"), "check", "--cases", "320", "--junit", xml.to_str().unwrap()]).run();
+    assert_eq!(out.code, Some(1), "the planted bug fails the gate\n{}\n{}", out.stdout, out.stderr);
+    let text = std::fs::read_to_string(&xml).expect("the JUnit file");
+    let text = text.replace("&apos;", "'").replace("&quot;", "\"").replace("&lt;", "<").replace("&gt;", ">");
+    let text = text.replace("&amp;", "&");
+    let start = text.find("re-judge: ").expect("a witness with its re-judge hint") + "re-judge: ".len();
+    let hint = &text[start..start + text[start..].find(';').unwrap()];
+    assert!(hint.starts_with("cullproof --exec '") && hint.contains(" replay "), "{hint}");
+    let cmd = hint.replacen("cullproof", env!("CARGO_BIN_EXE_cullproof"), 1);
+    let replay = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(&cmd)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("sh runs");
+    let (o, e) = (String::from_utf8_lossy(&replay.stdout), String::from_utf8_lossy(&replay.stderr));
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(matches!(replay.status.code(), Some(0 | 1)), "{cmd}\n{o}\n{e}");
+    assert!(o.contains("py-bbox-broken") && !e.contains("unknown"), "{cmd}\n{o}\n{e}");
+}

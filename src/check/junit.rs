@@ -63,7 +63,10 @@ fn write_witness(r: &CheckReport, row: &Row, dir: &Path) -> Result<Option<PathBu
 }
 
 /// The JUnit XML of a report; failing rows' witnesses are written under `dir`.
-pub fn render(r: &CheckReport, dir: &Path) -> Result<String> {
+/// `loaders` are the flags that load the run's plugged bounds (`--plugin LIB.so`,
+/// `--exec 'COMMAND'`, shell-quoted; empty for built-in methods): the re-judge hint
+/// carries them, since `replay` and `explain` need the same bound loaded.
+pub fn render(r: &CheckReport, dir: &Path, loaders: &str) -> Result<String> {
     let failures = r.rows.iter().filter(|x| x.status.fails()).count();
     let mut s = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let _ = writeln!(
@@ -111,9 +114,10 @@ pub fn render(r: &CheckReport, dir: &Path) -> Result<String> {
             if row.status.fails() {
                 let mut text = format!("{}: {}\n{counts}\n", row.status.text(), row.problems.join("; "));
                 if let Some(p) = write_witness(r, row, dir)? {
+                    let pre = if loaders.is_empty() { String::new() } else { format!("{loaders} ") };
                     let _ = writeln!(
                         text,
-                        "witness: {} (re-judge: cullproof replay {0}; picture: cullproof explain {0} --svg OUT.svg)",
+                        "witness: {} (re-judge: cullproof {pre}replay {0}; picture: cullproof {pre}explain {0} --svg OUT.svg)",
                         p.display()
                     );
                 }
@@ -154,8 +158,8 @@ pub fn check_path(path: &Path) -> Result<()> {
 
 /// Write the JUnit XML of a report to `path` (its witnesses beside it, see
 /// [`witness_dir`]); an existing file is replaced only by the whole new one.
-pub fn write(r: &CheckReport, path: &Path) -> Result<()> {
-    let xml = render(r, &witness_dir(path))?;
+pub fn write(r: &CheckReport, path: &Path, loaders: &str) -> Result<()> {
+    let xml = render(r, &witness_dir(path), loaders)?;
     crate::output::write(path, xml)
 }
 
