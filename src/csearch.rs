@@ -241,10 +241,12 @@ pub fn search_with(
     let init_box = sample_box(&init);
     let xy_free = !split_pixels
         && bounds.constraints.iter().all(|c| {
-            c.lower_cut(&init_box).is_some_and(|cut| {
-                (0..32).all(|m| m & (Cut::X | Cut::Y) == 0 || cut.coef[m] == 0.0)
-                    && (0..16).all(|m| m & (Cut::X | Cut::Y) == 0 || cut.t2[m] == 0.0)
-            })
+            let mut cuts = Vec::new();
+            c.lower_cuts(&init_box, &mut cuts)
+                && cuts.iter().all(|cut| {
+                    (0..32).all(|m| m & (Cut::X | Cut::Y) == 0 || cut.coef[m] == 0.0)
+                        && (0..16).all(|m| m & (Cut::X | Cut::Y) == 0 || cut.t2[m] == 0.0)
+                })
         });
     let mut p = ConstraintProblem {
         tri,

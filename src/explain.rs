@@ -833,21 +833,27 @@ mod tests {
         assert!(s.contains("witness outside this panel"));
     }
 
-    /// Writes pictures to /tmp/explain_demo*.svg for a look by eye: lb2011 on the
-    /// sweeping triangle, the test method's overlays, and a culled tile.
+    /// Writes pictures to explain_demo*.svg in the system's temporary directory for a
+    /// look by eye (lb2011 on the sweeping triangle, the test method's overlays, and a
+    /// culled tile); each must be a whole SVG document.
     #[test]
     fn demo_picture() {
+        let out = |name: &str, s: &str| {
+            assert!(s.starts_with("<svg") || s.contains("<svg"), "{name}: not an SVG document");
+            assert!(s.trim_end().ends_with("</svg>"), "{name}: the document is cut short");
+            std::fs::write(std::env::temp_dir().join(name), s).unwrap();
+        };
         let demo = sweep_case(true);
         let tile = Tile::square(-4.0, -4.0, 4.0);
         let w = interior_in(&demo, &tile, 5);
         let s = svg(&demo, &tile, by_id("lb2011").unwrap(), w, "demo: an interior sample").unwrap();
-        std::fs::write("/tmp/explain_demo.svg", &s).unwrap();
+        out("explain_demo.svg", &s);
         let case = lens_case(true);
         let s = svg(&case, &tile, FAKE, [-2.0, -2.0, 0.0, 0.1, 0.7], "demo: test constraints").unwrap();
-        std::fs::write("/tmp/explain_demo_fake.svg", &s).unwrap();
+        out("explain_demo_fake.svg", &s);
         let far = Tile::square(100.0, 100.0, 4.0);
         let s =
             svg(&static_case(), &far, by_id("bbox").unwrap(), [101.0, 101.0, 0.0, 0.0, 0.0], "demo: culled").unwrap();
-        std::fs::write("/tmp/explain_demo_culled.svg", &s).unwrap();
+        out("explain_demo_culled.svg", &s);
     }
 }
