@@ -95,6 +95,64 @@ fn draw(rng: &mut ChaCha8Rng, tile: &Tile, fix: Option<(usize, f64)>) -> [f64; 5
     s
 }
 
+/// Samples near a vertex that sits on one of the tile's columns or rows: the lens
+/// position or time is solved so that vertex k's screen x (or y) is the column (row),
+/// then nudged by up to 1e-3; the pixel is put a little inside the tile, next to the
+/// vertex, at distances from 1e-7 to 1e-1 pixels.
+fn vertex_tips(rng: &mut ChaCha8Rng, tri: &oracles::Tri, tile: &Tile, n: usize) -> Vec<[f64; 5]> {
+    let mut out = Vec::new();
+    for _ in 0..n {
+        let k = rng.gen_range(0..3);
+        let axis = rng.gen_range(0..2); // 0: x columns with u, 1: y rows with v
+        let side = if rng.gen_bool(0.5) { [tile.x0, tile.y0][axis] } else { [tile.x1, tile.y1][axis] } as f64;
+        let mut s = draw(rng, tile, None);
+        let lens = 2 + axis;
+        // P_k's coordinate on this axis minus side * w, as a + b l (l the lens
+        // coordinate) at time t, and as c + d t at lens l.
+        let kk = if axis == 0 { 1.0 } else { tri.k };
+        let at = |l: f64, t: f64| {
+            let p = (1.0 - t) * tri.q[k][axis] + t * tri.r[k][axis];
+            let w = (1.0 - t) * tri.q[k][3] + t * tri.r[k][3];
+            let c = (1.0 - t) * tri.c0[k] + t * tri.c1[k];
+            (p + kk * l * c - side * w, kk * c, w)
+        };
+        if rng.gen_bool(0.5) {
+            let (v0, slope, _) = at(0.0, s[4]);
+            if slope != 0.0 {
+                s[lens] = (-v0 / slope).clamp(-1.0, 1.0);
+            }
+        } else {
+            let (a, _, _) = at(s[lens], 0.0);
+            let (b, _, _) = at(s[lens], 1.0);
+            if a != b {
+                s[4] = (a / (a - b)).clamp(0.0, 1.0);
+            }
+        }
+        let nudge = [0.0, 1e-7, 1e-5, 1e-3][rng.gen_range(0..4)];
+        s[lens] = (s[lens] + rng.gen_range(-nudge..=nudge)).clamp(-1.0, 1.0);
+        s[4] = (s[4] + rng.gen_range(-nudge..=nudge)).clamp(0.0, 1.0);
+        // The vertex's screen position there, and the pixel next to it.
+        let (u, v, t) = (s[2], s[3], s[4]);
+        let scr = |j: usize| {
+            let p = (1.0 - t) * tri.q[k][j] + t * tri.r[k][j];
+            let c = (1.0 - t) * tri.c0[k] + t * tri.c1[k];
+            let l = if j == 0 { u } else { tri.k * v };
+            let w = (1.0 - t) * tri.q[k][3] + t * tri.r[k][3];
+            (p + l * c) / w
+        };
+        let (vx, vy) = (scr(0), scr(1));
+        if !(vx.is_finite() && vy.is_finite()) {
+            continue;
+        }
+        let d = [1e-7, 1e-5, 1e-3, 1e-1][rng.gen_range(0..4)];
+        let ang: f64 = rng.gen_range(0.0..std::f64::consts::TAU);
+        s[0] = (vx + d * ang.cos()).clamp(tile.x0 as f64, tile.x1 as f64);
+        s[1] = (vy + d * ang.sin()).clamp(tile.y0 as f64, tile.y1 as f64);
+        out.push(s);
+    }
+    out
+}
+
 /// Samples the answer skips, drawn next to each of its claims; the first interior one
 /// (or one whose depth lies beyond the claimed depth range) is returned.
 fn attack(rng: &mut ChaCha8Rng, tri: &oracles::Tri, tile: &Tile, answer: &TileResult, n: usize) -> Option<String> {
@@ -143,6 +201,16 @@ fn attack(rng: &mut ChaCha8Rng, tri: &oracles::Tri, tile: &Tile, answer: &TileRe
                     let fs = f.to_oracle();
                     if !b.admits(&f) && covered(fs) {
                         return Some(format!("a constraint culls the covered sample {fs:?}"));
+                    }
+                }
+                // Where the covered set comes closest to what a separating bound culls:
+                // a vertex on a tile column or row, samples just inside the triangle's
+                // tip there.
+                for s in vertex_tips(rng, tri, tile, 8 * n) {
+                    let f = Sample::new(s[0] as f32, s[1] as f32, s[2] as f32, s[3] as f32, s[4] as f32);
+                    let fs = f.to_oracle();
+                    if tile.contains(f.x, f.y) && !b.admits(&f) && covered(fs) {
+                        return Some(format!("a constraint culls the covered sample {fs:?} (vertex tip)"));
                     }
                 }
             }

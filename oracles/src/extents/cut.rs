@@ -24,6 +24,34 @@
 //! ([`super::tpoly::TPoly::range`]). The multipliers are a heuristic (the small linear
 //! programme of the elimination, now over four functions); only the check certifies.
 //!
+//! # The vertex facts
+//!
+//! A second certificate needs no multipliers on the edges. Write the vertices moved to
+//! the sample's (u, v, t) and translated so that its pixel is the origin as
+//! `P_k = (T_k, S_k, w_k)`, `T_k = x_k(t) + u c_k(t) - x w_k(t)` and `S_k = y_k(t) + k v
+//! c_k(t) - y w_k(t)` (the coverage rule's [`super::super::coverage`] quantities). The
+//! adjugate of the matrix `(P_0 P_1 P_2)` gives `sum_k E_k P_k = (0, 0, D)`, so
+//! `sum_k E_k T_k = 0` and `sum_k E_k S_k = 0`. At an interior sample every `sigma E_k`
+//! is positive and `D != 0`; the `T_k` are not all zero (else D, a determinant with a
+//! zero row, would be 0), so some `T_k` is negative and some positive, and the same
+//! for the `S_k`. These are the four facts: some `T_k < 0`, some `T_k > 0`, some
+//! `S_k < 0`, some `S_k > 0`. (They say that the pixel lies between the vertices on
+//! each axis: what every separating-axis cull rests on.)
+//!
+//! A fact "some `F_k < 0`" certifies a cut when for every k a multiplier
+//! `lambda_k >= 0` makes `a_3 - lambda_k F_k <= 0` on the whole box: at an interior
+//! sample take the k with `F_k < 0`; then `a_3 <= lambda_k F_k <= 0`, so `P >= err`. For
+//! "some `F_k > 0`" the combination is `a_3 + lambda_k F_k`. The combination is affine in
+//! each of x, y, u, v and of degree 2 in t, so the same corner-and-t-polynomial range
+//! decides it. A cut that bounds a vertex's place against a column of the tile (culled
+//! only where every vertex lies beyond it, with its rounding padded) is certified this
+//! way over the whole tile at once, however close the covered set comes to it: the
+//! multiplier cancels the cut's dependence on (u, t) exactly, and what is left is
+//! `w_k(t)` times the pixel's distance to the column, plus the cut's pad. The edge
+//! certificate above, by contrast, must split the box down to the square root of that
+//! pad around the contact. The multipliers are chosen from the corners at three
+//! times; only the range check certifies.
+//!
 //! Where the cull lies close to one edge (a plane that bounds an edge's value, a line
 //! that bounds a vertex's lens position), the combination `c - lambda E_k` cancels the
 //! first-order part that both share, so a box is decided when it is about the square
@@ -140,6 +168,7 @@ pub(super) fn cut_certified(
     tm: f64,
     h: f64,
     d: Interval,
+    shifted: &[[LPoly<2, 16>; 3]; 2],
     cut: &Cut,
 ) -> bool {
     if d.lo.is_nan() || d.hi.is_nan() || !cut.usable() {
@@ -188,6 +217,58 @@ pub(super) fn cut_certified(
             })
             .collect();
         minimax_multipliers(&vals).is_some_and(|lam| holds(&lam))
+    }) || fact_certified(&a3, shifted, h)
+}
+
+/// The second certificate (see the module doc, "The vertex facts"): for one of the four
+/// facts, every vertex k has a multiplier `lambda_k >= 0` with
+/// `a_3 - s lambda_k T_k <= 0` on the whole box (`s = 1` for the fact "some `T_k < 0`",
+/// `-1` for "some `T_k > 0`"). `shifted` holds the vertices' `(P_k.x, P_k.y)` in the
+/// lanes of the box's corners.
+fn fact_certified(a3: &LPoly<3, 16>, shifted: &[[LPoly<2, 16>; 3]; 2], h: f64) -> bool {
+    let zero = lconst(&[0.0; 16]).0[0];
+    let lift = |p: &LPoly<2, 16>| LPoly::<3, 16>([p.0[0], p.0[1], zero]);
+    // The values of a_3 at the corners and three times (for choosing multipliers only).
+    let at = |p: &LPoly<3, 16>, n: usize, s: f64| p.0[0].v[n] + s * (p.0[1].v[n] + s * p.0[2].v[n]);
+    shifted.iter().any(|coord| {
+        [1.0f64, -1.0].iter().any(|&sg| {
+            coord.iter().all(|tk| {
+                let tk = lift(tk);
+                // Need a - lambda b <= 0 at every row, b = sg T_k: lambda >= a / b where
+                // b > 0, lambda <= a / b where b < 0, a <= 0 where b = 0.
+                let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
+                for s in [-h, 0.0, h] {
+                    for n in 0..16 {
+                        let (a, b) = (at(a3, n, s), sg * at(&tk, n, s));
+                        if !(a.is_finite() && b.is_finite()) {
+                            return false;
+                        }
+                        if b > 0.0 {
+                            lo = lo.max(a / b);
+                        } else if b < 0.0 {
+                            hi = hi.min(a / b);
+                        } else if a > 0.0 {
+                            return false;
+                        }
+                    }
+                }
+                if lo > hi {
+                    return false;
+                }
+                // The least multiplier raised a little (rounding of the rows), or the
+                // middle of the range; only the rigorous range decides.
+                let tries =
+                    [lo * (1.0 + 1e-9) + f64::MIN_POSITIVE, if hi.is_finite() { 0.5 * (lo + hi) } else { 2.0 * lo }];
+                tries.iter().any(|&lam| {
+                    if !(lam >= 0.0 && lam.is_finite()) {
+                        return false;
+                    }
+                    let g = a3.sub(&lconst(&[sg * lam; 16]).mul::<3, 3>(&tk));
+                    let (_, top) = g.range(h);
+                    top.iter().all(|&v| v <= 0.0)
+                })
+            })
+        })
     })
 }
 
@@ -298,6 +379,18 @@ mod tests {
     /// `P(s) - err < 0`, exactly.
     fn culls_exactly(cut: &Cut, s: [f64; 5]) -> bool {
         let mut acc = -Dyadic::from_f64(cut.err);
+        for m in 0..16 {
+            if cut.t2[m] == 0.0 {
+                continue;
+            }
+            let mut t = &Dyadic::from_f64(cut.t2[m]) * &(&Dyadic::from_f64(s[4]) * &Dyadic::from_f64(s[4]));
+            for (i, &si) in s.iter().take(4).enumerate() {
+                if m >> i & 1 == 1 {
+                    t = &t * &Dyadic::from_f64(si);
+                }
+            }
+            acc = &acc + &t;
+        }
         for m in 0..32 {
             if cut.coef[m] == 0.0 {
                 continue;
@@ -449,5 +542,150 @@ mod tests {
         eprintln!("{certified} certified cuts, {judged} exact samples, {tight} culled (none interior)");
         assert!(certified > 200, "the certificate should decide many boxes: {certified}");
         assert!(tight > 1000, "the attack should reach the culled side: {tight}");
+    }
+
+    /// `lam * T_k` as a cut: `T_k = P_k.x` at the box's pixels (axis 0, lens u) or
+    /// `P_k.y` (axis 1, lens v), `x_k(t) + u c_k(t) - x w_k(t)`.
+    fn vertex_term(tri: &Tri, k: usize, axis: usize, lam: f64, at_col: Option<f64>) -> Cut {
+        let (pix, lens) = if axis == 0 { (Cut::X, Cut::U) } else { (Cut::Y, Cut::V) };
+        let kk = if axis == 0 { 1.0 } else { tri.k };
+        let mut c = Cut::zero();
+        let (qp, rp, qw, rw) = (tri.q[k][axis], tri.r[k][axis], tri.q[k][3], tri.r[k][3]);
+        c.coef[0] = lam * qp;
+        c.coef[Cut::T] = lam * (rp - qp);
+        c.coef[lens] = lam * kk * tri.c0[k];
+        c.coef[lens | Cut::T] = lam * kk * (tri.c1[k] - tri.c0[k]);
+        match at_col {
+            // At a fixed column (row): the pixel enters as a constant.
+            Some(col) => {
+                c.coef[0] -= lam * col * qw;
+                c.coef[Cut::T] -= lam * col * (rw - qw);
+            }
+            None => {
+                c.coef[pix] = -lam * qw;
+                c.coef[pix | Cut::T] = -lam * (rw - qw);
+            }
+        }
+        c
+    }
+
+    /// The vertex facts: cuts that bound a vertex's place against a column or row of
+    /// the box (as separating-axis culls do: culled only where every vertex lies beyond
+    /// it), shifted a little either way, are certified or not; every certified one is
+    /// attacked with dense exact samples and with samples at the vertices' tips inside
+    /// the box (where the covered set meets such a cull).
+    #[test]
+    fn no_vertex_fact_cut_culls_an_interior_sample() {
+        let mut next = unit_stream(0x7e47_f4c7);
+        let (mut certified, mut by_fact, mut judged) = (0usize, 0usize, 0usize);
+        for case in 0..3000 {
+            let tri = if case % 4 == 3 { random_sliver(&mut next, case % 8 == 7) } else { random_tri(&mut next) };
+            let mut b: Box5 = [crate::interval::Interval::point(0.0); 5];
+            for i in 0..5 {
+                let (lo, hi) = if i < 2 {
+                    (-8.0, 8.0)
+                } else if i < 4 {
+                    (-1.0, 1.0)
+                } else {
+                    (0.0, 1.0)
+                };
+                let w = (hi - lo) * [1.0, 0.25, 0.02, 1e-3][(next() * 4.0) as usize % 4];
+                let a = lo + (hi - lo - w) * next();
+                b[i] = crate::interval::Interval::new(a, a + w);
+            }
+            let axis = (next() * 2.0) as usize % 2;
+            let k = (next() * 3.0) as usize % 3;
+            if next() < 0.7 {
+                // Around a vertex tip: the pixels reach just past vertex k's screen
+                // point at the middle (u, v, t), so the contact lies in the box.
+                let t = b[4].mid();
+                let l = |a: f64, c: f64| (1.0 - t) * a + t * c;
+                let c = l(tri.c0[k], tri.c1[k]);
+                let w = l(tri.q[k][3], tri.r[k][3]);
+                let sc = [
+                    (l(tri.q[k][0], tri.r[k][0]) + b[2].mid() * c) / w,
+                    (l(tri.q[k][1], tri.r[k][1]) + tri.k * b[3].mid() * c) / w,
+                ];
+                for (i, &v) in sc.iter().enumerate() {
+                    let near = [0.0, 1e-6, 1e-3][(next() * 3.0) as usize % 3];
+                    let far = [1e-3, 0.1, 2.0][(next() * 3.0) as usize % 3];
+                    if v.is_finite() && v.abs() < 1e6 {
+                        b[i] = if next() < 0.5 {
+                            crate::interval::Interval::new(v - far, v + near)
+                        } else {
+                            crate::interval::Interval::new(v - near, v + far)
+                        };
+                    }
+                }
+            }
+            // min side (culls where the vertex is beyond the high column: -T_k(col)) or
+            // max side (T_k(col) at the low column), scaled, shifted by a fraction of
+            // its spread either way, sometimes with a stray u t or v t term.
+            let high = next() < 0.5;
+            let col = if high { b[axis].hi } else { b[axis].lo };
+            let lam = [1.0, 0.37, 3.0][(next() * 3.0) as usize % 3] * if high { -1.0 } else { 1.0 };
+            let mut cut = vertex_term(&tri, k, axis, lam, Some(col));
+            let spread = cut.coef.iter().map(|c| c.abs()).sum::<f64>() * 1e-3;
+            cut.coef[0] += [-0.3, -1e-3, 0.0, 1e-6, 1e-3][(next() * 5.0) as usize % 5] * spread;
+            if next() < 0.3 {
+                cut.coef[Cut::U | Cut::T] += (next() - 0.5) * 1e-4 * spread;
+            }
+            if next() < 0.3 {
+                // A square in t (as a cut from a moving edge has), bending the cut
+                // between the times the multipliers are chosen at.
+                let hw = 0.5 * b[4].width();
+                let a = (next() - 0.3) * spread * [1e-3, 0.1, 1.0][(next() * 3.0) as usize % 3] / (hw * hw).max(1e-12);
+                cut.t2[0] += a;
+                cut.coef[Cut::T] -= a * (b[4].lo + b[4].hi);
+                cut.coef[0] += a * b[4].lo * b[4].hi;
+            }
+            cut.err = next() * 1e-4 * spread;
+            let mut ok = [false];
+            box_values_cutting(&tri, &b, &[cut], &mut ok);
+            if !ok[0] {
+                continue;
+            }
+            certified += 1;
+            let mut pts = Vec::new();
+            for n in 0..32usize {
+                pts.push(std::array::from_fn(|i| if n >> i & 1 == 1 { b[i].hi } else { b[i].lo }));
+            }
+            for _ in 0..300 {
+                pts.push(std::array::from_fn(|i| b[i].lo + b[i].width() * next()));
+            }
+            // Tips: at a random (u, v, t) of the box, each vertex's screen point and
+            // points around it at 1e-9 to 1e-2 px, clamped into the box.
+            for _ in 0..100 {
+                let mut p: [f64; 5] = std::array::from_fn(|i| b[i].lo + b[i].width() * next());
+                let j = (next() * 3.0) as usize % 3;
+                let t = p[4];
+                let l = |a: f64, c: f64| (1.0 - t) * a + t * c;
+                let c = l(tri.c0[j], tri.c1[j]);
+                let w = l(tri.q[j][3], tri.r[j][3]);
+                let sx = (l(tri.q[j][0], tri.r[j][0]) + p[2] * c) / w;
+                let sy = (l(tri.q[j][1], tri.r[j][1]) + tri.k * p[3] * c) / w;
+                let d = [0.0, 1e-9, 1e-6, 1e-2][(next() * 4.0) as usize % 4];
+                let ang = next() * std::f64::consts::TAU;
+                if sx.is_finite() && sy.is_finite() {
+                    p[0] = (sx + d * ang.cos()).clamp(b[0].lo, b[0].hi);
+                    p[1] = (sy + d * ang.sin()).clamp(b[1].lo, b[1].hi);
+                    pts.push(p);
+                }
+            }
+            let mut culled_any = false;
+            for p in pts {
+                judged += 1;
+                let culled = culls_exactly(&cut, p);
+                culled_any |= culled;
+                let interior = class_of_signs(exact_signs(&tri, p)) == Coverage::Interior;
+                assert!(
+                    !(culled && interior),
+                    "case {case}: certified cut culls the interior sample {p:?}\n{tri:?}\n{b:?}\n{cut:?}"
+                );
+            }
+            by_fact += culled_any as usize;
+        }
+        eprintln!("{certified} certified vertex cuts ({by_fact} culling some attacked sample), {judged} exact samples");
+        assert!(certified > 300 && by_fact > 100, "{certified} certified, {by_fact} culling");
     }
 }
