@@ -363,6 +363,16 @@ impl TimeLine {
         let tm = t.lo.abs().max(t.hi.abs());
         2f64.powi(-20) * ((self.a as f64).abs() * lm + (self.b as f64).abs() + tm) + 2f64.powi(-140)
     }
+    /// The bound a cut states: three roundings along one path (`a l`, `+ b`, `- t`), each
+    /// of a partial result bounded by the magnitudes below, so at most
+    /// `gamma_3 = 3u / (1 - 3u) < 4u = 2^-22` of `|a| |l| + |b| + |t|` (Higham's bound
+    /// for a recursive sum), plus `2^-140` for subnormal results. `eval_box` keeps the
+    /// looser [`error_over`](Self::error_over).
+    fn cut_error_over(&self, l: Interval, t: Interval) -> f64 {
+        let lm = l.lo.abs().max(l.hi.abs());
+        let tm = t.lo.abs().max(t.hi.abs());
+        2f64.powi(-22) * ((self.a as f64).abs() * lm + (self.b as f64).abs() + tm) + 2f64.powi(-140)
+    }
 }
 
 impl SampleConstraint for TimeLine {
@@ -430,7 +440,7 @@ impl SampleConstraint for TimeLine {
             Lens::U => (bx.u, Cut::U),
             Lens::V => (bx.v, Cut::V),
         };
-        let err = self.error_over(l, bx.t);
+        let err = self.cut_error_over(l, bx.t);
         if !err.is_finite() {
             return None;
         }
