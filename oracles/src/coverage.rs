@@ -210,6 +210,35 @@ pub fn classify_all(tri: &Tri, samples: &[[f64; 5]], out: &mut Vec<Coverage>) ->
     st
 }
 
+/// True when no interior sample, at any pixel, lens position and time in [0, 1], has a
+/// hit depth below `z` (`lower`) or above it (not `lower`), by the vertices alone.
+///
+/// The adjugate identity of the coverage rule gives `D = sum_k E_k w_k(t)`, and `N =
+/// sum_k E_k z_k(t)` by definition, so `N - z D = sum_k E_k (z_k(t) - z w_k(t))`. At an
+/// interior sample every `E_k` has the strict sign of D, so `N / D - z = sum_k (E_k / D)
+/// (z_k(t) - z w_k(t))` is a combination with positive weights: when every
+/// `z_k(t) - z w_k(t)` is `>= 0` (`<= 0`) the depth is `>= z` (`<= z`). Neither the CoC
+/// nor the pixel enter; each term is affine in t, so its signs at t = 0 and t = 1 decide
+/// it over the shutter. Evaluated exactly (dyadic). False for a `z` that is not finite
+/// (or input outside the model): nothing is claimed then.
+pub fn depth_bound_holds(tri: &Tri, z: f64, lower: bool) -> bool {
+    if !z.is_finite() || !finite_input(tri, &[0.0; 5]) {
+        return false;
+    }
+    let c = Dyadic::from_f64;
+    let zd = c(z);
+    (0..3).all(|k| {
+        [tri.q[k], tri.r[k]].iter().all(|p| {
+            let s = (&c(p[2]) - &(&zd * &c(p[3]))).signum();
+            if lower {
+                s >= 0
+            } else {
+                s <= 0
+            }
+        })
+    })
+}
+
 /// Where the hit depth `N / D` of an interior sample lies relative to `[z0, z1]`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DepthCheck {

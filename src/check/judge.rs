@@ -413,6 +413,12 @@ impl<'a> TileJudge<'a> {
         let stall = (cfg.side_stall > 0).then_some(cfg.side_stall);
         for (ext, bound, is_max, name) in checks {
             let coord = ext.sample_coord();
+            // A depth end that every vertex respects at both ends of the shutter holds
+            // for every interior sample (the depth is a positive combination of the
+            // vertices' terms): decided exactly without a search.
+            if coord.is_none() && oracles::coverage::depth_bound_holds(self.tri, bound, !is_max) {
+                continue;
+            }
             match self.solver.side(ext, bound, cfg.band, cfg.side_budget, stall) {
                 Side::Beyond { witness: w, value, .. } => {
                     // A depth witness is re-judged exactly against the bound.
