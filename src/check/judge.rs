@@ -453,6 +453,13 @@ impl<'a> TileJudge<'a> {
                     if gap > 0.0 {
                         // A gap: a claim within a rounding of the extent. Decide it as a
                         // constraint with its exact linear cut (u, v and t sides).
+                        // A depth end: moving planes through the vertices, over the tile.
+                        let t = [tile.x0 as f64, tile.x1 as f64, tile.y0 as f64, tile.y1 as f64];
+                        if coord.is_none()
+                            && oracles::extents::depth_end_by_planes(self.tri, t, bound, !is_max, cfg.side_budget)
+                        {
+                            continue;
+                        }
                         match coord.map(|c| self.decide_side(c, bound as f32, is_max)) {
                             Some(ConstraintVerdict::Proved) => self.probe_tight(j, ext, bound, &name),
                             Some(ConstraintVerdict::Violation(s)) if in_domain(&tile, s.to_oracle()) => {

@@ -65,6 +65,7 @@
 //!   empty / full / undecided;
 //! - `depth`: the bounds on the hit depth of the covered samples of a box by a
 //!   combination of the depth with the edge values;
+//! - `depth_plane`: depth ends over a whole tile by moving planes through the vertices;
 //! - `elimination`: (x, y) decided exactly for a box of (u, v, t) (the covered pixels at
 //!   a fixed lens position and time are a convex polygon), and witnesses from it;
 //! - [`bnb`]: the best-first branch-and-bound engine (also used by the constraint
@@ -76,6 +77,7 @@
 pub mod bnb;
 mod cut;
 mod depth;
+mod depth_plane;
 mod elimination;
 pub mod enclosure;
 mod lanes;
@@ -89,6 +91,7 @@ mod testgen;
 pub mod tpoly;
 
 pub use cut::Cut;
+pub use depth_plane::depth_end_by_planes;
 
 pub use elimination::clipped_point as covered_point;
 pub use enclosure::{

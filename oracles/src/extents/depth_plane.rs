@@ -1,0 +1,150 @@
+//! Depth ends decided by a moving plane through the vertices, over the whole tile.
+//!
+//! Write the vertices at the sample's (u, v, t), translated so that its pixel is the
+//! origin, as `(T_k, S_k, z_k, w_k)` with `T_k = x_k(t) + u c_k(t) - x w_k(t)` and `S_k =
+//! y_k(t) + k v c_k(t) - y w_k(t)`. The hit depth minus a bound z is
+//! `sum_k (E_k / D) (z_k - z w_k)` (the depth numerator is `sum_k E_k z_k` and, by the
+//! adjugate identity, `D = sum_k E_k w_k`), and the same identity gives `sum_k E_k T_k =
+//! 0` and `sum_k E_k S_k = 0`. So for any numbers `alpha`, `gamma` (they may even vary with
+//! the sample)
+//!
+//! `depth - z = sum_k (E_k / D) F_k`,  `F_k = z_k - z w_k + alpha T_k + gamma S_k`,
+//!
+//! and at an interior sample every weight `E_k / D` is positive. If every `F_k >= 0`
+//! there (`<= 0` for an upper end), the depth is `>= z` (`<= z`). With `alpha`, `gamma`
+//! the negated x and y slopes of the plane through the three vertices
+//! (`z_k = A x'_k + B y'_k + C w_k`), `F_k = w_k (A X + B Y + C - z)`: `w_k` times how far
+//! the plane's depth at the pixel lies beyond z, which is what a tile-local depth bound
+//! rests on.
+//!
+//! Over a box of (u, v, t) with the pixels of the whole tile, `alpha` and `gamma` are taken
+//! affine in t (the planes at the box's two times, at its middle lens position); `F_k`
+//! is then affine in each of x, y, u, v and of degree 2 in t, so its range over the box
+//! is that of its 16 corner polynomials in t, bounded with rigorous rounding errors
+//! ([`super::lanes::LPoly::range`]). Boxes that fail are split (lens and time, the
+//! dimensions the triangle has) up to a budget. The plane is a heuristic: only the range
+//! check certifies.
+
+use super::lanes::{lconst, LPoly, Lanes};
+use super::tpoly::TPoly;
+use crate::interval::Interval;
+use crate::ring::Ring;
+use crate::tri::Tri;
+
+/// The plane's negated slopes `(-A, -B)` through the three vertices at (u, v, t) in the
+/// sheared, homogeneous coordinates (plain f64; None when singular).
+fn plane_slopes(tri: &Tri, u: f64, v: f64, t: f64) -> Option<(f64, f64)> {
+    let l = |a: f64, b: f64| (1.0 - t) * a + t * b;
+    let m: [[f64; 4]; 3] = std::array::from_fn(|k| {
+        let c = l(tri.c0[k], tri.c1[k]);
+        [
+            l(tri.q[k][0], tri.r[k][0]) + u * c,
+            l(tri.q[k][1], tri.r[k][1]) + tri.k * v * c,
+            l(tri.q[k][3], tri.r[k][3]),
+            l(tri.q[k][2], tri.r[k][2]),
+        ]
+    });
+    let det3 = |c0: usize, c1: usize, c2: usize| {
+        m[0][c0] * (m[1][c1] * m[2][c2] - m[1][c2] * m[2][c1]) - m[0][c1] * (m[1][c0] * m[2][c2] - m[1][c2] * m[2][c0])
+            + m[0][c2] * (m[1][c0] * m[2][c1] - m[1][c1] * m[2][c0])
+    };
+    let d = det3(0, 1, 2);
+    let (a, b) = (det3(3, 1, 2) / d, det3(0, 3, 2) / d);
+    (d != 0.0 && a.is_finite() && b.is_finite()).then_some((-a, -b))
+}
+
+/// True when every `F_k` keeps its sign over the box (x, y the tile's corners, `uvt` the
+/// lens and time ranges) for `alpha = a[0] + a[1] s`, `gamma = g[0] + g[1] s`
+/// (`s = t - t_mid`).
+fn box_holds(tri: &Tri, tile: [f64; 4], uvt: [Interval; 3], z: f64, lower: bool, a: [f64; 2], g: [f64; 2]) -> bool {
+    let tm = uvt[2].mid();
+    let h = (uvt[2].hi - tm).max(tm - uvt[2].lo).max(0.0);
+    let t = TPoly::t_at(tm);
+    let one_minus_t = TPoly::c(1.0).sub(&t);
+    let lerp2 = |p: f64, q: f64| one_minus_t.mul(&TPoly::c(p)).add(&t.mul(&TPoly::c(q)));
+    // Corner n: lane n = 8 iu + 4 iv + 2 ix + iy.
+    let e = |iv: Interval, n: usize| if n == 0 { iv.lo } else { iv.hi };
+    let lane_u: [f64; 16] = std::array::from_fn(|n| e(uvt[0], n >> 3 & 1));
+    let lane_v: [f64; 16] = std::array::from_fn(|n| e(uvt[1], n >> 2 & 1));
+    let lane_x: [f64; 16] = std::array::from_fn(|n| [tile[0], tile[1]][n >> 1 & 1]);
+    let lane_y: [f64; 16] = std::array::from_fn(|n| [tile[2], tile[3]][n & 1]);
+    let kv: LPoly<1, 16> = LPoly::<1, 16>::splat(&TPoly::c(tri.k)).mul(&lconst(&lane_v));
+    let affine =
+        |c: [f64; 2]| LPoly::<2, 16>([Lanes { v: [c[0]; 16], e: [0.0; 16] }, Lanes { v: [c[1]; 16], e: [0.0; 16] }]);
+    let (alpha, gamma) = (affine(a), affine(g));
+    let zero = lconst(&[0.0; 16]).0[0];
+    (0..3).all(|k| {
+        let w = LPoly::<2, 16>::splat(&lerp2(tri.q[k][3], tri.r[k][3]));
+        let c = LPoly::<2, 16>::splat(&lerp2(tri.c0[k], tri.c1[k]));
+        let xk = LPoly::<2, 16>::splat(&lerp2(tri.q[k][0], tri.r[k][0]));
+        let yk = LPoly::<2, 16>::splat(&lerp2(tri.q[k][1], tri.r[k][1]));
+        let zk = LPoly::<2, 16>::splat(&lerp2(tri.q[k][2], tri.r[k][2]));
+        // T_k and S_k in the lanes.
+        let tk = xk.add(&lconst(&lane_u).mul(&c)).sub(&lconst(&lane_x).mul(&w));
+        let sk = yk.add(&kv.mul(&c)).sub(&lconst(&lane_y).mul(&w));
+        let base = zk.sub(&lconst(&[z; 16]).mul(&w));
+        let f: LPoly<3, 16> =
+            LPoly([base.0[0], base.0[1], zero]).add(&alpha.mul::<2, 3>(&tk)).add(&gamma.mul::<2, 3>(&sk));
+        let (lo, hi) = f.range(h);
+        if lower {
+            lo.iter().all(|&x| x >= 0.0)
+        } else {
+            hi.iter().all(|&x| x <= 0.0)
+        }
+    })
+}
+
+/// True when no interior sample of the tile (`[x0, x1, y0, y1]`), at any lens position
+/// and time of the domain, has a hit depth below `z` (`lower`) or above it, certified by
+/// moving planes over at most `budget` boxes of (u, v, t) (see the module doc). False
+/// when that is not shown (nothing is claimed then), and for a `z` or triangle that is
+/// not finite.
+pub fn depth_end_by_planes(tri: &Tri, tile: [f64; 4], z: f64, lower: bool, budget: usize) -> bool {
+    if !z.is_finite() || tri.check_finite().is_err() || tile.iter().any(|v| !v.is_finite()) {
+        return false;
+    }
+    let lens = !tri.is_pinhole();
+    let time = !tri.is_static();
+    let init = [
+        if lens { Interval::new(-1.0, 1.0) } else { Interval::point(0.0) },
+        if lens { Interval::new(-1.0, 1.0) } else { Interval::point(0.0) },
+        if time { Interval::new(0.0, 1.0) } else { Interval::point(0.0) },
+    ];
+    let full = [2.0, 2.0, 1.0];
+    let mut stack = vec![init];
+    let mut boxes = 0usize;
+    while let Some(b) = stack.pop() {
+        boxes += 1;
+        if boxes > budget {
+            return false;
+        }
+        let (uc, vc) = (b[0].mid(), b[1].mid());
+        let (t0, t1) = (b[2].lo, b[2].hi);
+        let h = 0.5 * (t1 - t0);
+        let mut tries: Vec<([f64; 2], [f64; 2])> = Vec::new();
+        if let (Some(p0), Some(p1)) = (plane_slopes(tri, uc, vc, t0), plane_slopes(tri, uc, vc, t1)) {
+            let slope = |x0: f64, x1: f64| if h > 0.0 { (x1 - x0) / (2.0 * h) } else { 0.0 };
+            tries.push(([0.5 * (p0.0 + p1.0), slope(p0.0, p1.0)], [0.5 * (p0.1 + p1.1), slope(p0.1, p1.1)]));
+        }
+        if let Some(pm) = plane_slopes(tri, uc, vc, b[2].mid()) {
+            tries.push(([pm.0, 0.0], [pm.1, 0.0]));
+        }
+        tries.push(([0.0; 2], [0.0; 2]));
+        if tries.iter().any(|&(a, g)| box_holds(tri, tile, b, z, lower, a, g)) {
+            continue;
+        }
+        // Split the widest dimension relative to the domain.
+        let (dim, rel) =
+            (0..3).map(|i| (i, b[i].width() / full[i])).fold((0, 0.0), |m, c| if c.1 > m.1 { c } else { m });
+        if rel < 1e-9 {
+            return false;
+        }
+        let m = b[dim].mid();
+        for half in [Interval::new(b[dim].lo, m), Interval::new(m, b[dim].hi)] {
+            let mut c = b;
+            c[dim] = half;
+            stack.push(c);
+        }
+    }
+    true
+}
