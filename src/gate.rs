@@ -29,6 +29,7 @@ pub struct Gate {
     cfg: CheckConfig,
     expectations: Expectations,
     baseline: Option<BaselineFile>,
+    jobs: Option<usize>,
 }
 
 impl Default for Gate {
@@ -41,7 +42,12 @@ impl Gate {
     /// No method yet; 9,600 cases of every regime, seed 1, every method expected
     /// conservative, no baseline.
     pub fn new() -> Self {
-        Gate { cfg: CheckConfig::default_for(Vec::new()), expectations: Expectations::default(), baseline: None }
+        Gate {
+            cfg: CheckConfig::default_for(Vec::new()),
+            expectations: Expectations::default(),
+            baseline: None,
+            jobs: None,
+        }
     }
     /// Add a method: your own bound (any value implementing [`Method`]), or a built-in
     /// one (`cullproof::bounds::by_id("bbox")`).
@@ -129,9 +135,20 @@ impl Gate {
     pub fn config(&self) -> &CheckConfig {
         &self.cfg
     }
-    /// Run it (all cores; no progress bar).
+    /// Worker threads for [`run`](Self::run) (default: all cores; `jobs(0)` too). The
+    /// report does not depend on it: every case's verdict is the same at any count.
+    pub fn jobs(mut self, n: usize) -> Self {
+        self.jobs = (n > 0).then_some(n);
+        self
+    }
+    /// Run it (on [`jobs`](Self::jobs) threads, all cores by default; no progress bar).
     pub fn run(&self) -> GateReport {
-        let raw = check::run_with_baseline(&self.cfg, &self.expectations, self.baseline.as_ref(), false);
+        let go = || check::run_with_baseline(&self.cfg, &self.expectations, self.baseline.as_ref(), false);
+        let raw = match self.jobs.map(|n| rayon::ThreadPoolBuilder::new().num_threads(n).build()) {
+            Some(Ok(pool)) => pool.install(go),
+            // No pool could be made (the system refused threads): the global pool.
+            _ => go(),
+        };
         GateReport::from_check(raw)
     }
 }

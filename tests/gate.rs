@@ -275,3 +275,23 @@ fn the_default_gate_passes_and_matches_its_baseline() {
     let safe: Vec<_> = r.rows.iter().filter(|x| x.method == "bbox-safe").collect();
     assert!(safe.iter().all(|x| x.proven == x.cases), "bbox-safe not proven on every case\n{}", render(&r));
 }
+
+/// `Gate::jobs` sets the worker threads of a library run, and the report does not
+/// depend on it.
+#[test]
+fn a_library_gate_reports_the_same_at_any_thread_count() {
+    let run = |jobs: usize| {
+        cullproof::Gate::new()
+            .method(cullproof::bounds::by_id("la2011-safe").unwrap())
+            .method(cullproof::bounds::by_id("wu2013").unwrap())
+            .cases(320)
+            .jobs(jobs)
+            .run()
+    };
+    let (one, two) = (run(1), run(2));
+    // Everything but the header line, which holds the run's wall time.
+    let body = |r: &cullproof::GateReport| r.render().lines().skip(1).collect::<Vec<_>>().join("\n");
+    assert_eq!(body(&one), body(&two));
+    let wu = one.method("wu2013").expect("wu2013 is in the report");
+    assert!(wu.violated > 0, "the published wu2013 shows violations on 320 cases: {}", one.render());
+}
