@@ -1162,6 +1162,20 @@ pub fn describe(cf: &CaseFile) -> String {
         Occupancy::Unknown => s += "exact: the solver could not decide whether anything in the tile is covered\n",
         Occupancy::Covered(_) => {
             s += "exact extents of the covered samples over the tile (certified enclosures of each extreme):\n";
+            // Only the dimensions the triangle has: without defocus every lens position
+            // covers the same samples, without motion every time does.
+            let (lens, time) = (!tri.is_pinhole(), !tri.is_static());
+            if !lens {
+                s += "  u, v      any (no defocus: every lens position covers the same samples)\n";
+            }
+            if !time {
+                s += "  t         any (no motion: every time covers the same samples)\n";
+            }
+            let has = |ext: Extent| match ext {
+                Extent::UMin | Extent::UMax | Extent::VMin | Extent::VMax => lens,
+                Extent::TMin | Extent::TMax => time,
+                _ => true,
+            };
             for (ext, name) in Extent::ALL.into_iter().zip([
                 "u min",
                 "u max",
@@ -1172,6 +1186,9 @@ pub fn describe(cf: &CaseFile) -> String {
                 "depth min",
                 "depth max",
             ]) {
+                if !has(ext) {
+                    continue;
+                }
                 let r = solver.objective(ext);
                 match r.extreme {
                     Some(e) => {

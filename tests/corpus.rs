@@ -49,6 +49,20 @@ fn explain_renders_every_corpus_case() {
         let cf = CaseFile::load(&f).unwrap();
         let text = cullproof::corpus::describe(&cf);
         assert!(text.contains(&cf.method), "{}: the description does not name the method", f.display());
+        // Extents only in the dimensions the triangle has.
+        let t = &cf.case.triangle;
+        let (lens, time) = (t.c0.iter().chain(&t.c1).any(|&c| c != 0.0), t.q != t.r || t.c0 != t.c1);
+        if let Some(at) = text.find("exact extents of the covered samples") {
+            let section = text[at..].split("witness").next().unwrap_or_default();
+            for (dim, has, name) in [("u min", lens, "lens"), ("t min", time, "time")] {
+                assert_eq!(
+                    section.contains(dim),
+                    has,
+                    "{}: the {name} extents are shown exactly when the triangle has that dimension\n{text}",
+                    f.display()
+                );
+            }
+        }
         let m = cullproof::bounds::by_id(&cf.method).unwrap();
         let w = cf.witness.as_ref().map(|w| w.sample).unwrap_or_else(|| {
             let (x, y) = cf.tile.center();
