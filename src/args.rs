@@ -219,9 +219,11 @@ pub struct SampleFlags {
     /// (round to nearest, ties to even) before coverage is judged; 0 to 16.
     #[arg(long = "snap", value_name = "BITS")]
     pub snap: Option<String>,
-    /// Place the cases in this viewport, WIDTHxHEIGHT[+GUARD] pixels (e.g.
-    /// 1920x1080+64): footprints inside the guard band, tiles inside the viewport.
-    #[arg(long = "viewport", value_name = "WxH[+G]")]
+    /// Place the cases in this viewport, WIDTHxHEIGHT[+GUARD] pixels from the origin (e.g.
+    /// 1920x1080+64), X,Y,WIDTHxHEIGHT[+GUARD] from the corner (X, Y) (e.g.
+    /// -32768,-32768,65536x65536) or centred:WIDTHxHEIGHT[+GUARD] around the origin; sides
+    /// up to 131072: footprints inside the guard band, tiles inside the viewport.
+    #[arg(long = "viewport", value_name = "VIEWPORT")]
     pub viewport: Option<String>,
 }
 
@@ -284,7 +286,7 @@ mod tests {
         let d = f.parse().unwrap();
         assert_eq!(d.samples, Some(SampleSet::Msaa(4)));
         assert_eq!(d.snap, Some(Snap { bits: 8 }));
-        assert_eq!(d.viewport, Some(Viewport { width: 64, height: 32, guard: 8 }));
+        assert_eq!(d.viewport, Some(Viewport::sized(64, 32, 8)));
         assert_eq!(SampleFlags::default().parse().unwrap(), Declared::default());
         for (f, want) in [
             (SampleFlags { samples: Some("msaa5".into()), ..Default::default() }, "--samples `msaa5`"),

@@ -253,10 +253,11 @@ pub fn place_case(seed: u64, i: u64, regime: Regime, vp: Viewport) -> Option<(Ca
         }
         // Whole-pixel moves that keep the footprint in the guard band (one pixel of
         // room for the f32 rounding of the move) and meeting the viewport.
-        let lo_x = (g[0] - f[0] + 1.0).max(-f[1]).ceil();
-        let hi_x = (g[1] - f[1] - 1.0).min(vp.width as f64 - f[0]).floor();
-        let lo_y = (g[2] - f[2] + 1.0).max(-f[3]).ceil();
-        let hi_y = (g[3] - f[3] - 1.0).min(vp.height as f64 - f[2]).floor();
+        let r = vp.rect();
+        let lo_x = (g[0] - f[0] + 1.0).max(r[0] - f[1]).ceil();
+        let hi_x = (g[1] - f[1] - 1.0).min(r[1] - f[0]).floor();
+        let lo_y = (g[2] - f[2] + 1.0).max(r[2] - f[3]).ceil();
+        let hi_y = (g[3] - f[3] - 1.0).min(r[3] - f[2]).floor();
         if lo_x > hi_x || lo_y > hi_y {
             continue;
         }
@@ -287,16 +288,14 @@ pub fn placed_in(cfg: &CheckConfig, case: &Case, tile: &Tile) -> bool {
 /// inside it (the viewport is at least one tile wide, else the tile is clamped to it).
 pub fn tile_in_viewport(t: Tile, vp: Viewport) -> Tile {
     let size = t.x1 - t.x0;
-    let fit = |a: f32, n: u32| {
+    // Offsets from the viewport's corner, by whole tiles.
+    let fit = |a: f32, o: i32, n: u32| {
         let max = ((n as f32 - size) / size).floor() * size;
-        if max < 0.0 {
-            0.0
-        } else {
-            a.clamp(0.0, max)
-        }
+        o as f32 + if max < 0.0 { 0.0 } else { (a - o as f32).clamp(0.0, max) }
     };
-    let (x0, y0) = (fit(t.x0, vp.width), fit(t.y0, vp.height));
-    Tile { x0, y0, x1: (x0 + size).min(vp.width as f32), y1: (y0 + size).min(vp.height as f32) }
+    let (x0, y0) = (fit(t.x0, vp.x0, vp.width), fit(t.y0, vp.y0, vp.height));
+    let r = vp.rect();
+    Tile { x0, y0, x1: (x0 + size).min(r[1] as f32), y1: (y0 + size).min(r[3] as f32) }
 }
 
 /// The sample set, snapping and viewport of a run as the reports name them (absent
@@ -394,8 +393,20 @@ mod tests {
 
     #[test]
     fn placed_cases_lie_in_the_guard_band_and_tiles_in_the_viewport() {
-        let vp: Viewport = "640x480+32".parse().unwrap();
+        for vp in ["640x480+32", "-320,-240,640x480+32", "centred:65536x65536+64"] {
+            placed_in_one(vp.parse().unwrap());
+        }
+        // A viewport away from the origin: the tile moves by whole tiles into it.
+        let vp: Viewport = "-1000,-500,640x480".parse().unwrap();
+        let t = tile_in_viewport(Tile::square(1e6, -40.0, 16.0), vp);
+        assert!(vp.holds_tile(&t) && t.x1 - t.x0 == 16.0 && t.x0 == -376.0 && t.y0 == -40.0, "{t:?}");
+        let t = tile_in_viewport(Tile::square(-5000.0, -5000.0, 16.0), vp);
+        assert!(vp.holds_tile(&t) && t.x0 == -1000.0 && t.y0 == -500.0, "{t:?}");
+    }
+
+    fn placed_in_one(vp: Viewport) {
         let g = vp.guard_rect();
+        let [x0, x1, _, _] = vp.rect();
         let mut placed = 0;
         for i in 0..64 {
             let regime = Regime::ALL[(i % 16) as usize];
@@ -407,8 +418,8 @@ mod tests {
                 assert!(matches!(regime, Regime::BehindLens | Regime::Huge | Regime::HugeCoc), "{regime:?}");
             }
         }
-        assert!(placed >= 40, "{placed}");
+        assert!(placed >= 40, "{vp}: {placed}");
         let t = tile_in_viewport(Tile::square(1e6, -40.0, 16.0), vp);
-        assert!(vp.holds_tile(&t) && t.x1 - t.x0 == 16.0 && t.x0 == 624.0 && t.y0 == 0.0, "{t:?}");
+        assert!(vp.holds_tile(&t) && t.x1 - t.x0 == 16.0 && t.x1 as f64 <= x1 && t.x0 as f64 >= x0, "{vp}: {t:?}");
     }
 }

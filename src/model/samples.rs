@@ -306,35 +306,54 @@ pub fn snap_coord(c: f32, w: f32, bits: u32) -> Option<f64> {
     Some(m * w / scale)
 }
 
-/// The screen rectangle `[0, width] x [0, height]` in pixels, and a guard band of
-/// `guard` pixels around it: cases are placed so that every vertex, at both motion keys
-/// and every lens corner, lies in front of the lens and inside the guard-band rectangle
-/// `[-guard, width + guard] x [-guard, height + guard]`, and tiles inside the viewport.
+/// The screen rectangle `[x0, x0 + width] x [y0, y0 + height]` in pixels (the origin is
+/// 0 unless stated: hardware whose fixed-point range is centred on the origin states
+/// `-32768,-32768,65536x65536`), and a guard band of `guard` pixels around it: cases are
+/// placed so that every vertex, at both motion keys and every lens corner, lies in front
+/// of the lens and inside the guard-band rectangle, and tiles inside the viewport.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Viewport {
+    pub x0: i32,
+    pub y0: i32,
     pub width: u32,
     pub height: u32,
     pub guard: u32,
 }
 
-/// The largest viewport side and guard band the parser accepts (pixels): 2^15, as the
-/// largest render targets of current hardware; positions stay exact in f32 to 2^-8 px.
-pub const MAX_VIEWPORT: u32 = 1 << 15;
+/// The largest viewport side and guard band the parser accepts (pixels): 2^17, and every
+/// edge of the guard-band rectangle within +-2^17 of the origin. Pixel positions there are
+/// whole numbers far below 2^24, exact in f32; whether a case can be snapped to a
+/// sub-pixel grid at such positions is decided per case (`snap-range`).
+pub const MAX_VIEWPORT: u32 = 1 << 17;
 
 impl Viewport {
+    /// `[0, width] x [0, height]` with a guard band.
+    pub fn sized(width: u32, height: u32, guard: u32) -> Self {
+        Viewport { x0: 0, y0: 0, width, height, guard }
+    }
     /// The guard-band rectangle `[x0, x1, y0, y1]`.
     pub fn guard_rect(&self) -> [f64; 4] {
         let g = self.guard as f64;
-        [-g, self.width as f64 + g, -g, self.height as f64 + g]
+        let [x0, x1, y0, y1] = self.rect();
+        [x0 - g, x1 + g, y0 - g, y1 + g]
+    }
+    /// The viewport rectangle `[x0, x1, y0, y1]`.
+    pub fn rect(&self) -> [f64; 4] {
+        let (x0, y0) = (self.x0 as f64, self.y0 as f64);
+        [x0, x0 + self.width as f64, y0, y0 + self.height as f64]
     }
     /// True when the tile lies in the viewport.
     pub fn holds_tile(&self, t: &super::Tile) -> bool {
-        t.x0 >= 0.0 && t.y0 >= 0.0 && t.x1 <= self.width as f32 && t.y1 <= self.height as f32
+        let [x0, x1, y0, y1] = self.rect();
+        t.x0 as f64 >= x0 && t.y0 as f64 >= y0 && t.x1 as f64 <= x1 && t.y1 as f64 <= y1
     }
 }
 
 impl fmt::Display for Viewport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.x0 != 0 || self.y0 != 0 {
+            write!(f, "{},{},", self.x0, self.y0)?;
+        }
         write!(f, "{}x{}", self.width, self.height)?;
         if self.guard > 0 {
             write!(f, "+{}", self.guard)?;
@@ -347,10 +366,31 @@ impl FromStr for Viewport {
     type Err = ParseError;
     fn from_str(s: &str) -> Result<Self, ParseError> {
         let t = s.trim();
-        let help = "expected WIDTHxHEIGHT or WIDTHxHEIGHT+GUARD in whole pixels, e.g. 1920x1080+64";
-        let (dims, guard) = match t.split_once('+') {
-            Some((d, g)) => (d, g.parse::<u32>().map_err(|_| perr(s, help))?),
-            None => (t, 0),
+        let help = "expected WIDTHxHEIGHT[+GUARD] (from the origin), X,Y,WIDTHxHEIGHT[+GUARD] (from the \
+                    corner (X, Y)) or centred:WIDTHxHEIGHT[+GUARD] (around the origin), in whole pixels, e.g. \
+                    1920x1080+64 or -32768,-32768,65536x65536";
+        // The origin: stated, centred, or 0.
+        enum Origin {
+            At(i64, i64),
+            Centred,
+        }
+        let (origin, rest) = if let Some(r) = t.strip_prefix("centred:") {
+            (Origin::Centred, r)
+        } else {
+            let parts: Vec<&str> = t.splitn(3, ',').collect();
+            match parts.as_slice() {
+                [x, y, r] => {
+                    let x: i64 = x.trim().parse().map_err(|_| perr(s, help))?;
+                    let y: i64 = y.trim().parse().map_err(|_| perr(s, help))?;
+                    (Origin::At(x, y), *r)
+                }
+                [_] => (Origin::At(0, 0), t),
+                _ => return Err(perr(s, help)),
+            }
+        };
+        let (dims, guard) = match rest.split_once('+') {
+            Some((d, g)) => (d, g.trim().parse::<u32>().map_err(|_| perr(s, help))?),
+            None => (rest, 0),
         };
         let (w, h) = dims.split_once('x').ok_or_else(|| perr(s, help))?;
         let w: u32 = w.trim().parse().map_err(|_| perr(s, help))?;
@@ -361,7 +401,19 @@ impl FromStr for Viewport {
         if w > MAX_VIEWPORT || h > MAX_VIEWPORT || guard > MAX_VIEWPORT {
             return Err(perr(s, format!("each side and the guard band at most {MAX_VIEWPORT} pixels")));
         }
-        Ok(Viewport { width: w, height: h, guard })
+        let (x0, y0) = match origin {
+            Origin::At(x, y) => (x, y),
+            Origin::Centred => (-(w as i64 / 2), -(h as i64 / 2)),
+        };
+        let lim = MAX_VIEWPORT as i64;
+        let g = guard as i64;
+        if x0 - g < -lim || y0 - g < -lim || x0 + w as i64 + g > lim || y0 + h as i64 + g > lim {
+            return Err(perr(
+                s,
+                format!("the guard-band rectangle must lie within +-{MAX_VIEWPORT} pixels of the origin"),
+            ));
+        }
+        Ok(Viewport { x0: x0 as i32, y0: y0 as i32, width: w, height: h, guard })
     }
 }
 
@@ -391,11 +443,28 @@ mod tests {
             let e = s.parse::<SampleSet>().unwrap_err().to_string();
             assert!(e.contains(&format!("`{s}`")), "{e}");
         }
-        for s in ["1920x1080", "1920x1080+64", "1x1"] {
+        for s in ["1920x1080", "1920x1080+64", "1x1", "-32768,-32768,65536x65536", "-100,20,64x32+8"] {
             assert_eq!(s.parse::<Viewport>().unwrap().to_string(), s);
         }
-        for s in ["0x5", "1920", "1920x", "ax3", "40000x3", "3x3+a", "-3x3"] {
-            assert!(s.parse::<Viewport>().is_err(), "{s}");
+        let c: Viewport = "centred:65536x65536+1024".parse().unwrap();
+        assert_eq!((c.x0, c.y0, c.width, c.height, c.guard), (-32768, -32768, 65536, 65536, 1024));
+        assert_eq!(c.rect(), [-32768.0, 32768.0, -32768.0, 32768.0]);
+        for s in [
+            "0x5",
+            "1920",
+            "1920x",
+            "ax3",
+            "300000x3",
+            "3x3+a",
+            "-3x3",
+            "1,2x3",
+            "a,0,3x3",
+            "131072,0,3x3",
+            "centred:131072x131072+8",
+            "0,0,0,3x3",
+        ] {
+            let e = s.parse::<Viewport>().unwrap_err().to_string();
+            assert!(e.contains(&format!("`{s}`")), "{s}: {e}");
         }
         assert_eq!("8".parse::<Snap>().unwrap(), Snap { bits: 8 });
         assert!("17".parse::<Snap>().is_err() && "-1".parse::<Snap>().is_err());
