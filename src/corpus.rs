@@ -18,6 +18,7 @@ use crate::check::expect::{pooled_looser, Entry};
 use crate::check::{culled_by, judge, try_make_case, Cap, CheckConfig, Expectations, Judgement};
 use crate::gen::Regime;
 use crate::model::{Case, SampleSet, Snap, Tile, Viewport};
+use crate::num_or_inf;
 use crate::quote::{clip, quote};
 use anyhow::{anyhow, bail, Context, Result};
 use oracles::{classify, Coverage};
@@ -50,35 +51,6 @@ pub struct WitnessRecord {
     /// Embree's verdict on the witness ray when the case is physical.
     #[serde(default)]
     pub embree_hit: Option<bool>,
-}
-
-/// An f64 written as a JSON number, or as the string "inf" when it is +infinity (JSON
-/// has no infinity).
-pub(crate) mod num_or_inf {
-    use serde::{Deserialize, Deserializer, Serializer};
-    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
-        if *v == f64::INFINITY {
-            s.serialize_str("inf")
-        } else {
-            s.serialize_f64(*v)
-        }
-    }
-    #[derive(Deserialize)]
-    #[serde(untagged)]
-    enum NumOrStr {
-        Num(f64),
-        Str(String),
-    }
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-        match NumOrStr::deserialize(d)? {
-            NumOrStr::Num(v) => Ok(v),
-            NumOrStr::Str(s) if s == "inf" => Ok(f64::INFINITY),
-            NumOrStr::Str(s) => Err(serde::de::Error::custom(format!(
-                "expected a number or \"inf\", found {}",
-                crate::quote::quote(&s)
-            ))),
-        }
-    }
 }
 
 /// Where a case came from.

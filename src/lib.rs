@@ -62,6 +62,7 @@ pub mod explain;
 pub mod gen;
 #[doc(hidden)]
 pub mod locate;
+mod num_or_inf;
 #[doc(hidden)]
 pub mod output;
 #[doc(hidden)]

@@ -22,8 +22,8 @@
 //! search. Such a kind is still gated by its presence (a kind not listed fails), by
 //! the rate and by the tightness signature.
 
-use crate::corpus::num_or_inf;
 use crate::gen::Regime;
+use crate::num_or_inf;
 use crate::quote::clip;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;

@@ -161,7 +161,7 @@ pub struct Witness {
     pub bound: String,
     /// Padding of that bound that would admit the witness ("inf" in JSON when a
     /// covered tile was culled).
-    #[serde(with = "crate::corpus::num_or_inf")]
+    #[serde(with = "crate::num_or_inf")]
     pub margin: f64,
     /// Embree's verdict on the witness ray (None: not a physical case).
     pub embree_hit: Option<bool>,

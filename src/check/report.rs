@@ -57,7 +57,7 @@ impl Status {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, serde::Deserialize)]
 pub struct BoundStat {
     pub cases: u64,
-    #[serde(with = "crate::corpus::num_or_inf")]
+    #[serde(with = "crate::num_or_inf")]
     pub max_margin: f64,
 }
 
@@ -109,7 +109,7 @@ pub struct Row {
     pub pass_fraction: f64,
     /// Largest margin needed over the violations (0 when none; "inf" in JSON when a
     /// covered tile was culled).
-    #[serde(with = "crate::corpus::num_or_inf")]
+    #[serde(with = "crate::num_or_inf")]
     pub margin_needed: f64,
     pub expected: Expected,
     pub status: Status,
