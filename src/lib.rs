@@ -61,6 +61,8 @@ pub mod explain;
 #[doc(hidden)]
 pub mod gen;
 #[doc(hidden)]
+pub mod junit;
+#[doc(hidden)]
 pub mod locate;
 mod num_or_inf;
 #[doc(hidden)]

@@ -525,7 +525,7 @@ fn check_json(json: &Option<PathBuf>) -> Result<()> {
 /// Check a `--junit` path (and its witness directory) before any work.
 fn check_junit(junit: &Option<PathBuf>) -> Result<()> {
     match junit {
-        Some(p) => cullproof::check::junit::check_path(p),
+        Some(p) => cullproof::junit::check_path(p),
         None => Ok(()),
     }
 }
@@ -709,7 +709,7 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
             if let Some(p) = &junit {
-                cullproof::check::junit::write(&r, p, &loaders)?;
+                cullproof::junit::write(&r, p, &loaders)?;
             }
             if r.failed() {
                 exit(1);
@@ -729,7 +729,7 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
             if let Some(p) = &junit {
-                cullproof::check::junit::write(&r, p, &loaders)?;
+                cullproof::junit::write(&r, p, &loaders)?;
             }
             if r.failed() {
                 exit(1);

@@ -21,7 +21,6 @@
 pub mod baseline;
 pub mod expect;
 pub mod judge;
-pub mod junit;
 pub mod merge;
 pub mod power;
 pub mod report;
