@@ -15,7 +15,7 @@
 
 use crate::bounds::{by_id, Method, MethodRef, TileResult};
 use crate::check::expect::{pooled_looser, Entry};
-use crate::check::{culled_by, judge, try_make_case, Cap, CheckConfig, Expectations, Judgement};
+use crate::check::{culled_by, judge, try_make_case, Cap, CheckConfig, Declared, Expectations, Judgement};
 use crate::gen::Regime;
 use crate::model::{Case, SampleSet, Snap, Tile, Viewport};
 use crate::num_or_inf;
@@ -327,7 +327,7 @@ fn judge_file(
     cf: &CaseFile,
     m: &'static dyn Method,
     cfg: &CheckConfig,
-    over: &crate::args::Declared,
+    over: &Declared,
 ) -> (WitnessCheck, Judgement, CheckConfig) {
     let mut cfg = CheckConfig { side_stall: 0, ..cf.settings(cfg) };
     over.apply(&mut cfg);
@@ -340,12 +340,12 @@ fn judge_file(
 /// Re-judge one case file, with the whole side budget (one case: no stall cut-off).
 /// The file's sample set, snap and viewport are used.
 pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
-    replay_with(path, cfg, &crate::args::Declared::default())
+    replay_with(path, cfg, &Declared::default())
 }
 
 /// [`replay`], with the sample set, snap or viewport given in `over` in place of the
 /// file's (to ask whether a case found under one set holds under another).
-pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared) -> Result<Replay> {
+pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &Declared) -> Result<Replay> {
     let cf = CaseFile::load(path)?;
     let m = method_of(&cf.method).expect("checked at load");
     let (witness, j, cfg) = judge_file(&cf, m, cfg, over);
@@ -396,7 +396,7 @@ pub struct Rejudge {
 /// the file's sample set, snap and viewport, or those in `over`), with the whole side
 /// budget: does a fixed bound still cull the stored witness, and is it proven on the
 /// case?
-pub fn rejudge(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared, method: &str) -> Result<Rejudge> {
+pub fn rejudge(path: &Path, cfg: &CheckConfig, over: &Declared, method: &str) -> Result<Rejudge> {
     let cf = CaseFile::load(path)?;
     let m = method_of(method)
         .ok_or_else(|| anyhow::anyhow!("--method {method}: no such method (see `cullproof methods`)"))?;

@@ -147,6 +147,34 @@ impl CheckConfig {
     }
 }
 
+/// A run has at most this many cases in all (`check --cases`; `cullproof merge` holds
+/// every shard report's run to it too).
+pub const MAX_CASES: u64 = 1_000_000_000;
+
+/// The samples a bound promises to keep, as declared (`--samples`, `--snap`,
+/// `--viewport`; `docs/model.md`, §7): each None when it was not declared.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Declared {
+    pub samples: Option<SampleSet>,
+    pub snap: Option<Snap>,
+    pub viewport: Option<Viewport>,
+}
+
+impl Declared {
+    /// Put the declared values into a run's settings (values not declared leave them).
+    pub fn apply(&self, cfg: &mut CheckConfig) {
+        if let Some(s) = self.samples {
+            cfg.sample_set = s;
+        }
+        if self.snap.is_some() {
+            cfg.snap = self.snap;
+        }
+        if self.viewport.is_some() {
+            cfg.viewport = self.viewport;
+        }
+    }
+}
+
 /// A violation, with what is needed to replay it.
 #[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Witness {
