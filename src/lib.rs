@@ -70,6 +70,8 @@ pub mod output;
 #[doc(hidden)]
 pub mod plugin;
 #[doc(hidden)]
+pub mod proofs;
+#[doc(hidden)]
 pub mod quote;
 #[doc(hidden)]
 pub mod stability;

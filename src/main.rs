@@ -454,7 +454,7 @@ enum Cmd {
     /// src/bounds/proofs/, checked against the code's constants and formulas) and print,
     /// per method, its ranges, scripts, their verdicts and times, and its strongest
     /// verdict; exit 1 when a script is not proven or does not match the code.
-    Proofs(cullproof::bounds::proofs::cli::ProofsArgs),
+    Proofs(cullproof::proofs::cli::ProofsArgs),
     /// List the culling methods under test: id, source, reconstruction flag, dimensions, outputs.
     Methods {
         /// Print JSON instead of a table.
@@ -1005,7 +1005,7 @@ fn run() -> Result<()> {
             }
         }
         Cmd::Proofs(args) => {
-            if !cullproof::bounds::proofs::cli::run_cli(&args)? {
+            if !cullproof::proofs::cli::run_cli(&args)? {
                 exit(1);
             }
         }
