@@ -639,7 +639,7 @@ pub struct RegimeSeen {
     pub violated: u64,
     /// The signature's rate cap (null: none).
     pub max_rate: Option<f64>,
-    pub tight: BTreeMap<String, crate::check::report::TightStat>,
+    pub tight: BTreeMap<String, crate::check::expect::TightStat>,
 }
 
 /// The result of a search.

@@ -9,7 +9,8 @@
 //! `gate.witnesses/<method>/<hash>.json`, the corpus's case-file format); an existing
 //! file is never overwritten (the same witness has the same name).
 
-use crate::check::report::{CheckReport, Row, Status};
+use crate::check::report::CheckReport;
+use crate::check::row::{Row, Status};
 use crate::check::CheckConfig;
 use crate::corpus::CaseFile;
 use anyhow::Result;

@@ -24,7 +24,9 @@ pub mod judge;
 pub mod merge;
 pub mod power;
 pub mod report;
+pub mod row;
 pub mod samples;
+pub mod settings;
 pub mod side_cut;
 pub mod strength;
 pub mod tiles;
@@ -34,7 +36,8 @@ pub mod tool;
 pub use crate::gen::boundary_tile;
 pub use expect::{Allowance, Cap, Entry, Expectations, Expected};
 pub use judge::{bound_kind, culled_by, in_domain, Judgement, Unproven, Verdict};
-pub use report::{render, CheckReport, CrossCheck, Row, Status};
+pub use report::{render, CheckReport, CrossCheck};
+pub use row::{Row, Status};
 pub use strength::{MethodStrength, Strength};
 
 use crate::agree::lens_tri;
@@ -460,7 +463,7 @@ pub fn run_with_baseline(
     let mut rep = acc.finish(cfg, judged, start.elapsed().as_secs_f64());
     rep.samples = samples::SetNote::of(cfg, drawn - judged);
     rep.contract_breaches = crate::plugin::breaches_since(&breaches);
-    rep.tool = Some(tool::ToolInfo::of(ex, base));
+    rep.tool = Some(tool::ToolInfo::of(ex, base.map(tool::hash)));
     if let Some(b) = base {
         baseline::apply(&mut rep, cfg, b);
     }

@@ -9,8 +9,8 @@
 //! each case must be proven, violated or unproven, and every count a row holds must fit
 //! within its cases, so the sums that follow cannot overflow.
 
-use super::fixed;
-use crate::check::report::{CheckReport, Row};
+use crate::check::report::CheckReport;
+use crate::check::row::{fixed, Row};
 use crate::check::{strength, tool, MAX_CASES};
 use crate::gen::Regime;
 use anyhow::{bail, Result};
