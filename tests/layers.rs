@@ -21,6 +21,10 @@
 //! A loop fails the test, naming each edge of it with the first file and line that
 //! makes it. The unit checks below show that the finder reports a hand-made loop and
 //! that the reader sees the real edges, so a pass is not a reader that sees nothing.
+//!
+//! The same reading keeps the test scaffolding of `src/` (the bounds' test kit, the old
+//! code kept for the bit-identity tests, ...) out of the library: no such file is
+//! reached from `src/lib.rs` outside `#[cfg(test)]`.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -387,11 +391,13 @@ struct Ref {
     at: String,
 }
 
-/// The library's modules (by path from the root) and the paths they reference.
+/// The library's modules (by path from the root), the paths they reference and the
+/// files compiled into it.
 #[derive(Default)]
 struct Crate {
     modules: BTreeMap<Vec<String>, Module>,
     refs: Vec<Ref>,
+    files: BTreeSet<PathBuf>,
 }
 
 /// The file of module `name` declared in a module whose children live in `dir`.
@@ -435,6 +441,7 @@ impl Crate {
 
     fn read_file(&mut self, file: &Path, path: Vec<String>, dir: PathBuf) {
         let text = std::fs::read_to_string(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        self.files.insert(file.to_path_buf());
         let code = strip_test_items(&code_of(&text));
         let toks = tokens(&code);
         let rel = file.strip_prefix(src().parent().unwrap()).unwrap_or(file).display().to_string();
@@ -695,4 +702,55 @@ fn the_reader_sees_the_real_edges() {
     // oracles'); one it re-exports from a module, in that module
     assert_eq!(krate.resolve(&["Interval".to_string()], 0), Some(vec![]));
     assert_eq!(krate.resolve(&["Gate".to_string()], 0), Some(vec!["gate".to_string()]));
+}
+
+/// Every `.rs` file under `dir`.
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            rust_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// The test scaffolding kept in `src/` (the bounds' test kit and shared grid and row
+/// tests, the old code kept verbatim for the bit-identity tests, the extra grid cases,
+/// the tests kept in files of their own) is declared under `#[cfg(test)]`, so the
+/// library never compiles it.
+#[test]
+fn test_scaffolding_is_not_compiled_into_the_library() {
+    let krate = Crate::read();
+    let mut all = Vec::new();
+    rust_files(&src(), &mut all);
+    let scaffolding: Vec<&PathBuf> = all
+        .iter()
+        .filter(|p| {
+            let name = p.file_name().unwrap().to_string_lossy();
+            matches!(name.as_ref(), "testkit.rs" | "safe_old.rs" | "grid_cases.rs" | "tests.rs")
+                || name.ends_with("_tests.rs")
+        })
+        .collect();
+    let named = |p: &PathBuf| p.strip_prefix(src()).unwrap().display().to_string();
+    let names: BTreeSet<String> = scaffolding.iter().map(|p| named(p)).collect();
+    for want in [
+        "bounds/testkit.rs",
+        "bounds/grid_tests.rs",
+        "bounds/row_tests.rs",
+        "bounds/gdam2010/safe_old.rs",
+        "bounds/mam2012/safe_old.rs",
+        "bounds/mam2012_hyperplane/safe_old.rs",
+        "bounds/wu2013/safe_old.rs",
+    ] {
+        assert!(names.contains(want), "{want} not found among {names:?}");
+    }
+    let compiled: Vec<String> = scaffolding.into_iter().filter(|p| krate.files.contains(*p)).map(named).collect();
+    assert!(
+        compiled.is_empty(),
+        "test scaffolding compiled into the library (declare it under #[cfg(test)]): {compiled:?}"
+    );
+    // the reader does reach the library's files
+    assert!(krate.files.contains(&src().join("bounds/wu2013.rs")) && krate.files.len() > 50, "{}", krate.files.len());
 }
