@@ -19,6 +19,7 @@
 //!   `replay` and `explain` ([`crate::locate`]).
 
 use crate::bounds::{self, Method};
+use crate::check::{self, Declared};
 use crate::gen::Regime;
 use crate::model::{SampleSet, Snap, Viewport};
 use anyhow::{bail, ensure, Result};
@@ -27,8 +28,8 @@ use anyhow::{bail, ensure, Result};
 pub const MAX_TILE: f32 = 4096.0;
 
 /// `check --cases`: at most this many cases in all (the case ids of the shard are
-/// listed before the run).
-pub const CHECK_MAX_CASES: u64 = 1_000_000_000;
+/// listed before the run; [`check::MAX_CASES`], which `merge` holds reports to).
+pub const CHECK_MAX_CASES: u64 = check::MAX_CASES;
 
 /// `check --cases`: at most this many cases per shard. A run holds every judged case's
 /// judgement until the report (about 7 KB per case with every method), so 10^6 cases
@@ -227,37 +228,15 @@ pub struct SampleFlags {
     pub viewport: Option<String>,
 }
 
-/// What [`SampleFlags`] declare: each None when its flag was not given.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Declared {
-    pub samples: Option<SampleSet>,
-    pub snap: Option<Snap>,
-    pub viewport: Option<Viewport>,
-}
-
 impl SampleFlags {
-    /// Parse the flags given; a bad value is an error naming the flag and the value.
+    /// Parse the flags given into what they declare ([`Declared`]: each None when its
+    /// flag was not given); a bad value is an error naming the flag and the value.
     pub fn parse(&self) -> Result<Declared> {
         Ok(Declared {
             samples: self.samples.as_deref().map(sample_set).transpose()?,
             snap: self.snap.as_deref().map(snap).transpose()?,
             viewport: self.viewport.as_deref().map(viewport).transpose()?,
         })
-    }
-}
-
-impl Declared {
-    /// Put the declared values into a run's settings (flags not given leave them).
-    pub fn apply(&self, cfg: &mut crate::check::CheckConfig) {
-        if let Some(s) = self.samples {
-            cfg.sample_set = s;
-        }
-        if self.snap.is_some() {
-            cfg.snap = self.snap;
-        }
-        if self.viewport.is_some() {
-            cfg.viewport = self.viewport;
-        }
     }
 }
 

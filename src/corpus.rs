@@ -15,9 +15,10 @@
 
 use crate::bounds::{by_id, Method, MethodRef, TileResult};
 use crate::check::expect::{pooled_looser, Entry};
-use crate::check::{culled_by, judge, try_make_case, Cap, CheckConfig, Expectations, Judgement};
+use crate::check::{culled_by, judge, try_make_case, Cap, CheckConfig, Declared, Expectations, Judgement};
 use crate::gen::Regime;
 use crate::model::{Case, SampleSet, Snap, Tile, Viewport};
+use crate::num_or_inf;
 use crate::quote::{clip, quote};
 use anyhow::{anyhow, bail, Context, Result};
 use oracles::{classify, Coverage};
@@ -50,35 +51,6 @@ pub struct WitnessRecord {
     /// Embree's verdict on the witness ray when the case is physical.
     #[serde(default)]
     pub embree_hit: Option<bool>,
-}
-
-/// An f64 written as a JSON number, or as the string "inf" when it is +infinity (JSON
-/// has no infinity).
-pub(crate) mod num_or_inf {
-    use serde::{Deserialize, Deserializer, Serializer};
-    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
-        if *v == f64::INFINITY {
-            s.serialize_str("inf")
-        } else {
-            s.serialize_f64(*v)
-        }
-    }
-    #[derive(Deserialize)]
-    #[serde(untagged)]
-    enum NumOrStr {
-        Num(f64),
-        Str(String),
-    }
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-        match NumOrStr::deserialize(d)? {
-            NumOrStr::Num(v) => Ok(v),
-            NumOrStr::Str(s) if s == "inf" => Ok(f64::INFINITY),
-            NumOrStr::Str(s) => Err(serde::de::Error::custom(format!(
-                "expected a number or \"inf\", found {}",
-                crate::quote::quote(&s)
-            ))),
-        }
-    }
 }
 
 /// Where a case came from.
@@ -355,7 +327,7 @@ fn judge_file(
     cf: &CaseFile,
     m: &'static dyn Method,
     cfg: &CheckConfig,
-    over: &crate::args::Declared,
+    over: &Declared,
 ) -> (WitnessCheck, Judgement, CheckConfig) {
     let mut cfg = CheckConfig { side_stall: 0, ..cf.settings(cfg) };
     over.apply(&mut cfg);
@@ -368,12 +340,12 @@ fn judge_file(
 /// Re-judge one case file, with the whole side budget (one case: no stall cut-off).
 /// The file's sample set, snap and viewport are used.
 pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
-    replay_with(path, cfg, &crate::args::Declared::default())
+    replay_with(path, cfg, &Declared::default())
 }
 
 /// [`replay`], with the sample set, snap or viewport given in `over` in place of the
 /// file's (to ask whether a case found under one set holds under another).
-pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared) -> Result<Replay> {
+pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &Declared) -> Result<Replay> {
     let cf = CaseFile::load(path)?;
     let m = method_of(&cf.method).expect("checked at load");
     let (witness, j, cfg) = judge_file(&cf, m, cfg, over);
@@ -424,7 +396,7 @@ pub struct Rejudge {
 /// the file's sample set, snap and viewport, or those in `over`), with the whole side
 /// budget: does a fixed bound still cull the stored witness, and is it proven on the
 /// case?
-pub fn rejudge(path: &Path, cfg: &CheckConfig, over: &crate::args::Declared, method: &str) -> Result<Rejudge> {
+pub fn rejudge(path: &Path, cfg: &CheckConfig, over: &Declared, method: &str) -> Result<Rejudge> {
     let cf = CaseFile::load(path)?;
     let m = method_of(method)
         .ok_or_else(|| anyhow::anyhow!("--method {method}: no such method (see `cullproof methods`)"))?;
@@ -667,7 +639,7 @@ pub struct RegimeSeen {
     pub violated: u64,
     /// The signature's rate cap (null: none).
     pub max_rate: Option<f64>,
-    pub tight: BTreeMap<String, crate::check::report::TightStat>,
+    pub tight: BTreeMap<String, crate::check::expect::TightStat>,
 }
 
 /// The result of a search.

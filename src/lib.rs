@@ -61,11 +61,16 @@ pub mod explain;
 #[doc(hidden)]
 pub mod gen;
 #[doc(hidden)]
+pub mod junit;
+#[doc(hidden)]
 pub mod locate;
+mod num_or_inf;
 #[doc(hidden)]
 pub mod output;
 #[doc(hidden)]
 pub mod plugin;
+#[doc(hidden)]
+pub mod proofs;
 #[doc(hidden)]
 pub mod quote;
 #[doc(hidden)]

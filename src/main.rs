@@ -454,7 +454,7 @@ enum Cmd {
     /// src/bounds/proofs/, checked against the code's constants and formulas) and print,
     /// per method, its ranges, scripts, their verdicts and times, and its strongest
     /// verdict; exit 1 when a script is not proven or does not match the code.
-    Proofs(cullproof::bounds::proofs::cli::ProofsArgs),
+    Proofs(cullproof::proofs::cli::ProofsArgs),
     /// List the culling methods under test: id, source, reconstruction flag, dimensions, outputs.
     Methods {
         /// Print JSON instead of a table.
@@ -525,7 +525,7 @@ fn check_json(json: &Option<PathBuf>) -> Result<()> {
 /// Check a `--junit` path (and its witness directory) before any work.
 fn check_junit(junit: &Option<PathBuf>) -> Result<()> {
     match junit {
-        Some(p) => cullproof::check::junit::check_path(p),
+        Some(p) => cullproof::junit::check_path(p),
         None => Ok(()),
     }
 }
@@ -709,7 +709,7 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
             if let Some(p) = &junit {
-                cullproof::check::junit::write(&r, p, &loaders)?;
+                cullproof::junit::write(&r, p, &loaders)?;
             }
             if r.failed() {
                 exit(1);
@@ -729,7 +729,7 @@ fn run() -> Result<()> {
                 write_json(p, &serde_json::to_string_pretty(&r)?)?;
             }
             if let Some(p) = &junit {
-                cullproof::check::junit::write(&r, p, &loaders)?;
+                cullproof::junit::write(&r, p, &loaders)?;
             }
             if r.failed() {
                 exit(1);
@@ -1005,7 +1005,7 @@ fn run() -> Result<()> {
             }
         }
         Cmd::Proofs(args) => {
-            if !cullproof::bounds::proofs::cli::run_cli(&args)? {
+            if !cullproof::proofs::cli::run_cli(&args)? {
                 exit(1);
             }
         }

@@ -5,7 +5,8 @@
 
 use cullproof::bounds::{by_id, Method};
 use cullproof::check::baseline::BaselineFile;
-use cullproof::check::{junit, merge, run_with_baseline, CheckConfig, CheckReport, Expectations};
+use cullproof::check::{merge, run_with_baseline, CheckConfig, CheckReport, Expectations};
+use cullproof::junit;
 use std::path::{Path, PathBuf};
 
 fn expectations() -> Expectations {

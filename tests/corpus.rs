@@ -116,7 +116,7 @@ fn replay_with_another_method_says_fixed_or_still_violated() {
     let files = case_files(&[dir]).unwrap();
     assert!(!files.is_empty());
     let cfg = CheckConfig::default_with(cullproof::bounds::registry());
-    let none = cullproof::args::Declared::default();
+    let none = cullproof::check::Declared::default();
     for f in &files {
         // The safe variant admits every stored witness and is proven on the case.
         let r = cullproof::corpus::rejudge(f, &cfg, &none, "la2011-safe").unwrap();

@@ -253,7 +253,7 @@ fn the_stored_baseline_holds_at_960_cases() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let file = BaselineFile::load(&root.join("corpus/baseline.json")).unwrap();
     let mut cfg = CheckConfig::default_with(cullproof::bounds::registry());
-    let default = cullproof::check::baseline::Settings::of(&cfg).unwrap();
+    let default = cullproof::check::settings::Settings::of(&cfg).unwrap();
     assert!(file.find(&default).is_some(), "no baseline for the default gate");
     cfg.cases = 960;
     let r = run_with_baseline(&cfg, &expectations(), Some(&file), false);

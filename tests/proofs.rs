@@ -1,10 +1,11 @@
-//! The proofs for all inputs (`src/bounds/proofs/`): every z3 and gappa script is
-//! re-run and must be proven, the scripts must match the code (constants, bbox-safe's
-//! formula, the step primitives), and a changed constant or a false lemma must fail,
-//! so that a passing run means something. Needs `z3` and `gappa` on the PATH (`.ci/run`
-//! installs both); a missing tool fails with how to install it.
+//! The proofs for all inputs (`src/bounds/proofs/`, run by `src/proofs/`): every z3 and
+//! gappa script is re-run and must be proven, the scripts must match the code
+//! (constants, bbox-safe's formula, the step primitives), and a changed constant or a
+//! false lemma must fail, so that a passing run means something. Needs `z3` and `gappa`
+//! on the PATH (`.ci/run` installs both); a missing tool fails with how to install it.
 
-use cullproof::bounds::proofs::{check, cli, run, Tool, BBOX_PAD, SCRIPTS, STEP, VARIANTS, WU_PAD};
+use cullproof::bounds::proofs::{check, run, Tool, BBOX_PAD, SCRIPTS, STEP, VARIANTS, WU_PAD};
+use cullproof::proofs::cli;
 use std::time::Duration;
 
 const LIMIT: Duration = Duration::from_secs(300);
@@ -117,7 +118,7 @@ fn a_missing_tool_is_a_failure_that_says_how_to_install() {
 /// judge confirms; `cullproof proofs` then reports the failure.
 #[test]
 fn a_dropped_outward_step_in_la2011_safe_fails_the_template_obligation() {
-    use cullproof::bounds::proofs::composition;
+    use cullproof::proofs::composition;
     let ok = composition::run("la2011-safe", LIMIT);
     assert_eq!(ok.len(), 2, "{ok:?}");
     for s in &ok {

@@ -6,10 +6,10 @@
 mod common;
 
 use common::Cli;
+use cullproof::bounds::arith::{F32Arith, Plain, TriOf};
 use cullproof::bounds::bbox::{aabb_of, rejects};
+use cullproof::bounds::broken::planted::{BAND_HI, BAND_LO};
 use cullproof::bounds::{by_id, TileResult};
-use cullproof::symbolic::arith::{F32Arith, Plain, TriOf};
-use cullproof::symbolic::planted::{BAND_HI, BAND_LO};
 use cullproof::symbolic::prove::{
     family, prove, queries, range_sets, Limits, ProveReport, QueryReport, Rule, Strategy, DEFAULT_FREE_SHARE,
     DEFAULT_RLIMIT,

@@ -123,7 +123,7 @@
 //! coordinates, which no sample test efficiency figure can see.
 
 use super::*;
-use crate::symbolic::arith::{F32Arith, Plain, TriOf};
+use crate::bounds::arith::{F32Arith, Plain, TriOf};
 
 /// How one corner value is enclosed, written once over [`F32Arith`] (so the f32
 /// method and its SMT-LIB2 encoding in `crate::symbolic` are the same code): from the
@@ -170,8 +170,8 @@ impl Corner for SafeCorner {
     }
 }
 
-/// bbox, or bbox-safe (or a planted slip of `crate::symbolic`): the same box with
-/// another corner value.
+/// bbox, or bbox-safe (or a planted slip of [`super::broken::planted`]): the same box
+/// with another corner value.
 pub(crate) struct BBox<C: Corner> {
     pub(crate) info: &'static MethodInfo,
     pub(crate) corner: C,
@@ -257,7 +257,7 @@ impl Prepared for Prep {
         let Some(bx) = self.bx else {
             return TileResult::Bounds(TileBounds::full());
         };
-        if rejects(&Plain, &true, &bx, &crate::symbolic::arith::tile_of(tile)) {
+        if rejects(&Plain, &true, &bx, &crate::bounds::arith::tile_of(tile)) {
             TileResult::Empty
         } else {
             TileResult::Bounds(TileBounds::full())

@@ -23,8 +23,10 @@
 //!
 //! Four more, `broken/planted-eq/bbox-safe`, `broken/planted-band/bbox-safe`,
 //! `broken/planted-no-up/la2011-safe` and `broken/planted-no-dn/la2011-safe`, are rare
-//! slips planted in the `-safe` variants themselves (`crate::symbolic::planted`), not in
-//! `cullproof power`.
+//! slips planted in the `-safe` variants themselves ([`planted`]), not in `cullproof
+//! power`.
+
+pub mod planted;
 
 use super::{by_id, Method, MethodInfo, Prepared, TileResult};
 use crate::model::{Tile, Triangle};
@@ -178,8 +180,8 @@ pub fn inner_id(id: &str) -> &str {
 
 /// The broken variant named `id` ("broken/shrink/la2011"), if it is one.
 pub fn parse(id: &str) -> Option<&'static dyn Method> {
-    // The rare slips planted for the symbolic search (`crate::symbolic::planted`).
-    if let Some(m) = crate::symbolic::planted::parse(id) {
+    // The rare slips planted for the symbolic search ([`planted`]).
+    if let Some(m) = planted::parse(id) {
         return Some(m);
     }
     let rest = id.strip_prefix("broken/")?;

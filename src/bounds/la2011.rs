@@ -186,7 +186,7 @@
 //! that is the precision f32 has at 1e6 px, not a choice).
 
 use super::*;
-use crate::symbolic::arith::{tile_of, F32Arith, Plain, TriOf};
+use crate::bounds::arith::{tile_of, F32Arith, Plain, TriOf};
 use std::marker::PhantomData;
 
 /// An f32 interval `[lo, hi]`; in `la2011` both ends are the one rounded value.
@@ -559,7 +559,7 @@ impl<R: Round> TileGrid for AxisGrid<'_, R> {
 }
 
 /// la2011 (`R = Nearest`) or la2011-safe (`R = Outward`): one algorithm, two arithmetics
-/// (the planted slips of [`crate::symbolic::planted`] are a third and fourth).
+/// (the planted slips of [`crate::bounds::broken::planted`] are a third and fourth).
 pub(crate) struct La2011<R> {
     pub(crate) info: &'static MethodInfo,
     pub(crate) round: PhantomData<fn() -> R>,

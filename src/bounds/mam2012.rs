@@ -200,7 +200,7 @@
 //! one multiply-add; per sample: two steps more per line.
 
 use super::*;
-use crate::symbolic::arith::{tile_of, F32Arith, Plain, TriOf};
+use crate::bounds::arith::{tile_of, F32Arith, Plain, TriOf};
 use std::ops::{Add, Div, Mul, Sub};
 
 /// The bilinear ut / vt test of Munkberg and Akenine-Möller 2012, §2.1.

@@ -235,7 +235,7 @@
 //! are `tile`'s bit for bit (`grid_tests.rs`).
 
 use super::*;
-use crate::symbolic::arith::{tile_of, F32Arith, Plain};
+use crate::bounds::arith::{tile_of, F32Arith, Plain};
 use std::ops::{Add, Mul, Neg, Sub};
 
 /// Default ratio of the selective enabling rule: with selective enabling, the test is

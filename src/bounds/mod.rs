@@ -16,6 +16,7 @@ use crate::Interval;
 pub use oracles::extents::Cut;
 use serde::Serialize;
 
+pub mod arith;
 pub mod bbox;
 pub mod broken;
 pub mod gdam2010;

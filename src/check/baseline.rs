@@ -23,7 +23,9 @@
 //! after a deliberate change (a method fixed, the judge made stronger) once the new
 //! table has been read and the changes are understood; never to silence a failure.
 
-use super::report::{BoundStat, CheckReport, Status};
+use super::report::CheckReport;
+use super::row::{BoundStat, Row, Status};
+use super::settings::Settings;
 use super::CheckConfig;
 use crate::quote::{clip, quote};
 use anyhow::{anyhow, Context, Result};
@@ -36,55 +38,6 @@ pub const MARGIN_FACTOR: f64 = 2.0;
 
 /// The format tag of a baseline file.
 pub const FORMAT: &str = "cullproof-baseline/1";
-
-/// The settings a baseline belongs to.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Settings {
-    pub seed: u64,
-    pub cases: u64,
-    pub regimes: Vec<String>,
-    pub tile: Option<f32>,
-    pub samples: usize,
-    pub side_budget: usize,
-    pub side_stall: usize,
-    pub constraint_budget: usize,
-    pub limit_every: u64,
-    pub limit_budget: usize,
-    /// The sample set, snap and viewport (`centres`, `msaa4 snap 8 viewport
-    /// 1920x1080+64`, ...); absent for the defaults, so older entries still match.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub sample_set: Option<String>,
-    /// The judge's second chance (`--second-chance`); absent when off.
-    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    pub second_chance: bool,
-}
-
-impl Settings {
-    /// The settings of a run (None for a timed or sharded run, which has no fixed
-    /// case set to compare).
-    pub fn of(cfg: &CheckConfig) -> Option<Settings> {
-        (cfg.time.is_none() && cfg.shard == (0, 1)).then(|| Settings::whole(cfg))
-    }
-
-    /// The settings of the whole run a (possibly sharded) run belongs to.
-    pub fn whole(cfg: &CheckConfig) -> Settings {
-        Settings {
-            seed: cfg.seed,
-            cases: cfg.cases,
-            regimes: cfg.regimes.iter().map(|r| r.name().to_string()).collect(),
-            tile: cfg.tile,
-            samples: cfg.samples,
-            side_budget: cfg.side_budget,
-            side_stall: cfg.side_stall,
-            constraint_budget: cfg.constraint_budget,
-            limit_every: cfg.limit_every,
-            limit_budget: cfg.limit_budget,
-            sample_set: super::samples::SetNote::of(cfg, 0).map(|n| n.key()),
-            second_chance: cfg.extents.second_chance,
-        }
-    }
-}
 
 /// One row as stored.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -181,7 +134,7 @@ impl BaselineFile {
 }
 
 /// What changed in one row against its baseline row (empty: nothing worse).
-pub fn compare(row: &super::Row, base: &BaseRow) -> Vec<String> {
+pub fn compare(row: &Row, base: &BaseRow) -> Vec<String> {
     let mut out = Vec::new();
     for (k, b) in &row.bounds {
         match base.bounds.get(k) {
@@ -279,7 +232,6 @@ pub fn apply_settings(r: &mut CheckReport, settings: Option<&Settings>, file: &B
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::check::report::Row;
 
     fn row(violations: u64, bounds: &[(&str, f64)], pass: f64) -> Row {
         Row {
@@ -367,7 +319,7 @@ mod tests {
             seed: 1,
             cases: 10,
             shard: "0/1".into(),
-            run: crate::check::merge::RunInfo::of(&cfg),
+            run: crate::check::settings::RunInfo::of(&cfg),
             rows: vec![row(n, &[], 0.5)],
             methods: vec![],
             cross_check: vec![],

@@ -22,8 +22,8 @@
 //! search. Such a kind is still gated by its presence (a kind not listed fails), by
 //! the rate and by the tightness signature.
 
-use crate::corpus::num_or_inf;
 use crate::gen::Regime;
+use crate::num_or_inf;
 use crate::quote::clip;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -115,6 +115,13 @@ pub struct Searched {
     pub outcome: String,
 }
 
+/// Proven interval ends of one kind probed for tightness, and how many were tight.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct TightStat {
+    pub probed: u64,
+    pub tight: u64,
+}
+
 /// The fewest tight ends a signature allows: the expected count `mean` (the least share
 /// times the ends probed, summed over rows when pooled) less three binomial standard
 /// deviations (`var` the summed variances) and 2 for small counts. A loosened answer
@@ -137,7 +144,7 @@ impl Entry {
     }
     /// Where a row's tightness leaves the signature: one line per end kind whose tight
     /// ends fall below the least share, beyond counting noise (see [`least_tight`]).
-    pub fn looser(&self, tight: &BTreeMap<String, super::report::TightStat>) -> Vec<String> {
+    pub fn looser(&self, tight: &BTreeMap<String, TightStat>) -> Vec<String> {
         let mut out = Vec::new();
         for (kind, &p) in &self.tight {
             let Some(s) = tight.get(kind) else { continue };
@@ -215,7 +222,7 @@ impl Entry {
 /// rows, see [`least_tight`]). A row holds too few ends to see a loosening at small
 /// case counts; the rows together do. Returns each failing kind with its line.
 pub fn pooled_looser<'a>(
-    rows: impl IntoIterator<Item = (&'a Entry, &'a BTreeMap<String, super::report::TightStat>)>,
+    rows: impl IntoIterator<Item = (&'a Entry, &'a BTreeMap<String, TightStat>)>,
 ) -> Vec<(String, String)> {
     let mut pools: BTreeMap<String, (f64, f64, u64, u64)> = BTreeMap::new();
     for (entry, tight) in rows {
@@ -428,7 +435,6 @@ mod tests {
 
     #[test]
     fn looser_counts_tight_ends_against_the_least_share() {
-        use crate::check::report::TightStat;
         let e = Entry { tight: [("t max".to_string(), 0.3)].into(), ..Entry::conservative() };
         let row = |probed, tight| -> BTreeMap<String, TightStat> {
             [("t max".to_string(), TightStat { probed, tight })].into()

@@ -3,13 +3,14 @@
 //! number.
 //!
 //! Everything a row holds is a count, a maximum or a mean. Counts and maxima combine in
-//! any order. The means are the reason for [`RowSums`]: a row's means are computed from
-//! sums kept in fixed point (integers, see [`fixed`]), and integer sums do not depend on
-//! the order of addition, so the shards' sums added together are the unsharded run's
-//! sums, bit for bit. The worst witness of a row is the one with the largest margin,
-//! the later case on a tie, as in the unsharded run. Statuses are then recomputed from
-//! the merged counts against the expectations and (when the merged run has the
-//! settings of a stored baseline) the baseline, exactly as `check` does.
+//! any order. The means are the reason for [`RowSums`](super::row::RowSums): a row's
+//! means are computed from sums kept in fixed point (integers, see
+//! [`fixed`](super::row::fixed)), and integer sums do not depend on the order of
+//! addition, so the shards' sums added together are the unsharded run's sums, bit for
+//! bit. The worst witness of a row is the one with the largest margin, the later case
+//! on a tie, as in the unsharded run. Statuses are then recomputed from the merged
+//! counts against the expectations and (when the merged run has the settings of a
+//! stored baseline) the baseline, exactly as `check` does.
 //!
 //! Before anything is added, every shard is checked (module `validate`): against itself and
 //! its declared settings (a shard index below its count, every row's cases those the
@@ -20,122 +21,17 @@
 //! the machine) and reports without a tool version are refused. Each error names the
 //! file and the field.
 
-use super::baseline::{self, BaselineFile, Settings};
+use super::baseline::{self, BaselineFile};
 use super::expect::Expectations;
-use super::report::{finish_row, CheckReport, CrossCheck, Row};
-use super::tool::ToolInfo;
-use super::CheckConfig;
+use super::report::{finish_row, CheckReport, CrossCheck};
+use super::row::Row;
+use super::settings::RunInfo;
+use super::tool::{self, ToolInfo};
 use anyhow::{anyhow, bail, Result};
-use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 mod validate;
-
-/// Exact sums behind a row's means: the pass fraction and the admit fraction (each a
-/// number in [0, 1] per case) and the limit slack (per case whose limit tiles were
-/// placed), in the fixed point of [`fixed`]. Written as decimal strings (JSON numbers
-/// do not hold 128-bit integers).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct RowSums {
-    #[serde(with = "i128_text")]
-    pub pass: i128,
-    #[serde(with = "i128_text")]
-    pub admit: i128,
-    #[serde(with = "i128_text")]
-    pub slack: i128,
-}
-
-impl std::ops::Add for RowSums {
-    type Output = RowSums;
-    fn add(self, o: RowSums) -> RowSums {
-        RowSums { pass: self.pass + o.pass, admit: self.admit + o.admit, slack: self.slack + o.slack }
-    }
-}
-
-/// Fixed-point conversion of the per-case numbers a row averages.
-///
-/// A fraction `f` in [0, 1] becomes the integer nearest `f 2^96` (the scaling by a
-/// power of two is exact in f64; only the rounding to an integer loses anything, at
-/// most 2^-97 per case). A limit slack `s` (tile sizes, typically a rounding of the
-/// footprint's extreme, 1e-7) is clamped to [-2^24, 2^24] and becomes the integer
-/// nearest `s 2^72` (at most 2^-73 lost per case). Sums of 2^30 cases of either stay
-/// below 2^127.
-/// A NaN counts as 0.
-pub mod fixed {
-    const FRACTION_SCALE: f64 = (1u128 << 96) as f64;
-    const SLACK_SCALE: f64 = (1u128 << 72) as f64;
-    const SLACK_CLAMP: f64 = (1u64 << 24) as f64;
-
-    fn to_fixed(x: f64, scale: f64) -> i128 {
-        if x.is_nan() {
-            0
-        } else {
-            (x * scale).round() as i128
-        }
-    }
-
-    /// A fraction in [0, 1] (clamped to it).
-    pub fn fraction(f: f64) -> i128 {
-        to_fixed(f.clamp(0.0, 1.0), FRACTION_SCALE)
-    }
-
-    /// A limit slack.
-    pub fn slack(s: f64) -> i128 {
-        to_fixed(s.clamp(-SLACK_CLAMP, SLACK_CLAMP), SLACK_SCALE)
-    }
-
-    /// The mean of `n` fractions summed in fixed point (0 when n = 0).
-    pub fn mean_fraction(sum: i128, n: u64) -> f64 {
-        sum as f64 / FRACTION_SCALE / n.max(1) as f64
-    }
-
-    /// The mean of `n` slacks summed in fixed point (0 when n = 0).
-    pub fn mean_slack(sum: i128, n: u64) -> f64 {
-        if n == 0 {
-            0.0
-        } else {
-            sum as f64 / SLACK_SCALE / n as f64
-        }
-    }
-}
-
-mod i128_text {
-    use serde::{Deserialize, Deserializer, Serializer};
-    pub fn serialize<S: Serializer>(v: &i128, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(&v.to_string())
-    }
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<i128, D::Error> {
-        let s = String::deserialize(d)?;
-        s.parse().map_err(|_| serde::de::Error::custom(format!("expected a whole number as a string, found {s:?}")))
-    }
-}
-
-/// What a run was: its methods and settings, for checking that shards belong together.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RunInfo {
-    /// Method ids, in the run's order.
-    pub methods: Vec<String>,
-    /// The settings (seed, cases of the whole run, regimes, tile, budgets).
-    pub settings: Settings,
-    /// Shard `[k, n]` of the run.
-    pub shard: [u64; 2],
-    /// A run for a time (`--time`): its cases depend on the machine; not mergeable.
-    pub timed: bool,
-}
-
-impl RunInfo {
-    /// The run described by a configuration.
-    pub fn of(cfg: &CheckConfig) -> RunInfo {
-        RunInfo {
-            methods: cfg.methods.iter().map(|m| m.info().id.to_string()).collect(),
-            settings: Settings::whole(cfg),
-            shard: [cfg.shard.0, cfg.shard.1],
-            timed: cfg.time.is_some(),
-        }
-    }
-}
 
 /// Read one shard report (the JSON of `check --json`); errors name the file and field.
 pub fn load_report(path: &Path) -> Result<CheckReport> {
@@ -229,7 +125,10 @@ pub fn merge(
         contract_breaches: merge_breaches(shards.iter().map(|(_, r)| r)),
         // the shards' build (their counts); the expectations and baseline of this merge
         // (its statuses)
-        tool: Some(ToolInfo { version: first.tool.clone().unwrap_or_default().version, ..ToolInfo::of(ex, base) }),
+        tool: Some(ToolInfo {
+            version: first.tool.clone().unwrap_or_default().version,
+            ..ToolInfo::of(ex, base.map(tool::hash))
+        }),
     };
     if let Some(b) = base {
         baseline::apply_settings(&mut rep, Some(&run.settings), b);
@@ -285,29 +184,5 @@ fn add_row(acc: &mut Row, o: &Row) {
             acc.margin_needed = w.margin;
             acc.worst = Some(w.clone());
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::fixed;
-
-    #[test]
-    fn fixed_point_sums_do_not_depend_on_order() {
-        let xs: Vec<f64> = (0..1000).map(|i| ((i * 7919) % 1000) as f64 / 1000.0 * 0.999 + 1e-9 * i as f64).collect();
-        let fwd: i128 = xs.iter().map(|&x| fixed::fraction(x)).sum();
-        let rev: i128 = xs.iter().rev().map(|&x| fixed::fraction(x)).sum();
-        assert_eq!(fwd, rev);
-        let mean = fixed::mean_fraction(fwd, xs.len() as u64);
-        let float_mean = xs.iter().sum::<f64>() / xs.len() as f64;
-        assert!((mean - float_mean).abs() < 1e-12, "{mean} vs {float_mean}");
-        assert_eq!(fixed::fraction(f64::NAN), 0);
-        assert_eq!(fixed::fraction(1.0), 1i128 << 96);
-        assert_eq!(fixed::mean_slack(fixed::slack(-2.5) + fixed::slack(0.5), 2), -1.0);
-        assert_eq!(fixed::mean_slack(0, 0), 0.0);
-        assert_eq!(fixed::slack(f64::INFINITY), 1i128 << 96);
-        // a slack of a rounding's size keeps its digits
-        let s = 1.3689e-7;
-        assert!((fixed::mean_slack(3 * fixed::slack(s), 3) - s).abs() < 1e-15 * s);
     }
 }

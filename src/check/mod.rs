@@ -21,11 +21,12 @@
 pub mod baseline;
 pub mod expect;
 pub mod judge;
-pub mod junit;
 pub mod merge;
 pub mod power;
 pub mod report;
+pub mod row;
 pub mod samples;
+pub mod settings;
 pub mod side_cut;
 pub mod strength;
 pub mod tiles;
@@ -35,7 +36,8 @@ pub mod tool;
 pub use crate::gen::boundary_tile;
 pub use expect::{Allowance, Cap, Entry, Expectations, Expected};
 pub use judge::{bound_kind, culled_by, in_domain, Judgement, Unproven, Verdict};
-pub use report::{render, CheckReport, CrossCheck, Row, Status};
+pub use report::{render, CheckReport, CrossCheck};
+pub use row::{Row, Status};
 pub use strength::{MethodStrength, Strength};
 
 use crate::agree::lens_tri;
@@ -148,6 +150,34 @@ impl CheckConfig {
     }
 }
 
+/// A run has at most this many cases in all (`check --cases`; `cullproof merge` holds
+/// every shard report's run to it too).
+pub const MAX_CASES: u64 = 1_000_000_000;
+
+/// The samples a bound promises to keep, as declared (`--samples`, `--snap`,
+/// `--viewport`; `docs/model.md`, §7): each None when it was not declared.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Declared {
+    pub samples: Option<SampleSet>,
+    pub snap: Option<Snap>,
+    pub viewport: Option<Viewport>,
+}
+
+impl Declared {
+    /// Put the declared values into a run's settings (values not declared leave them).
+    pub fn apply(&self, cfg: &mut CheckConfig) {
+        if let Some(s) = self.samples {
+            cfg.sample_set = s;
+        }
+        if self.snap.is_some() {
+            cfg.snap = self.snap;
+        }
+        if self.viewport.is_some() {
+            cfg.viewport = self.viewport;
+        }
+    }
+}
+
 /// A violation, with what is needed to replay it.
 #[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Witness {
@@ -161,7 +191,7 @@ pub struct Witness {
     pub bound: String,
     /// Padding of that bound that would admit the witness ("inf" in JSON when a
     /// covered tile was culled).
-    #[serde(with = "crate::corpus::num_or_inf")]
+    #[serde(with = "crate::num_or_inf")]
     pub margin: f64,
     /// Embree's verdict on the witness ray (None: not a physical case).
     pub embree_hit: Option<bool>,
@@ -433,7 +463,7 @@ pub fn run_with_baseline(
     let mut rep = acc.finish(cfg, judged, start.elapsed().as_secs_f64());
     rep.samples = samples::SetNote::of(cfg, drawn - judged);
     rep.contract_breaches = crate::plugin::breaches_since(&breaches);
-    rep.tool = Some(tool::ToolInfo::of(ex, base));
+    rep.tool = Some(tool::ToolInfo::of(ex, base.map(tool::hash)));
     if let Some(b) = base {
         baseline::apply(&mut rep, cfg, b);
     }

@@ -1,130 +1,15 @@
-//! The gate's report: a row per method x regime with the three counts, its status
-//! against the expectations (and the baseline), a summary per method, the text table.
+//! The gate's report: a row per method x regime ([`Row`]) with the three counts, its
+//! status against the expectations (and the baseline), a summary per method, the text
+//! table.
 
 use super::expect::{Allowance, Entry, Expectations, Expected};
 use super::judge::{Judgement, Verdict};
-use super::merge::{fixed, RowSums, RunInfo};
-use super::{CheckConfig, Witness};
+use super::row::{fixed, Row, RowSums, Status};
+use super::settings::RunInfo;
+use super::CheckConfig;
 use crate::gen::Regime;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-
-/// A row's standing.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Status {
-    /// Expected conservative: every case proven.
-    Proven,
-    /// Expected conservative: no violation, unproven cases within the stated allowance.
-    ProvenExceptAllowed,
-    /// Expected conservative: no violation, but more unproven cases than allowed.
-    Unproven,
-    /// A violation where the row is expected conservative.
-    UnexpectedViolation,
-    /// Expected violations, within their signature.
-    KnownViolation,
-    /// Expected violations that leave their signature (a new kind of bound, a margin or
-    /// a rate above its cap).
-    BeyondSignature,
-    /// An expected violation that this run did not see (not a failure).
-    ExpectedNotSeen,
-    /// Expectation "unknown": reported, never failing.
-    NotGated,
-    /// Worse than the stored baseline for the same settings.
-    Regression,
-}
-
-impl Status {
-    pub fn fails(self) -> bool {
-        matches!(self, Status::Unproven | Status::UnexpectedViolation | Status::BeyondSignature | Status::Regression)
-    }
-    pub fn text(self) -> &'static str {
-        match self {
-            Status::Proven => "proven",
-            Status::ProvenExceptAllowed => "ok, unproven allowed",
-            Status::Unproven => "UNPROVEN",
-            Status::UnexpectedViolation => "UNEXPECTED VIOLATION",
-            Status::KnownViolation => "known violation",
-            Status::BeyondSignature => "BEYOND SIGNATURE",
-            Status::ExpectedNotSeen => "expected violation not seen",
-            Status::NotGated => "not gated",
-            Status::Regression => "REGRESSION",
-        }
-    }
-}
-
-/// One kind of violated bound in a row: cases and the largest margin.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, serde::Deserialize)]
-pub struct BoundStat {
-    pub cases: u64,
-    #[serde(with = "crate::corpus::num_or_inf")]
-    pub max_margin: f64,
-}
-
-/// Proven interval ends of one kind probed for tightness, and how many were tight.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct TightStat {
-    pub probed: u64,
-    pub tight: u64,
-}
-
-/// The row of the verdict table.
-#[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct Row {
-    pub method: String,
-    pub regime: String,
-    pub cases: u64,
-    /// Cases whose every claim was certified.
-    pub proven: u64,
-    /// Cases with a violation (witness confirmed exactly, in the tile and the domain).
-    pub violations: u64,
-    /// Cases neither proven nor violated.
-    pub unproven: u64,
-    /// Unproven cases by reason (a case may have several).
-    pub unproven_by: BTreeMap<String, u64>,
-    /// Violated bound kinds: cases and largest margin.
-    pub bounds: BTreeMap<String, BoundStat>,
-    pub boundary_only: u64,
-    /// Violations witnessed by an f32 sample (the rest only between f32 values).
-    pub f32_witnessed: u64,
-    /// Tiles judged at the method's own tile-reject limit, and those with a violation.
-    pub limit_tiles: u64,
-    pub limit_violations: u64,
-    /// Cases in which the method culled a tile near the footprint (its limit tiles were
-    /// placed), and the mean slack of its reject limit there (tile sizes beyond the
-    /// footprint's extreme; larger: looser).
-    pub limit_found: u64,
-    pub limit_slack: f64,
-    /// Per interval end kind: the proven ends probed for tightness and those with a
-    /// covered sample within [`super::judge::TIGHT_DELTA`] of them (see
-    /// [`super::judge::Judgement::tight`]); checked against the expectation's least
-    /// share at any settings.
-    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
-    pub tight: BTreeMap<String, TightStat>,
-    /// Mean share of the boundary tile's uniform samples the answer admits (intervals
-    /// and constraints; 0 for a culled tile).
-    pub admit_fraction: f64,
-    /// Mean share of the (u, v, t) domain the intervals let through on the boundary
-    /// tile (0 for a culled tile): the row's looseness, compared with the baseline.
-    pub pass_fraction: f64,
-    /// Largest margin needed over the violations (0 when none; "inf" in JSON when a
-    /// covered tile was culled).
-    #[serde(with = "crate::corpus::num_or_inf")]
-    pub margin_needed: f64,
-    pub expected: Expected,
-    pub status: Status,
-    /// What made the status (signature breaches, unproven beyond the allowance,
-    /// differences from the baseline).
-    pub problems: Vec<String>,
-    /// The violation with the largest margin (the later case on a tie).
-    pub worst: Option<Witness>,
-    /// The row's sums in exact fixed point, from which its means are computed: shard
-    /// reports carry them so that `cullproof merge` gives the very numbers of the
-    /// unsharded run (a float sum would depend on the order of addition).
-    pub sums: RowSums,
-    #[serde(skip)]
-    pub(crate) entry: Option<Entry>,
-}
 
 /// The result of a run.
 #[derive(Clone, Debug, Serialize, Deserialize)]

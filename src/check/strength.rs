@@ -21,7 +21,7 @@
 //! Under 2 and 3, unproven cases of the run are the judge's limits, counted and shown
 //! beside the proof.
 
-use super::report::Row;
+use super::row::Row;
 use crate::bounds::proofs;
 use serde::{Deserialize, Serialize};
 

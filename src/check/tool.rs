@@ -5,7 +5,6 @@
 //! contents written back as JSON (maps in key order, so the text, and the hash, depend
 //! only on what the run used, not on the file's layout or on a change after loading).
 
-use super::baseline::BaselineFile;
 use super::expect::Expectations;
 use serde::{Deserialize, Serialize};
 
@@ -27,9 +26,12 @@ pub struct ToolInfo {
 }
 
 impl ToolInfo {
-    /// This build, with these expectations and baseline.
-    pub fn of(ex: &Expectations, base: Option<&BaselineFile>) -> ToolInfo {
-        ToolInfo { version: VERSION.to_string(), expectations: Some(hash(ex)), baseline: base.map(hash) }
+    /// This build, with these expectations and the baseline file loaded, given by its
+    /// [`hash`] (None: no baseline file). The baseline comes as its hash so that this
+    /// file needs nothing of `baseline.rs`, which reads reports (and a report holds a
+    /// `ToolInfo`).
+    pub fn of(ex: &Expectations, baseline: Option<String>) -> ToolInfo {
+        ToolInfo { version: VERSION.to_string(), expectations: Some(hash(ex)), baseline }
     }
 }
 

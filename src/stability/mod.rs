@@ -150,7 +150,7 @@ pub struct Row {
     /// hits / tested (None when tested = 0).
     pub ste: Option<f64>,
     /// Largest margin needed over the violations ("inf": a covered tile was culled; 0: none).
-    #[serde(serialize_with = "crate::corpus::num_or_inf::serialize")]
+    #[serde(serialize_with = "crate::num_or_inf::serialize")]
     pub margin: f64,
     /// The bound violated with that margin.
     pub worst_bound: Option<String>,

@@ -31,10 +31,10 @@
 //! answer is a hint, never a verdict: every model becomes a case that the exact judge
 //! decides.
 
-use super::arith::{F32Arith, Plain, TriOf};
 use super::family::Family;
 use super::prove::Rule;
 use super::smt::Smt;
+use crate::bounds::arith::{F32Arith, Plain, TriOf};
 use crate::bounds::bbox::aabb_of;
 
 /// Which side of the box a query attacks.

@@ -17,10 +17,10 @@
 //! lens thresholds' divisions and the y axis stay out of the script. Asserting the
 //! whole answer's reject instead made a query z3 4.8.12 did not decide within 900 s.
 
-use super::arith::TriOf;
 use super::bbox_query::{Side, TemplateCull, TemplateFamily};
-use super::planted::{NoDn, NoUp};
 use super::smt::Smt;
+use crate::bounds::arith::TriOf;
+use crate::bounds::broken::planted::{NoDn, NoUp};
 use crate::bounds::la2011::{setup_of, Nearest, Outward, Round};
 
 /// la2011's cull on the template, in one of its arithmetics.
@@ -30,7 +30,7 @@ pub enum La2011Cull {
     Nearest,
     /// `la2011-safe`: every rounding stepped outward.
     Outward,
-    /// The planted slips of [`super::planted`]: the upper (lower) ends' steps dropped.
+    /// The planted slips of [`crate::bounds::broken::planted`]: the upper (lower) ends' steps dropped.
     NoUp,
     NoDn,
 }

@@ -1,5 +1,6 @@
-//! Bit-precise symbolic counterexamples: a bound written once over [`arith::F32Arith`]
-//! is both the f32 method the gate runs ([`arith::Plain`]) and an SMT-LIB2 encoding
+//! Bit-precise symbolic counterexamples: a bound written once over
+//! [`F32Arith`](crate::bounds::arith::F32Arith) (`src/bounds/arith.rs`) is both the f32
+//! method the gate runs ([`Plain`](crate::bounds::arith::Plain)) and an SMT-LIB2 encoding
 //! ([`smt::Smt`], IEEE binary32, round-to-nearest-even, the same operations in the same
 //! order), so the encoding cannot drift from the code. `cullproof prove --method ID
 //! --symbolic` asks z3 ([`z3`]) for f32 inputs in stated ranges where the method culls
@@ -10,7 +11,8 @@
 //! - `bbox` and `bbox-safe`: the whole setup (every corner value, the box's minimum and
 //!   maximum, the finiteness and `w > 0` guards) and the tile reject
 //!   (`crate::bounds::bbox::aabb_of`, `crate::bounds::bbox::rejects`).
-//! - Two slips planted in `bbox-safe` ([`planted`]), to measure the search on rare bugs.
+//! - Two slips planted in `bbox-safe` ([`crate::bounds::broken::planted`]), to measure
+//!   the search on rare bugs.
 //! - `la2011` and `la2011-safe`: the whole setup (the shears `k c` and their enclosures,
 //!   the sign classes, the finiteness guard of `-safe`) and the whole tile answer (time
 //!   chords, lens thresholds and hulls, the Empty decision, the t, u, v ranges):
@@ -32,12 +34,10 @@
 //! many small queries, each with some inputs fixed, under a deterministic resource
 //! limit, in parallel.
 
-pub mod arith;
 pub mod bbox_query;
 pub mod concolic;
 pub mod family;
 pub mod la2011_query;
-pub mod planted;
 pub mod prove;
 pub mod smt;
 pub mod solver;

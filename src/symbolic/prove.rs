@@ -13,14 +13,14 @@
 //! query that hits the wall-clock guard (`timeout`) is reported as a timeout, which
 //! depends on the machine.
 
-use super::arith::F32Arith;
 use super::bbox_query::TemplateFamily;
 use super::concolic;
 use super::family::{self, Family, Query};
-use super::planted::{BandSlip, EqSlip};
 use super::solver::{self, Solver, Solvers};
 use super::z3::{self, Answer};
+use crate::bounds::arith::F32Arith;
 use crate::bounds::bbox::{Corner, PlainCorner, SafeCorner};
+use crate::bounds::broken::planted::{BandSlip, EqSlip};
 use crate::bounds::{shared, Method, TileResult};
 use crate::check::{judge, CheckConfig};
 use crate::corpus::{shrink, CaseFile};
@@ -53,7 +53,7 @@ impl Corner for Rule {
 }
 
 /// The methods with a symbolic encoding (setup and tile reject, over
-/// [`super::arith::F32Arith`]).
+/// [`crate::bounds::arith::F32Arith`]).
 pub const ENCODED: [&str; 8] = [
     "bbox",
     "bbox-safe",

@@ -14,7 +14,7 @@
 //! with some inputs fixed (the concolic search of [`super::concolic`]) is as small as its
 //! free part.
 
-use super::arith::{F32Arith, Plain};
+use crate::bounds::arith::{F32Arith, Plain};
 use std::cell::RefCell;
 use std::collections::{BTreeSet, HashMap};
 

@@ -12,17 +12,16 @@
 //! - `wu2013_safe.g`: Gappa, `wu2013-safe`'s line pad against the error of the line's
 //!   per-sample evaluation.
 //!
-//! - [`composition`]: for `la2011-safe`, the composition over the method's own f32
-//!   code, as SMT queries on a template's ranges.
+//! - [`crate::proofs::composition`] (with the command, built on the symbolic search):
+//!   for `la2011-safe`, the composition over the method's own f32 code, as SMT queries
+//!   on a template's ranges.
 //!
 //! [`VARIANTS`] declares, per variant, the input ranges, the scripts, and the code
 //! facts the scripts assume; [`check`] compares the scripts' constants and formulas with
-//! the code, [`run`] runs a script with its tool. `cullproof proofs` ([`cli`]) and
-//! `tests/proofs.rs` run them all.
+//! the code, [`run`] runs a script with its tool. `cullproof proofs`
+//! ([`crate::proofs::cli`]) and `tests/proofs.rs` run them all.
 
 pub mod check;
-pub mod cli;
-pub mod composition;
 pub mod run;
 
 use serde::Serialize;

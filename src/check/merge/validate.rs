@@ -9,10 +9,9 @@
 //! each case must be proven, violated or unproven, and every count a row holds must fit
 //! within its cases, so the sums that follow cannot overflow.
 
-use super::fixed;
-use crate::args::CHECK_MAX_CASES;
-use crate::check::report::{CheckReport, Row};
-use crate::check::{strength, tool};
+use crate::check::report::CheckReport;
+use crate::check::row::{fixed, Row};
+use crate::check::{strength, tool, MAX_CASES};
 use crate::gen::Regime;
 use anyhow::{bail, Result};
 use std::collections::BTreeMap;
@@ -101,8 +100,8 @@ fn shard(p: &Path, r: &CheckReport) -> Result<()> {
     }
     // the settings
     let s = &r.run.settings;
-    if s.cases == 0 || s.cases > CHECK_MAX_CASES {
-        refuse!(p, "run.settings.cases", "= {}: a run has 1 to {CHECK_MAX_CASES} cases", s.cases);
+    if s.cases == 0 || s.cases > MAX_CASES {
+        refuse!(p, "run.settings.cases", "= {}: a run has 1 to {MAX_CASES} cases", s.cases);
     }
     if r.seed != s.seed {
         refuse!(p, "seed", "= {} differs from `run.settings.seed` = {}", r.seed, s.seed);

@@ -9,7 +9,9 @@
 //! `gate.witnesses/<method>/<hash>.json`, the corpus's case-file format); an existing
 //! file is never overwritten (the same witness has the same name).
 
-use super::report::{CheckReport, Row, Status};
+use crate::check::report::CheckReport;
+use crate::check::row::{Row, Status};
+use crate::check::CheckConfig;
 use crate::corpus::CaseFile;
 use anyhow::Result;
 use std::fmt::Write as _;
@@ -42,7 +44,7 @@ fn esc(s: &str) -> String {
 /// existing file's when the same witness was written before).
 fn write_witness(r: &CheckReport, row: &Row, dir: &Path) -> Result<Option<PathBuf>> {
     let Some(w) = &row.worst else { return Ok(None) };
-    let mut cfg = crate::check::CheckConfig::default_for(Vec::new());
+    let mut cfg = CheckConfig::default_for(Vec::new());
     cfg.seed = r.seed;
     if let Some(n) = &r.samples {
         (cfg.sample_set, cfg.snap, cfg.viewport) = (n.set, n.snap, n.viewport);
@@ -91,7 +93,7 @@ pub fn render(r: &CheckReport, dir: &Path, loaders: &str) -> Result<String> {
             esc(m),
             rows.len()
         );
-        let strengths = if r.methods.is_empty() { super::strength::of_rows(&r.rows) } else { r.methods.clone() };
+        let strengths = if r.methods.is_empty() { crate::check::strength::of_rows(&r.rows) } else { r.methods.clone() };
         if let Some(st) = strengths.iter().find(|x| x.method == m) {
             let _ = writeln!(
                 s,

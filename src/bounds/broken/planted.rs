@@ -18,7 +18,7 @@
 //! one outward step dropped from half of the operations: the kind of edit a proof of
 //! the variant must notice.
 
-use super::arith::F32Arith;
+use crate::bounds::arith::F32Arith;
 use crate::bounds::bbox::{BBox, Corner, SafeCorner};
 use crate::bounds::la2011::{La2011, Round};
 use crate::bounds::{Method, MethodInfo, Outputs};

@@ -3,8 +3,8 @@
 //! to the code, and print each method's strongest verdict.
 
 use super::composition::{self, SideRun};
-use super::run::{self, Outcome, Verdict};
-use super::{check, strength, Script, Tool, Variant, SCRIPTS, VARIANTS};
+use crate::bounds::proofs::run::{self, Outcome, Verdict};
+use crate::bounds::proofs::{check, strength, variant, Script, Tool, Variant, SCRIPTS, VARIANTS};
 use anyhow::{bail, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
@@ -153,7 +153,7 @@ pub fn run(ids: &[&'static str], limit: Duration, triangles: usize, jobs: usize,
     let methods = ids
         .iter()
         .map(|&id| {
-            let proof = super::variant(id).copied();
+            let proof = variant(id).copied();
             let rerun_ok = match proof {
                 Some(v) => Some(
                     checks_ok
