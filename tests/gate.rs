@@ -94,9 +94,11 @@ fn the_gate_finds_bbox_f32_tile_culls_and_proves_bbox_safe() {
 /// cuts may decide every extra case as a violation.)
 #[test]
 fn budgets_that_run_out_leave_cases_unproven() {
-    let m = cullproof::bounds::by_id("lb2011-safe").unwrap();
+    // Per-sample planes (constraint budget) and depth ends (side budget): with one box
+    // each, some cases of both stay open.
+    let ms = ["mam2012-hyperplane-ps-safe", "nilsson2012-depth-safe"].map(|id| cullproof::bounds::by_id(id).unwrap());
     let run_with = |budget: usize| {
-        let mut cfg = CheckConfig::default_with(vec![m]);
+        let mut cfg = CheckConfig::default_with(ms.to_vec());
         cfg.cases = 64;
         cfg.side_budget = budget;
         cfg.constraint_budget = budget;
@@ -108,7 +110,9 @@ fn budgets_that_run_out_leave_cases_unproven() {
     let (p_full, p_starved) = (sum(&full, |x| x.proven), sum(&starved, |x| x.proven));
     assert!(p_starved < p_full, "proven with 1 box: {p_starved}, with 2000: {p_full}");
     assert!(sum(&starved, |x| x.unproven) > sum(&full, |x| x.unproven));
-    assert!(starved.rows.iter().any(|x| x.unproven_by.contains_key("constraint-budget")), "{}", render(&starved));
+    for reason in ["constraint-budget", "side-gap"] {
+        assert!(starved.rows.iter().any(|x| x.unproven_by.contains_key(reason)), "{reason}: {}", render(&starved));
+    }
     for (a, b) in full.rows.iter().zip(&starved.rows) {
         assert!(
             b.proven <= a.proven,
