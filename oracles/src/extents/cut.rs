@@ -469,6 +469,19 @@ mod tests {
         assert!(minimax_multipliers(&[[f64::NAN, -1.0]]).is_none());
     }
 
+    /// A box around a random point: pixels up to 16 wide within [-8, 8], lens and time
+    /// ranges whole or down to `smallest` of the domain.
+    fn random_box(next: &mut impl FnMut() -> f64, smallest: f64) -> Box5 {
+        let mut b: Box5 = [crate::interval::Interval::point(0.0); 5];
+        for (i, bi) in b.iter_mut().enumerate() {
+            let (lo, hi) = [(-8.0, 8.0), (-8.0, 8.0), (-1.0, 1.0), (-1.0, 1.0), (0.0, 1.0)][i];
+            let w = (hi - lo) * [1.0, 0.25, 0.02, smallest][(next() * 4.0) as usize % 4];
+            let a = lo + (hi - lo - w) * next();
+            *bi = crate::interval::Interval::new(a, a + w);
+        }
+        b
+    }
+
     #[test]
     fn no_certified_cut_culls_an_interior_sample() {
         let mut next = unit_stream(0x5eed_c075);
@@ -477,19 +490,7 @@ mod tests {
             let tri = if case % 4 == 3 { random_sliver(&mut next, case % 8 == 7) } else { random_tri(&mut next) };
             // A box around a random point: pixels up to 2 wide, lens and time ranges small
             // or whole.
-            let mut b: Box5 = [crate::interval::Interval::point(0.0); 5];
-            for i in 0..5 {
-                let (lo, hi) = if i < 2 {
-                    (-8.0, 8.0)
-                } else if i < 4 {
-                    (-1.0, 1.0)
-                } else {
-                    (0.0, 1.0)
-                };
-                let w = (hi - lo) * [1.0, 0.25, 0.02, 1e-4][(next() * 4.0) as usize % 4];
-                let a = lo + (hi - lo - w) * next();
-                b[i] = crate::interval::Interval::new(a, a + w);
-            }
+            let b = random_box(&mut next, 1e-4);
             let k = (next() * 3.0) as usize % 3;
             let shift = [-0.05, 0.0, 0.02, 0.1, 0.5][(next() * 5.0) as usize % 5];
             let cut = cut_near_edge(&tri, &b, k, shift, &mut next);
@@ -580,19 +581,7 @@ mod tests {
         let (mut certified, mut by_fact, mut judged) = (0usize, 0usize, 0usize);
         for case in 0..3000 {
             let tri = if case % 4 == 3 { random_sliver(&mut next, case % 8 == 7) } else { random_tri(&mut next) };
-            let mut b: Box5 = [crate::interval::Interval::point(0.0); 5];
-            for i in 0..5 {
-                let (lo, hi) = if i < 2 {
-                    (-8.0, 8.0)
-                } else if i < 4 {
-                    (-1.0, 1.0)
-                } else {
-                    (0.0, 1.0)
-                };
-                let w = (hi - lo) * [1.0, 0.25, 0.02, 1e-3][(next() * 4.0) as usize % 4];
-                let a = lo + (hi - lo - w) * next();
-                b[i] = crate::interval::Interval::new(a, a + w);
-            }
+            let mut b = random_box(&mut next, 1e-3);
             let axis = (next() * 2.0) as usize % 2;
             let k = (next() * 3.0) as usize % 3;
             if next() < 0.7 {
