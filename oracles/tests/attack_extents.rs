@@ -102,6 +102,7 @@ fn beyond(tri: &Tri, ext: Extent, s: [f64; 5], end: f64) -> bool {
 
 /// Attack one certified end: dense samples, then descents from the best of them and from
 /// the witness. Returns a sample beyond the end, if found.
+#[allow(clippy::too_many_arguments)] // one attack, its inputs named
 fn attack(
     tri: &Tri,
     b: &Box5,
