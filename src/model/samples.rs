@@ -460,7 +460,7 @@ mod tests {
             "1,2x3",
             "a,0,3x3",
             "131072,0,3x3",
-            "centred:131072x131072+8",
+            "-131072,0,3x3+1",
             "0,0,0,3x3",
         ] {
             let e = s.parse::<Viewport>().unwrap_err().to_string();
