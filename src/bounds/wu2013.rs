@@ -359,9 +359,7 @@ impl TimeLine {
     /// `2^-20 (|a| |l| + |b| + |t|)` (three f32 roundings of at most `2^-24` of partial
     /// results bounded by those magnitudes) plus `2^-140` for subnormal results.
     fn error_over(&self, l: Interval, t: Interval) -> f64 {
-        let lm = l.lo.abs().max(l.hi.abs());
-        let tm = t.lo.abs().max(t.hi.abs());
-        2f64.powi(-20) * ((self.a as f64).abs() * lm + (self.b as f64).abs() + tm) + 2f64.powi(-140)
+        self.error_scaled(l, t, 2f64.powi(-20))
     }
     /// The bound a cut states: three roundings along one path (`a l`, `+ b`, `- t`), each
     /// of a partial result bounded by the magnitudes below, so at most
@@ -369,9 +367,13 @@ impl TimeLine {
     /// for a recursive sum), plus `2^-140` for subnormal results. `eval_box` keeps the
     /// looser [`error_over`](Self::error_over).
     fn cut_error_over(&self, l: Interval, t: Interval) -> f64 {
+        self.error_scaled(l, t, 2f64.powi(-22))
+    }
+    /// `rel (|a| |l| + |b| + |t|) + 2^-140` over lens values `l` and times `t`.
+    fn error_scaled(&self, l: Interval, t: Interval, rel: f64) -> f64 {
         let lm = l.lo.abs().max(l.hi.abs());
         let tm = t.lo.abs().max(t.hi.abs());
-        2f64.powi(-22) * ((self.a as f64).abs() * lm + (self.b as f64).abs() + tm) + 2f64.powi(-140)
+        rel * ((self.a as f64).abs() * lm + (self.b as f64).abs() + tm) + 2f64.powi(-140)
     }
 }
 
