@@ -143,6 +143,12 @@ impl CaseFile {
 
     /// Read and check a case file; errors name the file and the field.
     pub fn load(path: &Path) -> Result<CaseFile> {
+        Self::load_for(path, None)
+    }
+
+    /// [`CaseFile::load`]; with `method` given the file's own method id need not be a
+    /// known one (the case is judged against `method`, a bound of the caller's own).
+    pub fn load_for(path: &Path, method: Option<&MethodRef>) -> Result<CaseFile> {
         let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
         let de = &mut serde_json::Deserializer::from_str(&text);
         let cf: CaseFile = serde_path_to_error::deserialize(de).map_err(|e| {
@@ -157,7 +163,7 @@ impl CaseFile {
         if cf.format != FORMAT {
             bail!("{}: field `format` = {}: expected {FORMAT:?}", path.display(), quote(&cf.format));
         }
-        if method_of(&cf.method).is_none() {
+        if method.is_none() && method_of(&cf.method).is_none() {
             bail!(
                 "{}: field `method` = {} is not a known method id (see `cullproof methods`; a plugin's id needs `--plugin LIB.so`)",
                 path.display(),
@@ -309,6 +315,7 @@ fn judged_word(j: &Judgement) -> String {
     match j.verdict() {
         crate::check::Verdict::Violated => "violation".into(),
         crate::check::Verdict::Proven => "proven".into(),
+        crate::check::Verdict::NotJudged => "not judged (the case cannot be snapped)".into(),
         crate::check::Verdict::Unproven => {
             let r: Vec<&str> = j.unproven().iter().map(|r| r.name()).collect();
             format!("unproven ({})", r.join(", "))
@@ -325,15 +332,17 @@ pub type WitnessCheck = Option<std::result::Result<(String, f64), String>>;
 /// with the settings used.
 fn judge_file(
     cf: &CaseFile,
-    m: &'static dyn Method,
+    m: &MethodRef,
     cfg: &CheckConfig,
     over: &Declared,
 ) -> (WitnessCheck, Judgement, CheckConfig) {
     let mut cfg = CheckConfig { side_stall: 0, ..cf.settings(cfg) };
     over.apply(&mut cfg);
-    let witness =
-        cf.witness.as_ref().map(|w| witness_holds_in(m, &cf.case, &cf.tile, w.sample, cfg.sample_set, cfg.snap));
-    let (mut js, _) = judge(&cfg, &[crate::bounds::shared(m)], &cf.case, &cf.tile, cf.provenance.case_index);
+    let witness = cf
+        .witness
+        .as_ref()
+        .map(|w| witness_holds_in(m.as_ref(), &cf.case, &cf.tile, w.sample, cfg.sample_set, cfg.snap));
+    let (mut js, _) = judge(&cfg, std::slice::from_ref(m), &cf.case, &cf.tile, cf.provenance.case_index);
     (witness, js.swap_remove(0), cfg)
 }
 
@@ -347,8 +356,8 @@ pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
 /// file's (to ask whether a case found under one set holds under another).
 pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &Declared) -> Result<Replay> {
     let cf = CaseFile::load(path)?;
-    let m = method_of(&cf.method).expect("checked at load");
-    let (witness, j, cfg) = judge_file(&cf, m, cfg, over);
+    let m = crate::bounds::shared(method_of(&cf.method).expect("checked at load"));
+    let (witness, j, cfg) = judge_file(&cf, &m, cfg, over);
     let j = &j;
     let judged = judged_word(j);
     let ok = match cf.expected {
@@ -388,7 +397,8 @@ pub struct Rejudge {
     /// The fresh judgement: "violation", "proven", "unproven (reasons)".
     pub judged: String,
     /// "fixed" (proven afresh, the stored witness no longer culled), "still violated"
-    /// (a violation found afresh, or the stored witness still culled) or "unproven".
+    /// (a violation found afresh, or the stored witness still culled), "unproven" or
+    /// "not judged" (the case cannot be snapped under the file's settings).
     pub outcome: &'static str,
 }
 
@@ -397,15 +407,23 @@ pub struct Rejudge {
 /// budget: does a fixed bound still cull the stored witness, and is it proven on the
 /// case?
 pub fn rejudge(path: &Path, cfg: &CheckConfig, over: &Declared, method: &str) -> Result<Rejudge> {
-    let cf = CaseFile::load(path)?;
     let m = method_of(method)
         .ok_or_else(|| anyhow::anyhow!("--method {method}: no such method (see `cullproof methods`)"))?;
+    rejudge_with(path, cfg, over, &crate::bounds::shared(m))
+}
+
+/// [`rejudge`] against a method held by its handle (a bound of the caller's own, not
+/// in the registry).
+pub fn rejudge_with(path: &Path, cfg: &CheckConfig, over: &Declared, m: &MethodRef) -> Result<Rejudge> {
+    let cf = CaseFile::load_for(path, Some(m))?;
+    let method = m.info().id;
     let (witness, j, _) = judge_file(&cf, m, cfg, over);
     let j = &j;
     let outcome = match (j.verdict(), &witness) {
         (crate::check::Verdict::Violated, _) | (_, Some(Ok(_))) => "still violated",
         (crate::check::Verdict::Proven, _) => "fixed",
         (crate::check::Verdict::Unproven, _) => "unproven",
+        (crate::check::Verdict::NotJudged, _) => "not judged",
     };
     Ok(Rejudge {
         path: path.display().to_string(),
@@ -640,6 +658,16 @@ pub struct RegimeSeen {
     /// The signature's rate cap (null: none).
     pub max_rate: Option<f64>,
     pub tight: BTreeMap<String, crate::check::expect::TightStat>,
+    /// Tiles judged at the method's own tile-reject limit, and those with a violation.
+    pub limit_tiles: u64,
+    pub limit_violations: u64,
+    /// The signature's cap on the limit tiles' violation rate (null: none, or not at
+    /// these settings).
+    pub max_limit_rate: Option<f64>,
+    /// Mean share of the boundary tile's uniform samples the answers admit.
+    pub admit_fraction: f64,
+    /// The signature's cap on that share (null: none, or not at these settings).
+    pub max_admit: Option<f64>,
 }
 
 /// The result of a search.
@@ -720,7 +748,8 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
     anyhow::ensure!(!o.gate || o.expectations.is_some(), "a gated search needs the expectations");
     let cfg = &CheckConfig { witnesses_per_kind: true, ..cfg.clone() };
     let id = m.info().id;
-    let entry = |r: Regime| o.expectations.map(|(ex, _)| ex.entry(id, r.name()));
+    let measured = crate::check::settings::Settings::whole(cfg).measured();
+    let entry = |r: Regime| o.expectations.map(|(ex, _)| ex.entry(id, r.name()).scoped(measured));
     // The kinds of bound a judgement violates beyond the signature, largest margin first.
     let beyond_kinds = |r: Regime, j: &Judgement| -> Vec<(String, f64, String)> {
         let Some(e) = entry(r) else { return Vec::new() };
@@ -754,30 +783,37 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
         next += batch;
         // Per case: the boundary tile's judgement, and the limit tiles' when the
         // boundary tile shows nothing of interest.
-        let results: Vec<(u64, Regime, Judgement, Option<Judgement>)> = ids
+        let results: Vec<(u64, Regime, Judgement, Option<Judgement>, (u32, u32), f64)> = ids
             .par_iter()
             .filter_map(|&i| {
                 let (regime, case, tile) = try_make_case(cfg, i)?;
                 let (js, _) = judge(cfg, std::slice::from_ref(&m), &case, &tile, i);
                 let j = js.into_iter().next().unwrap();
+                let admit = crate::check::admitted_share(cfg, m.as_ref(), &case, &tile, i);
                 // Also the tiles at the method's own tile-reject limit (the witness
-                // then carries the case, moved on screen, and the tile).
-                let mut limit = None;
+                // then carries the case, moved on screen, and the tile), counted for
+                // the limit-tile rate.
+                let (mut limit, mut counts) = (None, (0, 0));
                 if !interesting(regime, &j) {
                     if let (Some(l), _) = crate::check::judge_limit_tiles(cfg, m.as_ref(), &case, i, 0) {
+                        counts = (l.limit_tiles, l.limit_violations);
                         let w = l.violation.as_ref();
                         if w.is_some_and(|w| crate::check::samples::placed_in(cfg, &w.case, &w.tile)) {
                             limit = Some(l);
                         }
                     }
                 }
-                Some((i, regime, j, limit))
+                Some((i, regime, j, limit, counts, admit))
             })
             .collect();
-        for (i, regime, j, limit) in results {
-            // The boundary tile, as the gate judges it: rate and tightness.
+        for (i, regime, j, limit, counts, admit) in results {
+            // The boundary tile, as the gate judges it: rate, tightness and admitted
+            // share; the limit tiles' rate.
             let rs = per_regime.entry(regime).or_default();
             rs.cases += 1;
+            rs.admit_fraction += admit;
+            rs.limit_tiles += counts.0 as u64;
+            rs.limit_violations += counts.1 as u64;
             rs.violated += j.violated.values().any(|&mm| mm >= o.min_margin) as u64;
             for (k, &(n, t)) in &j.tight {
                 let e = rs.tight.entry(k.clone()).or_default();
@@ -911,10 +947,20 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
         .into_iter()
         .map(|(regime, mut seen)| {
             seen.regime = regime.name().into();
+            if seen.cases > 0 {
+                seen.admit_fraction /= seen.cases as f64;
+            }
             if let Some(e) = entry(regime) {
                 seen.max_rate = e.max_rate;
+                seen.max_limit_rate = e.max_limit_rate;
+                seen.max_admit = e.max_admit;
                 if o.gate {
-                    let lines = e.rate_breach(seen.violated, seen.cases).into_iter().chain(e.looser(&seen.tight));
+                    let lines = e
+                        .rate_breach(seen.violated, seen.cases)
+                        .into_iter()
+                        .chain(e.limit_rate_breach(seen.limit_violations, seen.limit_tiles))
+                        .chain(e.looser(&seen.tight))
+                        .chain(e.admit_breach(seen.admit_fraction, seen.cases));
                     breaches.extend(lines.map(|l| format!("regime {}: {l}", regime.name())));
                 }
             }
@@ -1033,9 +1079,11 @@ pub fn render_search(r: &SearchReport) -> String {
         }
         if !r.regimes.is_empty() {
             s += &format!(
-                "\nboundary tiles per regime (as the gate judges them):\n  {:<15} {:>8} {:>9} {:>9}  tight ends (share)\n",
-                "regime", "cases", "violated", "rate cap"
+                "\nper regime, as the gate judges them (boundary tiles; limit tiles at the method's own reject limit):\n  \
+                 {:<15} {:>8} {:>9} {:>9} {:>12} {:>9} {:>7} {:>9}  tight ends (share)\n",
+                "regime", "cases", "violated", "rate cap", "limit", "cap", "admit", "cap"
             );
+            let cap = |c: Option<f64>| c.map_or("-".to_string(), |r| r.to_string());
             for g in &r.regimes {
                 let tight: Vec<String> = g
                     .tight
@@ -1044,11 +1092,15 @@ pub fn render_search(r: &SearchReport) -> String {
                     .map(|(k, t)| format!("{k} {:.2}", t.tight as f64 / t.probed as f64))
                     .collect();
                 s += &format!(
-                    "  {:<15} {:>8} {:>9} {:>9}  {}\n",
+                    "  {:<15} {:>8} {:>9} {:>9} {:>12} {:>9} {:>7.3} {:>9}  {}\n",
                     g.regime,
                     g.cases,
                     g.violated,
-                    g.max_rate.map_or("-".to_string(), |r| r.to_string()),
+                    cap(g.max_rate),
+                    format!("{}/{}", g.limit_violations, g.limit_tiles),
+                    cap(g.max_limit_rate),
+                    g.admit_fraction,
+                    cap(g.max_admit),
                     if tight.is_empty() { "-".to_string() } else { tight.join(", ") }
                 );
             }
@@ -1070,8 +1122,13 @@ pub fn render_search(r: &SearchReport) -> String {
 /// The case in words: the method's answer, the exact extents of the covered set over
 /// the tile, and the witness decided exactly (and by Embree when physical).
 pub fn describe(cf: &CaseFile) -> String {
+    describe_with(cf, method_of(&cf.method).expect("checked at load"))
+}
+
+/// [`describe`], the method's answer given by `m` (a bound of the caller's own, or
+/// another than the file names).
+pub fn describe_with(cf: &CaseFile, m: &dyn Method) -> String {
     use oracles::extents::{Extent, ExtentsConfig, Occupancy, TileSolver};
-    let m = method_of(&cf.method).expect("checked at load");
     let info = m.info();
     let (seen, tri) = match crate::check::samples::judged_triangles(cf.snap, &cf.case) {
         Ok(x) => x,

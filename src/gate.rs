@@ -162,6 +162,10 @@ pub enum MethodVerdict {
     Violated,
     /// No violation, but some cases neither proven nor violated.
     Unproven,
+    /// No case could be judged under the declared samples (every vertex beyond what
+    /// snapping can snap exactly, or no case the viewport can hold): neither a failure
+    /// nor a pass.
+    NotJudged,
 }
 
 /// Why a case is unproven.
@@ -180,8 +184,6 @@ pub enum Unproven {
     /// Under a sample set: a violation found off the set, none found on it nearby, and
     /// too many set points in the tile to judge one by one.
     OffSet,
-    /// Under snapping: a vertex that cannot be snapped exactly (nothing was judged).
-    SnapRange,
     /// A reason this version does not name.
     Other(String),
 }
@@ -195,7 +197,6 @@ impl Unproven {
             "constraint-budget" => Unproven::ConstraintBudget,
             "constraint-resolution" => Unproven::ConstraintResolution,
             "off-set" => Unproven::OffSet,
-            "snap-range" => Unproven::SnapRange,
             o => Unproven::Other(o.to_string()),
         }
     }
@@ -269,6 +270,10 @@ pub struct MethodReport {
     pub proven: u64,
     pub violated: u64,
     pub unproven: u64,
+    /// Cases that could not be judged under the declared samples (a vertex snapping
+    /// cannot snap exactly, a case the viewport cannot hold): neither proven, violated
+    /// nor unproven.
+    pub not_judged: u64,
     /// Unproven cases by reason (a case may have several).
     pub unproven_by: BTreeMap<Unproven, u64>,
     pub verdict: MethodVerdict,
@@ -304,6 +309,7 @@ impl GateReport {
                         proven: 0,
                         violated: 0,
                         unproven: 0,
+                        not_judged: 0,
                         unproven_by: BTreeMap::new(),
                         verdict: MethodVerdict::Proven,
                         strength: crate::check::Strength::Unproven,
@@ -319,6 +325,7 @@ impl GateReport {
             m.proven += r.proven;
             m.violated += r.violations;
             m.unproven += r.unproven;
+            m.not_judged += r.not_judged;
             for (k, n) in &r.unproven_by {
                 *m.unproven_by.entry(Unproven::parse(k)).or_insert(0) += n;
             }
@@ -340,6 +347,8 @@ impl GateReport {
                 MethodVerdict::Violated
             } else if m.unproven > 0 {
                 MethodVerdict::Unproven
+            } else if m.proven == 0 && m.not_judged > 0 {
+                MethodVerdict::NotJudged
             } else {
                 MethodVerdict::Proven
             };

@@ -3,7 +3,8 @@
 //! `<failure>` whose text says why (the status and its problems) and, when the row
 //! has a witness, names the case file written for it, which `cullproof replay FILE`
 //! re-judges and `cullproof explain FILE` explains. A row that is not gated
-//! (expectation "unknown") is `<skipped/>`.
+//! (expectation "unknown") or none of whose cases could be judged under the declared
+//! samples ("not judged") is `<skipped/>`.
 //!
 //! Witness files go to a directory beside the XML file (`gate.xml` ->
 //! `gate.witnesses/<method>/<hash>.json`, the corpus's case-file format); an existing
@@ -86,7 +87,7 @@ pub fn render(r: &CheckReport, dir: &Path, loaders: &str) -> Result<String> {
     for m in methods {
         let rows: Vec<&Row> = r.rows.iter().filter(|x| x.method == m).collect();
         let f = rows.iter().filter(|x| x.status.fails()).count();
-        let skipped = rows.iter().filter(|x| x.status == Status::NotGated).count();
+        let skipped = rows.iter().filter(|x| matches!(x.status, Status::NotGated | Status::NotJudged)).count();
         let _ = writeln!(
             s,
             "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{f}\" skipped=\"{skipped}\">",
@@ -110,8 +111,14 @@ pub fn render(r: &CheckReport, dir: &Path, loaders: &str) -> Result<String> {
                 esc(&row.regime)
             );
             let counts = format!(
-                "{} cases: {} proven, {} violated, {} unproven (seed {}, shard {})",
-                row.cases, row.proven, row.violations, row.unproven, r.seed, r.shard
+                "{} cases: {} proven, {} violated, {} unproven{} (seed {}, shard {})",
+                row.cases,
+                row.proven,
+                row.violations,
+                row.unproven,
+                if row.not_judged > 0 { format!(", {} not judged", row.not_judged) } else { String::new() },
+                r.seed,
+                r.shard
             );
             if row.status.fails() {
                 let mut text = format!("{}: {}\n{counts}\n", row.status.text(), row.problems.join("; "));
@@ -132,6 +139,10 @@ pub fn render(r: &CheckReport, dir: &Path, loaders: &str) -> Result<String> {
                 );
             } else if row.status == Status::NotGated {
                 let _ = write!(s, "<skipped message=\"not gated (expectation unknown); {}\"/>", esc(&counts));
+            } else if row.status == Status::NotJudged {
+                let why =
+                    "not judged (no case of the row can be judged under the declared samples: snapping or placement)";
+                let _ = write!(s, "<skipped message=\"{}; {}\"/>", esc(why), esc(&counts));
             } else {
                 let _ = write!(s, "<system-out>{}: {}</system-out>", esc(row.status.text()), esc(&counts));
             }

@@ -35,12 +35,16 @@
 //!   conservative `-safe` variants.
 //! - [`model`]: triangle, camera, tile, sample, case.
 //! - [`gate`]: the builder above and its typed report.
+//! - [`counterexamples`]: find, shrink and write counterexamples of your bound
+//!   ([`counterexamples::Search`]), re-judge a case file after a fix
+//!   ([`counterexamples::replay`]) and explain one ([`counterexamples::explain`]).
 //!
 //! The other modules serve the `cullproof` command line (the gate's judge, search,
 //! corpus, tightness, stability, plugins and the process protocol); they are public for
 //! the command and the tests, and not part of the library's stable surface.
 
 pub mod bounds;
+pub mod counterexamples;
 pub mod gate;
 pub mod model;
 

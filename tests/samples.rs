@@ -202,10 +202,13 @@ fn every_case_placed_in_a_viewport_lies_in_its_guard_band() {
         assert!(case.validate().is_ok());
     }
     assert!(placed >= 250 && skipped >= 20, "{placed} placed, {skipped} skipped");
-    // The gate runs under it and says so; the cases it could not place are counted.
+    // The gate runs under it and says so; the cases it could not place are counted,
+    // not judged, in their rows.
     let r = Gate::new().method(centre_culler()).cases(64).viewport(vp).samples(SampleSet::PixelCentres).run();
     let note = r.raw.samples.as_ref().unwrap();
-    assert!(note.outside_viewport >= 4 && r.raw.cases + note.outside_viewport == 64, "{note:?}");
+    assert!(note.outside_viewport >= 4 && r.raw.cases == 64, "{note:?}");
+    assert_eq!(r.method("centre-culler").unwrap().not_judged, note.outside_viewport, "{}", r.render());
+    assert_eq!(r.raw.rows.iter().map(|x| x.not_judged).sum::<u64>(), note.outside_viewport);
     assert!(r.render().contains("viewport 1920x1080+64"));
     assert_eq!(r.method("centre-culler").unwrap().verdict, MethodVerdict::Proven, "{}", r.render());
 }
@@ -247,4 +250,35 @@ fn case_files_record_the_set_and_old_files_read_as_the_defaults() {
     let e = CaseFile::load(&p).unwrap_err().to_string();
     assert!(e.contains("`samples`") && e.contains("msaa3"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A pixel-centre filter with 1/256 px vertex snapping, gated in the viewport hardware
+/// states: centred on the origin, +-2^15 px. Every case is proven or not judged (those
+/// the viewport cannot hold or snapping cannot snap: behind the lens), none fails, and
+/// the not-judged rows are skipped (not failed, not passed) in the JUnit file.
+#[test]
+fn a_pixel_centre_filter_with_snapping_in_a_centred_viewport_is_proven_or_not_judged() {
+    let vp: Viewport = "centred:65536x65536".parse().unwrap();
+    assert_eq!(vp.to_string(), "-32768,-32768,65536x65536");
+    let r = Gate::new()
+        .method(centre_culler())
+        .cases(320)
+        .limit_every(0)
+        .viewport(vp)
+        .samples(SampleSet::PixelCentres)
+        .snap(8)
+        .run();
+    let m = r.method("centre-culler").unwrap();
+    let text = r.render();
+    assert!(r.passed(), "{text}");
+    assert_eq!((m.violated, m.unproven), (0, 0), "{text}");
+    assert!(m.proven > 200 && m.not_judged > 0 && m.proven + m.not_judged == 320, "{text}");
+    assert_eq!(m.verdict, MethodVerdict::Proven, "{text}");
+    assert!(text.contains("not judged"), "{text}");
+    let behind = r.raw.rows.iter().find(|x| x.regime == "behind-lens").expect("its row is there");
+    assert_eq!((behind.not_judged, behind.cases), (20, 20), "{text}");
+    assert_eq!(behind.status, cullproof::check::Status::NotJudged, "{text}");
+    let xml = cullproof::junit::render(&r.raw, &std::env::temp_dir(), "").unwrap();
+    assert!(xml.contains("name=\"behind-lens\" time=\"0\"><skipped message=\"not judged"), "{xml}");
+    assert!(!xml.contains("<failure"), "{xml}");
 }

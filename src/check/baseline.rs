@@ -241,6 +241,7 @@ mod tests {
             proven: 600 - violations,
             violations,
             unproven: 0,
+            not_judged: 0,
             unproven_by: BTreeMap::new(),
             bounds: bounds.iter().map(|(k, m)| (k.to_string(), BoundStat { cases: 1, max_margin: *m })).collect(),
             boundary_only: 0,

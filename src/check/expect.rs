@@ -86,6 +86,22 @@ pub struct Entry {
     /// of n cases fails above `max_rate n + 3 sqrt(max_rate (1 - max_rate) n) + 2`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_rate: Option<f64>,
+    /// For an expected violation: the largest share of the tiles judged at the
+    /// method's own tile-reject limit that may show a violation (same counting noise
+    /// as `max_rate`). A slip that makes the reject limit cull covered tiles more
+    /// often leaves this share even when every culled tile is a kind the signature
+    /// lists. Held only at the settings it was measured at
+    /// ([`super::settings::Settings::measured`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_limit_rate: Option<f64>,
+    /// The largest mean share of the boundary tile's uniform samples the answers may
+    /// admit (intervals and constraints together; see [`super::row::Row::admit_fraction`]).
+    /// A method that stops narrowing (a dropped term that makes it cull nothing) admits
+    /// more than its signature allows, though it violates nothing and has no narrowed
+    /// end left to probe for tightness. Held only at the settings it was
+    /// measured at ([`super::settings::Settings::measured`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_admit: Option<f64>,
     /// Unproven cases allowed (for an expected-conservative row; none by default).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unproven: Option<Allowance>,
@@ -137,10 +153,53 @@ impl Entry {
             why: String::new(),
             bounds: BTreeMap::new(),
             max_rate: None,
+            max_limit_rate: None,
+            max_admit: None,
             unproven: None,
             tight: BTreeMap::new(),
             searched: Vec::new(),
         }
+    }
+
+    /// This entry as it holds for a run: without its measured parts (the limit-tile
+    /// rate cap and the admit cap) when the run's settings are not those they were
+    /// measured at (`measured` false, see [`super::settings::Settings::measured`]).
+    pub fn scoped(mut self, measured: bool) -> Self {
+        if !measured {
+            self.max_limit_rate = None;
+            self.max_admit = None;
+        }
+        self
+    }
+
+    /// The limit-tile rate cap against `violations` of `tiles` judged at the method's
+    /// own tile-reject limit, with the counting noise of [`Entry::rate_breach`].
+    pub fn limit_rate_breach(&self, violations: u64, tiles: u64) -> Option<String> {
+        let r = self.max_limit_rate?;
+        (tiles > 0 && violations as f64 > Allowance::cases_allowed(r, tiles)).then(|| {
+            format!(
+                "limit tiles violated {violations}/{tiles} = {:.3} above the cap {r}",
+                violations as f64 / tiles as f64
+            )
+        })
+    }
+
+    /// The admit cap against the mean admitted share `mean` of `cases` boundary tiles:
+    /// each case's share lies in [0, 1], so its variance is at most `c (1 - c)` for a
+    /// mean `c`; the mean may exceed the cap by three standard deviations of a mean of
+    /// `cases` such shares, plus `2 / cases` for tiny rows.
+    pub fn admit_breach(&self, mean: f64, cases: u64) -> Option<String> {
+        let c = self.max_admit?;
+        let n = cases as f64;
+        let allowed = c + 3.0 * (c * (1.0 - c) / n).sqrt() + 2.0 / n;
+        (cases > 0 && mean > allowed).then(|| {
+            format!(
+                "looser: the answers admit {:.1} % of the boundary tiles' samples on average, the signature at most \
+                 {:.1} %",
+                100.0 * mean,
+                100.0 * c
+            )
+        })
     }
     /// Where a row's tightness leaves the signature: one line per end kind whose tight
     /// ends fall below the least share, beyond counting noise (see [`least_tight`]).
@@ -326,9 +385,14 @@ impl Expectations {
                 return Err("field `unproven.why`: an allowance for unproven cases needs its reason".into());
             }
         }
+        for (field, v) in [("max_limit_rate", e.max_limit_rate), ("max_admit", e.max_admit)] {
+            if let Some(v) = v.filter(|v| !(0.0..=1.0).contains(v)) {
+                return Err(format!("field `{field}` = {v}: a share in [0, 1]"));
+            }
+        }
         if e.expect != Expected::Violation {
-            if !e.bounds.is_empty() || e.max_rate.is_some() {
-                return Err("fields `bounds` and `max_rate` belong to an expected violation".into());
+            if !e.bounds.is_empty() || e.max_rate.is_some() || e.max_limit_rate.is_some() {
+                return Err("fields `bounds`, `max_rate` and `max_limit_rate` belong to an expected violation".into());
             }
             return Ok(());
         }
@@ -451,15 +515,44 @@ mod tests {
     }
 
     #[test]
+    fn the_limit_rate_and_the_admitted_share_have_caps_with_counting_noise() {
+        let e = Entry { max_limit_rate: Some(0.1), max_admit: Some(0.6), ..Entry::conservative() };
+        // 100 limit tiles at a cap of 0.1: 10 + 3 * 3 + 2 = 21 allowed.
+        assert_eq!(e.limit_rate_breach(21, 100), None);
+        let line = e.limit_rate_breach(22, 100).unwrap();
+        assert!(line.contains("22/100") && line.contains("above the cap 0.1"), "{line}");
+        assert_eq!(e.limit_rate_breach(0, 0), None);
+        // 600 cases at a cap of 0.6: 0.6 + 3 * 0.02 + 2 / 600 = 0.6633 allowed.
+        assert_eq!(e.admit_breach(0.66, 600), None);
+        let line = e.admit_breach(0.67, 600).unwrap();
+        assert!(line.starts_with("looser: the answers admit 67.0 %") && line.contains("at most 60.0 %"), "{line}");
+        // Neither cap holds at settings they were not measured at.
+        let off = e.clone().scoped(false);
+        assert_eq!((off.limit_rate_breach(100, 100), off.admit_breach(1.0, 600)), (None, None));
+        assert_eq!(e.clone().scoped(true), e);
+        // Without a cap, nothing is held.
+        let none = Entry::conservative();
+        assert_eq!((none.limit_rate_breach(100, 100), none.admit_breach(1.0, 600)), (None, None));
+    }
+
+    #[test]
+    fn measured_caps_are_shares_and_the_limit_rate_belongs_to_a_violation() {
+        let err = load(r#"{"m": {"*": {"expect": "conservative", "max_admit": 1.5}}}"#).unwrap_err().to_string();
+        assert!(err.contains("field `max_admit` = 1.5: a share in [0, 1]"), "{err}");
+        let err = load(r#"{"m": {"*": {"expect": "conservative", "max_limit_rate": 0.1}}}"#).unwrap_err().to_string();
+        assert!(err.contains("`max_limit_rate` belong to an expected violation"), "{err}");
+        let ok = load(r#"{"m": {"*": {"expect": "conservative", "max_admit": 0.5}}}"#).unwrap();
+        assert_eq!(ok.entry("m", "static").max_admit, Some(0.5));
+    }
+
+    #[test]
     fn breaches_name_the_kind_the_margin_and_the_rate() {
         let e = Entry {
             expect: Expected::Violation,
             why: "w".into(),
             bounds: [("u min".to_string(), Cap(1e-4)), ("tile culled".to_string(), Cap(f64::INFINITY))].into(),
             max_rate: Some(0.1),
-            unproven: None,
-            tight: BTreeMap::new(),
-            searched: Vec::new(),
+            ..Entry::conservative()
         };
         let stats = |v: &[(&str, u64, f64)]| v.iter().map(|(k, n, m)| (k.to_string(), (*n, *m))).collect();
         assert!(e.breaches(&stats(&[("u min", 3, 5e-5), ("tile culled", 1, f64::INFINITY)]), 4, 100).is_empty());
@@ -479,9 +572,7 @@ mod tests {
             why: "w".into(),
             bounds: [("u min".to_string(), Cap(5e-5)), ("tile culled".to_string(), Cap(f64::INFINITY))].into(),
             max_rate: Some(0.1),
-            unproven: None,
-            tight: BTreeMap::new(),
-            searched: Vec::new(),
+            ..Entry::conservative()
         };
         assert_eq!(e.beyond("u min", 5e-5), None);
         assert_eq!(e.beyond("u min", 1.94e-4).as_deref(), Some("above the cap 5e-5"));

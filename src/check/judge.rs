@@ -40,20 +40,16 @@ pub enum Unproven {
     /// set, no sample of the set found near it, and too many set points in the tile to
     /// judge one by one ([`super::samples`]).
     OffSet,
-    /// Under vertex snapping: a vertex key that cannot be snapped exactly (behind the
-    /// lens, or beyond the grid's exact range); nothing was judged.
-    SnapRange,
 }
 
 impl Unproven {
-    pub const ALL: [Unproven; 7] = [
+    pub const ALL: [Unproven; 6] = [
         Unproven::TileUnknown,
         Unproven::SideGap,
         Unproven::DepthUnconfirmed,
         Unproven::ConstraintBudget,
         Unproven::ConstraintResolution,
         Unproven::OffSet,
-        Unproven::SnapRange,
     ];
     pub fn name(self) -> &'static str {
         match self {
@@ -63,7 +59,6 @@ impl Unproven {
             Unproven::ConstraintBudget => "constraint-budget",
             Unproven::ConstraintResolution => "constraint-resolution",
             Unproven::OffSet => "off-set",
-            Unproven::SnapRange => "snap-range",
         }
     }
     fn bit(self) -> u8 {
@@ -78,6 +73,11 @@ pub enum Verdict {
     Proven,
     Violated,
     Unproven,
+    /// The case could not be judged under the declared samples: a vertex key that
+    /// vertex snapping cannot snap exactly (behind the lens, or beyond the grid's
+    /// exact range), or a case that cannot be placed in the viewport. Counted apart,
+    /// never a failure and never a pass.
+    NotJudged,
 }
 
 /// One method on one case (over every tile judged for it).
@@ -89,6 +89,8 @@ pub struct Judgement {
     pub violated: BTreeMap<String, f64>,
     /// Reasons some claim stayed unproven (a bit per [`Unproven`]).
     unproven: u8,
+    /// Nothing was judged (see [`Verdict::NotJudged`]).
+    pub not_judged: bool,
     /// Only boundary samples were culled (sampled; says nothing about the proof).
     pub boundary_only: bool,
     /// Some violation is witnessed by an f32 sample (one a hardware sample generator
@@ -125,8 +127,14 @@ pub const TIGHT_BUDGET: usize = 200;
 pub const SIDE_CUT_BUDGET_FACTOR: usize = 1;
 
 impl Judgement {
+    /// The judgement of a case that could not be judged ([`Verdict::NotJudged`]).
+    pub fn not_judged() -> Self {
+        Judgement { not_judged: true, ..Judgement::default() }
+    }
     pub fn verdict(&self) -> Verdict {
-        if self.violation.is_some() {
+        if self.not_judged {
+            Verdict::NotJudged
+        } else if self.violation.is_some() {
             Verdict::Violated
         } else if self.unproven != 0 {
             Verdict::Unproven
@@ -164,6 +172,7 @@ impl Judgement {
     }
     /// Fold in the judgement of another tile of the same case.
     pub fn merge(&mut self, o: Judgement) {
+        self.not_judged |= o.not_judged;
         for (k, m) in o.violated {
             let e = self.violated.entry(k).or_insert(0.0);
             *e = e.max(m);

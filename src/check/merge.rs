@@ -100,7 +100,7 @@ pub fn merge(
         }
     }
     for row in rows.values_mut() {
-        row.entry = Some(ex.entry(&row.method, &row.regime));
+        row.entry = Some(ex.entry(&row.method, &row.regime).scoped(run.settings.measured()));
         row.expected = row.entry.as_ref().map_or(row.expected, |e| e.expect);
         finish_row(row);
     }
@@ -159,6 +159,7 @@ fn add_row(acc: &mut Row, o: &Row) {
     acc.proven += o.proven;
     acc.violations += o.violations;
     acc.unproven += o.unproven;
+    acc.not_judged += o.not_judged;
     for (k, v) in &o.unproven_by {
         *acc.unproven_by.entry(k.clone()).or_insert(0) += v;
     }

@@ -252,6 +252,8 @@ pub(crate) struct CaseResult {
     pub(crate) pass: Vec<(f64, f64)>,
     pub(crate) boxes: u64,
     pub(crate) cross: CrossCheck,
+    /// False for a case the viewport could not hold (every method not judged).
+    pub(crate) placed: bool,
 }
 
 /// The share of the lens/shutter domain that an answer's intervals keep.
@@ -272,12 +274,36 @@ fn pass_fraction(r: &TileResult) -> f64 {
     }
 }
 
+/// The share of `uniform` (a tile's uniform samples) that an answer admits, its
+/// intervals and constraints together (0 for a culled tile; the share of the domain
+/// its intervals keep when there are no samples).
+fn admit_share(a: &TileResult, uniform: &[Sample]) -> f64 {
+    match a {
+        TileResult::Empty => 0.0,
+        TileResult::Bounds(_) if uniform.is_empty() => pass_fraction(a),
+        TileResult::Bounds(b) => uniform.iter().filter(|s| b.admits(s)).count() as f64 / uniform.len() as f64,
+    }
+}
+
+/// The share of case `i`'s uniform samples of `tile` (the gate's, as [`judge`] draws
+/// them) that method `m`'s answer admits: the quantity a row's `admit_fraction`
+/// averages.
+pub fn admitted_share(cfg: &CheckConfig, m: &dyn Method, case: &Case, tile: &Tile, i: u64) -> f64 {
+    let Ok((seen, _)) = samples::judged_triangles(cfg.snap, case) else { return 0.0 };
+    let uniform = uniform_samples(cfg, tile, UNIFORM_STREAM, i, cfg.samples);
+    admit_share(&m.setup(&seen).tile(tile), &uniform)
+}
+
 /// Judge every method on one case: the boundary tile for all, the limit tiles for the
 /// methods whose turn it is.
-fn judge_case(cfg: &CheckConfig, i: u64) -> Option<CaseResult> {
-    let (regime, case, tile) = try_make_case(cfg, i)?;
+fn judge_case(cfg: &CheckConfig, i: u64) -> CaseResult {
+    let Some((regime, case, tile)) = try_make_case(cfg, i) else {
+        // The viewport cannot hold this case: counted, not judged.
+        let regime = cfg.regimes[(i % cfg.regimes.len() as u64) as usize];
+        return CaseResult { placed: false, ..samples::not_judged_result(cfg, regime) };
+    };
     let Ok((seen, tri)) = samples::judged_triangles(cfg.snap, &case) else {
-        return Some(samples::snap_range_result(cfg, regime));
+        return samples::not_judged_result(cfg, regime);
     };
     let embree = if cfg.snap.is_none() { embree_for(&case) } else { None };
     let uniform = uniform_samples(cfg, &tile, UNIFORM_STREAM, i, cfg.samples);
@@ -286,12 +312,7 @@ fn judge_case(cfg: &CheckConfig, i: u64) -> Option<CaseResult> {
     let mut tj = SetJudge::new(TileJudge::new(cfg, case, tile, i, &tri, embree.as_ref(), &uniform));
     let mut judgements: Vec<Judgement> = answers.iter().map(|a| tj.judge(a)).collect();
     let mut boxes = tj.boxes();
-    let admit = |a: &TileResult| match a {
-        TileResult::Empty => 0.0,
-        TileResult::Bounds(_) if uniform.is_empty() => pass_fraction(a),
-        TileResult::Bounds(b) => uniform.iter().filter(|s| b.admits(s)).count() as f64 / uniform.len() as f64,
-    };
-    let pass = answers.iter().map(|a| (pass_fraction(a), admit(a))).collect();
+    let pass = answers.iter().map(|a| (pass_fraction(a), admit_share(a, &uniform))).collect();
     let round = i / cfg.regimes.len() as u64;
     for (mi, m) in cfg.methods.iter().enumerate() {
         let salt = method_salt(m.info().id);
@@ -304,7 +325,7 @@ fn judge_case(cfg: &CheckConfig, i: u64) -> Option<CaseResult> {
             judgements[mi].merge(jl);
         }
     }
-    Some(CaseResult { regime, judgements, pass, boxes, cross: cross_check(&case, embree.as_ref(), &uniform) })
+    CaseResult { regime, judgements, pass, boxes, cross: cross_check(&case, embree.as_ref(), &uniform), placed: true }
 }
 
 /// A number fixed by a method's id (a deliberately broken variant counts as the method
@@ -386,11 +407,10 @@ fn cross_check(case: &Case, embree: Option<&oracles::embree::EmbreeOracle>, unif
 /// (and is recorded in witnesses). Returns the judgements and the solver's box count.
 ///
 /// Under snapping the methods see the snapped triangle and the oracle judges it exactly;
-/// a case that cannot be snapped gets judgements unproven for `snap-range`.
+/// a case that cannot be snapped is not judged ([`Verdict::NotJudged`]).
 pub fn judge(cfg: &CheckConfig, methods: &[MethodRef], case: &Case, tile: &Tile, i: u64) -> (Vec<Judgement>, u64) {
     let Ok((seen, tri)) = samples::judged_triangles(cfg.snap, case) else {
-        let mut j = Judgement::default();
-        j.add_unproven(Unproven::SnapRange);
+        let j = Judgement::not_judged();
         return (vec![j; methods.len()], 0);
     };
     let embree = if cfg.snap.is_none() { embree_for(case) } else { None };
@@ -426,7 +446,7 @@ pub fn run_with_baseline(
             );
             results = ids
                 .par_iter()
-                .filter_map(|&i| {
+                .map(|&i| {
                     let r = judge_case(cfg, i);
                     pb.inc(1);
                     r
@@ -443,7 +463,7 @@ pub fn run_with_baseline(
             let mut next = 0u64;
             while start.elapsed().as_secs_f64() < secs {
                 let ids: Vec<u64> = (next..next + batch).filter(|i| i % n == k).collect();
-                results.par_extend(ids.par_iter().filter_map(|&i| judge_case(cfg, i)));
+                results.par_extend(ids.par_iter().map(|&i| judge_case(cfg, i)));
                 next += batch;
                 pb.set_position((start.elapsed().as_secs_f64() * 1000.0) as u64);
                 pb.set_message(format!("{next} cases"));
@@ -451,17 +471,16 @@ pub fn run_with_baseline(
             pb.finish_and_clear();
         }
     }
-    let judged = results.len() as u64;
-    let drawn = match cfg.time {
-        None => (0..cfg.cases).filter(|i| i % n == k).count() as u64,
-        Some(_) => judged, // a timed run below does not count the cases it could not place
-    };
+    // Every case drawn has its row entry; those the viewport could not hold are
+    // not judged (and counted in the sample set's note).
+    let drawn = results.len() as u64;
+    let outside = results.iter().filter(|r| !r.placed).count() as u64;
     let mut acc = report::Accumulator::new(ex);
     for r in results {
         acc.add(cfg, r.regime, r.judgements, &r.pass, r.boxes, r.cross);
     }
-    let mut rep = acc.finish(cfg, judged, start.elapsed().as_secs_f64());
-    rep.samples = samples::SetNote::of(cfg, drawn - judged);
+    let mut rep = acc.finish(cfg, drawn, start.elapsed().as_secs_f64());
+    rep.samples = samples::SetNote::of(cfg, outside);
     rep.contract_breaches = crate::plugin::breaches_since(&breaches);
     rep.tool = Some(tool::ToolInfo::of(ex, base.map(tool::hash)));
     if let Some(b) = base {

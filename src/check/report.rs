@@ -106,7 +106,7 @@ impl<'a> Accumulator<'a> {
             let m = cfg.methods[mi].info().id;
             let ex = self.ex;
             let row = self.rows.entry((mi, ri)).or_insert_with(|| {
-                let entry = ex.entry(m, regime.name());
+                let entry = ex.entry(m, regime.name()).scoped(super::settings::Settings::whole(cfg).measured());
                 Row {
                     method: m.into(),
                     regime: regime.name().into(),
@@ -114,6 +114,7 @@ impl<'a> Accumulator<'a> {
                     proven: 0,
                     violations: 0,
                     unproven: 0,
+                    not_judged: 0,
                     unproven_by: BTreeMap::new(),
                     bounds: BTreeMap::new(),
                     boundary_only: 0,
@@ -148,6 +149,7 @@ impl<'a> Accumulator<'a> {
             row.limit_violations += j.limit_violations as u64;
             match j.verdict() {
                 Verdict::Proven => row.proven += 1,
+                Verdict::NotJudged => row.not_judged += 1,
                 Verdict::Unproven => {
                     row.unproven += 1;
                     for r in j.unproven() {
@@ -244,8 +246,11 @@ pub(crate) fn finish_row(row: &mut Row) {
 fn set_status(row: &mut Row) {
     let entry = row.entry.clone().unwrap_or_else(Entry::conservative);
     row.problems.clear();
+    // Rates and allowances count the cases judged.
+    let judged = row.cases - row.not_judged;
     row.status = match entry.expect {
         Expected::Unknown => Status::NotGated,
+        _ if judged == 0 && row.cases > 0 => Status::NotJudged,
         Expected::Conservative if row.violations > 0 => {
             let kinds: Vec<&str> = row.bounds.keys().map(|s| s.as_str()).collect();
             row.problems.push(format!("{} violations ({})", row.violations, kinds.join(", ")));
@@ -254,7 +259,7 @@ fn set_status(row: &mut Row) {
         Expected::Conservative if row.unproven == 0 => Status::Proven,
         Expected::Conservative => {
             let allowed = entry.unproven.as_ref().map_or(0.0, |a| a.max_rate);
-            if row.unproven as f64 <= Allowance::cases_allowed(allowed, row.cases) {
+            if row.unproven as f64 <= Allowance::cases_allowed(allowed, judged) {
                 Status::ProvenExceptAllowed
             } else {
                 row.problems.push(format!(
@@ -271,7 +276,8 @@ fn set_status(row: &mut Row) {
         Expected::Violation => {
             let stats: BTreeMap<String, (u64, f64)> =
                 row.bounds.iter().map(|(k, b)| (k.clone(), (b.cases, b.max_margin))).collect();
-            let br = entry.breaches(&stats, row.violations, row.cases);
+            let mut br = entry.breaches(&stats, row.violations, judged);
+            br.extend(entry.limit_rate_breach(row.limit_violations, row.limit_tiles));
             if br.is_empty() {
                 Status::KnownViolation
             } else {
@@ -283,8 +289,9 @@ fn set_status(row: &mut Row) {
     // Looser than the signature allows, at any settings: a row that passes otherwise
     // fails as a regression (a row that already fails keeps its status; the lines
     // are added either way).
-    if row.status != Status::NotGated {
-        let looser = entry.looser(&row.tight);
+    if !matches!(row.status, Status::NotGated | Status::NotJudged) {
+        let mut looser = entry.looser(&row.tight);
+        looser.extend(entry.admit_breach(row.admit_fraction, judged));
         if !looser.is_empty() && !row.status.fails() {
             row.status = Status::Regression;
         }
@@ -329,9 +336,26 @@ fn render_summary(r: &CheckReport) -> String {
 
 /// The verdict table.
 pub fn render(r: &CheckReport) -> String {
+    // The not-judged column only where some case could not be judged (snapping,
+    // placement in a viewport).
+    let nj = r.rows.iter().any(|x| x.not_judged > 0);
+    let not_judged = |v: &dyn std::fmt::Display| if nj { format!(" {v:>10}") } else { String::new() };
     let mut s = format!(
-        "cullproof check, seed {}, {} cases (shard {}), {:.1} s\n\n{:<26} {:<15} {:>6} {:>7} {:>8} {:>8} {:>5} {:>7} {:>11}  status\n",
-        r.seed, r.cases, r.shard, r.seconds, "method", "regime", "cases", "proven", "violated", "unproven", "f32", "limit", "margin"
+        "cullproof check, seed {}, {} cases (shard {}), {:.1} s\n\n{:<26} {:<15} {:>6} {:>7} {:>8} {:>8}{} {:>5} {:>7} {:>11}  status\n",
+        r.seed,
+        r.cases,
+        r.shard,
+        r.seconds,
+        "method",
+        "regime",
+        "cases",
+        "proven",
+        "violated",
+        "unproven",
+        not_judged(&"not judged"),
+        "f32",
+        "limit",
+        "margin"
     );
     if let Some(n) = &r.samples {
         s = s.replacen("\n\n", &format!("\n{}\n\n", n.line()), 1);
@@ -341,13 +365,14 @@ pub fn render(r: &CheckReport) -> String {
         let m = if row.method == last { "" } else { row.method.as_str() };
         last = &row.method;
         s += &format!(
-            "{:<26} {:<15} {:>6} {:>7} {:>8} {:>8} {:>5} {:>7} {:>11}  {}\n",
+            "{:<26} {:<15} {:>6} {:>7} {:>8} {:>8}{} {:>5} {:>7} {:>11}  {}\n",
             m,
             row.regime,
             row.cases,
             row.proven,
             row.violations,
             row.unproven,
+            not_judged(&row.not_judged),
             row.f32_witnessed,
             format!("{}/{}", row.limit_violations, row.limit_tiles),
             fmt_margin(row),
@@ -360,6 +385,10 @@ pub fn render(r: &CheckReport) -> String {
           margin: the padding of the violated bound that would admit every witness found (inf: a covered tile was culled).\n\
           f32: violations with a witness that is an f32 sample. limit: violations / tiles judged at the method's own\n\
           tile-reject limit.\n";
+    if nj {
+        s += "not judged: cases the declared samples leave no question about (a vertex that snapping cannot snap \
+              exactly, a case the viewport cannot hold): neither a failure nor a pass.\n";
+    }
     let (n, inside, over, under) = r
         .cross_check
         .iter()

@@ -31,6 +31,9 @@ pub enum Status {
     NotGated,
     /// Worse than the stored baseline for the same settings.
     Regression,
+    /// No case of the row could be judged under the declared samples (snapping or
+    /// placement; see [`super::Verdict::NotJudged`]): neither a failure nor a pass.
+    NotJudged,
 }
 
 impl Status {
@@ -48,6 +51,7 @@ impl Status {
             Status::ExpectedNotSeen => "expected violation not seen",
             Status::NotGated => "not gated",
             Status::Regression => "REGRESSION",
+            Status::NotJudged => "not judged",
         }
     }
 }
@@ -72,6 +76,11 @@ pub struct Row {
     pub violations: u64,
     /// Cases neither proven nor violated.
     pub unproven: u64,
+    /// Cases that could not be judged under the declared samples (a vertex snapping
+    /// cannot snap exactly, a case the viewport cannot hold): neither proven, violated
+    /// nor unproven. `proven + violations + unproven + not_judged = cases`.
+    #[serde(default)]
+    pub not_judged: u64,
     /// Unproven cases by reason (a case may have several).
     pub unproven_by: BTreeMap<String, u64>,
     /// Violated bound kinds: cases and largest margin.

@@ -345,16 +345,17 @@ impl SetNote {
     }
 }
 
-/// A case that cannot be snapped: every method unproven (`snap-range`).
-pub(crate) fn snap_range_result(cfg: &CheckConfig, regime: Regime) -> super::CaseResult {
-    let mut j = Judgement::default();
-    j.add_unproven(Unproven::SnapRange);
+/// A case that cannot be judged under the declared samples (a vertex key snapping
+/// cannot snap exactly, or a case the viewport cannot hold): every method not judged.
+pub(crate) fn not_judged_result(cfg: &CheckConfig, regime: Regime) -> super::CaseResult {
+    let j = Judgement::not_judged();
     super::CaseResult {
         regime,
         judgements: vec![j; cfg.methods.len()],
         pass: vec![(1.0, 1.0); cfg.methods.len()],
         boxes: 0,
         cross: Default::default(),
+        placed: true,
     }
 }
 

@@ -35,6 +35,15 @@ impl Settings {
         (cfg.time.is_none() && cfg.shard == (0, 1)).then(|| Settings::whole(cfg))
     }
 
+    /// Whether the measured parts of a signature (the limit-tile rate cap and the
+    /// admitted share, see [`super::expect::Entry::max_admit`]) hold for a run with
+    /// these settings: they were measured with tile sizes drawn per case, every pixel
+    /// position, no snapping and no viewport, and a fixed tile size or a placement
+    /// changes what a correct method admits and how often its limit tiles fail.
+    pub fn measured(&self) -> bool {
+        self.tile.is_none() && self.sample_set.is_none()
+    }
+
     /// The settings of the whole run a (possibly sharded) run belongs to.
     pub fn whole(cfg: &CheckConfig) -> Settings {
         Settings {

@@ -65,6 +65,9 @@ pub struct MethodStrength {
     pub proven: u64,
     pub violations: u64,
     pub unproven: u64,
+    /// Cases not judged under the declared samples (see [`super::Verdict::NotJudged`]).
+    #[serde(default)]
+    pub not_judged: u64,
     /// Regimes with a violation, of the regimes run.
     pub violated_regimes: u64,
     pub regimes: u64,
@@ -92,11 +95,13 @@ pub fn of_rows(rows: &[Row]) -> Vec<MethodStrength> {
 
 fn of_method<'a>(method: &str, rows: impl Iterator<Item = &'a Row>) -> MethodStrength {
     let (mut cases, mut proven, mut violations, mut unproven, mut regimes, mut violated_regimes) = (0, 0, 0, 0, 0, 0);
+    let mut not_judged = 0;
     for r in rows {
         cases += r.cases;
         proven += r.proven;
         violations += r.violations;
         unproven += r.unproven;
+        not_judged += r.not_judged;
         regimes += 1;
         violated_regimes += (r.violations > 0) as u64;
     }
@@ -108,11 +113,12 @@ fn of_method<'a>(method: &str, rows: impl Iterator<Item = &'a Row>) -> MethodStr
             proofs::Level::MachineChecked => Strength::MachineChecked,
             proofs::Level::LemmasChecked => Strength::LemmasChecked,
         }
-    } else if unproven == 0 && cases > 0 {
+    } else if unproven == 0 && proven > 0 {
         Strength::ProvenOnCases
     } else {
         Strength::Unproven
     };
+    let aside = if not_judged > 0 { format!(" ({not_judged} of {cases} cases not judged)") } else { String::new() };
     let text = match strength {
         Strength::Violated => {
             let against =
@@ -120,15 +126,15 @@ fn of_method<'a>(method: &str, rows: impl Iterator<Item = &'a Row>) -> MethodStr
             format!("violated in {violated_regimes} of {regimes} regimes ({violations} of {cases} cases){against}")
         }
         Strength::MachineChecked | Strength::LemmasChecked => {
-            let run = if unproven == 0 {
+            let run = if unproven == 0 && not_judged == 0 {
                 format!("all {cases} cases proven")
             } else {
                 format!("{proven} of {cases} cases proven, {unproven} unproven by the judge")
             };
-            format!("{} (`cullproof proofs`); this run: {run}", strength.name())
+            format!("{} (`cullproof proofs`); this run: {run}{aside}", strength.name())
         }
-        Strength::ProvenOnCases => format!("proven on {cases} cases"),
-        Strength::Unproven => format!("no violation; {unproven} of {cases} cases unproven"),
+        Strength::ProvenOnCases => format!("proven on {proven} cases{aside}"),
+        Strength::Unproven => format!("no violation; {unproven} of {cases} cases unproven{aside}"),
     };
     let (ranges, scripts) = match (strength, proof) {
         (Strength::MachineChecked | Strength::LemmasChecked, Some(v)) => (
@@ -144,6 +150,7 @@ fn of_method<'a>(method: &str, rows: impl Iterator<Item = &'a Row>) -> MethodStr
         proven,
         violations,
         unproven,
+        not_judged,
         violated_regimes,
         regimes,
         ranges,

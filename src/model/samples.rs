@@ -323,7 +323,8 @@ pub struct Viewport {
 /// The largest viewport side and guard band the parser accepts (pixels): 2^17, and every
 /// edge of the guard-band rectangle within +-2^17 of the origin. Pixel positions there are
 /// whole numbers far below 2^24, exact in f32; whether a case can be snapped to a
-/// sub-pixel grid at such positions is decided per case (`snap-range`).
+/// sub-pixel grid at such positions is decided per case (a case that cannot be snapped is
+/// not judged).
 pub const MAX_VIEWPORT: u32 = 1 << 17;
 
 impl Viewport {

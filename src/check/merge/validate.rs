@@ -152,9 +152,8 @@ fn shard(p: &Path, r: &CheckReport) -> Result<()> {
     if outside > total {
         refuse!(p, "samples.outside_viewport", "= {outside} exceeds the {total} cases of {of_run}");
     }
-    if r.cases != total - outside {
-        let less = if outside > 0 { format!(", {outside} of them outside the viewport") } else { String::new() };
-        refuse!(p, "cases", "= {}: {of_run} draws {total} cases{less}", r.cases);
+    if r.cases != total {
+        refuse!(p, "cases", "= {}: {of_run} draws {total} cases", r.cases);
     }
 
     // the rows
@@ -178,7 +177,7 @@ fn shard(p: &Path, r: &CheckReport) -> Result<()> {
         }
         row_counts(p, i, row)?;
         let c = drawn[ri];
-        if row.cases > c || (outside == 0 && row.cases != c) {
+        if row.cases != c {
             refuse!(p, f("cases"), "= {}: {of_run} has {c} cases of regime {}", row.cases, row.regime);
         }
         if let Some(w) = &row.worst {
@@ -189,16 +188,14 @@ fn shard(p: &Path, r: &CheckReport) -> Result<()> {
         }
     }
     for (mi, m) in methods.iter().enumerate() {
-        if outside == 0 {
-            if let Some(ri) = (0..s.regimes.len()).find(|&ri| drawn[ri] > 0 && !at.contains_key(&(mi, ri))) {
-                refuse!(
-                    p,
-                    "rows",
-                    "has no row for method {m} in regime {} ({of_run} has {} cases of it): a row was dropped",
-                    s.regimes[ri],
-                    drawn[ri]
-                );
-            }
+        if let Some(ri) = (0..s.regimes.len()).find(|&ri| drawn[ri] > 0 && !at.contains_key(&(mi, ri))) {
+            refuse!(
+                p,
+                "rows",
+                "has no row for method {m} in regime {} ({of_run} has {} cases of it): a row was dropped",
+                s.regimes[ri],
+                drawn[ri]
+            );
         }
         let sum: u64 = at.range((mi, 0)..(mi + 1, 0)).map(|(_, &i)| r.rows[i].cases).sum();
         if sum != r.cases {
@@ -223,6 +220,7 @@ fn shard(p: &Path, r: &CheckReport) -> Result<()> {
                 ("proven", got.proven == w.proven, got.proven.to_string(), w.proven.to_string()),
                 ("violations", got.violations == w.violations, got.violations.to_string(), w.violations.to_string()),
                 ("unproven", got.unproven == w.unproven, got.unproven.to_string(), w.unproven.to_string()),
+                ("not_judged", got.not_judged == w.not_judged, got.not_judged.to_string(), w.not_judged.to_string()),
             ];
             if let Some((field, _, g, w)) = pairs.into_iter().find(|x| !x.1) {
                 refuse!(p, format!("methods[{i}].{field}"), "= {g} is not what its rows add up to, {w}");
@@ -269,20 +267,28 @@ fn row_counts(p: &Path, i: usize, row: &Row) -> Result<()> {
     if cases == 0 {
         refuse!(p, f("cases"), "= 0: the gate writes no row without cases");
     }
-    for (name, v) in [("proven", row.proven), ("violations", row.violations), ("unproven", row.unproven)] {
+    let counts = [
+        ("proven", row.proven),
+        ("violations", row.violations),
+        ("unproven", row.unproven),
+        ("not_judged", row.not_judged),
+    ];
+    for (name, v) in counts {
         if v > cases {
             refuse!(p, f(name), "= {v} exceeds cases = {cases}");
         }
     }
-    let sum = row.proven as u128 + row.violations as u128 + row.unproven as u128;
+    let sum: u128 = counts.iter().map(|c| c.1 as u128).sum();
     if sum != cases as u128 {
         refuse!(
             p,
             f("proven"),
-            "+ violations + unproven = {} + {} + {} = {sum}, not cases = {cases} (each case is exactly one of them)",
+            "+ violations + unproven + not_judged = {} + {} + {} + {} = {sum}, not cases = {cases} (each case is \
+             exactly one of them)",
             row.proven,
             row.violations,
-            row.unproven
+            row.unproven,
+            row.not_judged
         );
     }
     let at_most = [
