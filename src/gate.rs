@@ -251,9 +251,22 @@ pub struct Counterexample {
     pub bound: Bound,
     /// How far the bound would have to move to admit it (infinite for a culled tile).
     pub margin: f64,
+    witness: crate::check::Witness,
 }
 
 impl Counterexample {
+    fn of(regime: Regime, w: &crate::check::Witness) -> Self {
+        Counterexample {
+            regime,
+            case_index: w.case_index,
+            case: w.case,
+            tile: w.tile,
+            sample: w.sample,
+            bound: Bound::parse(&crate::check::bound_kind(&w.bound)),
+            margin: w.margin,
+            witness: w.clone(),
+        }
+    }
     /// The sample rounded to f32 (what hardware would hold; it may then fall on the
     /// other side of the bound when the witness lies between f32 values).
     pub fn f32_sample(&self) -> Sample {
@@ -287,6 +300,10 @@ pub struct MethodReport {
     pub passed: bool,
     /// The worst counterexample of each regime with one.
     pub counterexamples: Vec<Counterexample>,
+    /// Every counterexample, up to [`crate::check::row::EXAMPLES_PER_ROW`] per regime
+    /// (the first cases of each regime, in regime and case order); `violated` counts
+    /// them all.
+    pub every_counterexample: Vec<Counterexample>,
 }
 
 /// The typed result of a run, with the full report of `cullproof check` under it.
@@ -316,6 +333,7 @@ impl GateReport {
                         strength_text: String::new(),
                         passed: true,
                         counterexamples: Vec::new(),
+                        every_counterexample: Vec::new(),
                     });
                     methods.len() - 1
                 }
@@ -330,16 +348,9 @@ impl GateReport {
                 *m.unproven_by.entry(Unproven::parse(k)).or_insert(0) += n;
             }
             m.passed &= !r.status.fails();
-            if let (Some(w), Some(regime)) = (&r.worst, Regime::ALL.iter().find(|x| x.name() == r.regime)) {
-                m.counterexamples.push(Counterexample {
-                    regime: *regime,
-                    case_index: w.case_index,
-                    case: w.case,
-                    tile: w.tile,
-                    sample: w.sample,
-                    bound: Bound::parse(&crate::check::bound_kind(&w.bound)),
-                    margin: w.margin,
-                });
+            if let Some(&regime) = Regime::ALL.iter().find(|x| x.name() == r.regime) {
+                m.counterexamples.extend(r.worst.as_ref().map(|w| Counterexample::of(regime, w)));
+                m.every_counterexample.extend(r.examples.iter().map(|w| Counterexample::of(regime, w)));
             }
         }
         for m in &mut methods {
@@ -358,6 +369,30 @@ impl GateReport {
             }
         }
         GateReport { methods, raw }
+    }
+    /// Write every counterexample of [`MethodReport::every_counterexample`] as a case
+    /// file under `dir` (`dir/<method>/<hash>.json`, the directory made when missing; a
+    /// file that exists is left as it is), for `cullproof replay` / `explain` or
+    /// [`crate::counterexamples::replay`]. Returns the paths, in the report's order.
+    pub fn write_cases(&self, dir: &Path) -> anyhow::Result<Vec<std::path::PathBuf>> {
+        crate::output::dir("the case directory", dir)?;
+        let mut cfg = CheckConfig::default_for(Vec::new());
+        cfg.seed = self.raw.seed;
+        if let Some(n) = &self.raw.samples {
+            (cfg.sample_set, cfg.snap, cfg.viewport) = (n.set, n.snap, n.viewport);
+        }
+        let mut out = Vec::new();
+        for m in &self.methods {
+            for c in &m.every_counterexample {
+                let note = format!("a violation of {} in regime {} found by a gate run", m.id, c.regime.name());
+                let at = ("check", c.case_index, c.regime.name().to_string());
+                let cf =
+                    crate::corpus::CaseFile::violation(&m.id, (c.case, c.tile), &c.witness, &cfg, at, Vec::new(), note);
+                out.push(dir.join(&cf.method).join(format!("{}.json", cf.short_hash())));
+                cf.write_new(dir)?;
+            }
+        }
+        Ok(out)
     }
     /// True when every row meets its expectation (and the baseline, when given).
     pub fn passed(&self) -> bool {

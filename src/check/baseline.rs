@@ -258,6 +258,7 @@ mod tests {
             status: Status::KnownViolation,
             problems: Vec::new(),
             worst: None,
+            examples: Vec::new(),
             sums: Default::default(),
             entry: None,
         }

@@ -131,6 +131,7 @@ impl<'a> Accumulator<'a> {
                     status: Status::Proven,
                     problems: Vec::new(),
                     worst: None,
+                    examples: Vec::new(),
                     sums: RowSums::default(),
                     entry: Some(entry),
                 }
@@ -159,6 +160,9 @@ impl<'a> Accumulator<'a> {
                 Verdict::Violated => {
                     row.violations += 1;
                     row.f32_witnessed += j.f32_witness as u64;
+                    if row.examples.len() < super::row::EXAMPLES_PER_ROW {
+                        row.examples.extend(j.violation.clone());
+                    }
                 }
             }
             for (k, &(n, t)) in &j.tight {

@@ -64,6 +64,9 @@ pub struct BoundStat {
     pub max_margin: f64,
 }
 
+/// How many violations a row keeps whole (every one is counted).
+pub const EXAMPLES_PER_ROW: usize = 32;
+
 /// The row of the verdict table.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Row {
@@ -119,6 +122,11 @@ pub struct Row {
     pub problems: Vec<String>,
     /// The violation with the largest margin (the later case on a tie).
     pub worst: Option<Witness>,
+    /// The first [`EXAMPLES_PER_ROW`] violations of the row, in case order (the
+    /// library's [`crate::GateReport`] hands them out; not in the JSON report, and a
+    /// merged report has none).
+    #[serde(skip)]
+    pub examples: Vec<Witness>,
     /// The row's sums in exact fixed point, from which its means are computed: shard
     /// reports carry them so that `cullproof merge` gives the very numbers of the
     /// unsharded run (a float sum would depend on the order of addition).
