@@ -205,11 +205,12 @@ enum Cmd {
     /// beyond it is a finding (one per regime and kind), shrunk while it stays beyond,
     /// and written with that kind's own witness. Prints the kinds of bound seen per
     /// regime with their largest margins and caps, and a line per finding. The search's
-    /// cases as a whole are held to the rest of the signature, on their boundary tiles
-    /// as the gate judges them: the rate cap (beyond counting noise) and the tightness
-    /// signature (per regime and pooled), one line per breach (a looser or more often
-    /// wrong method has no single witness, so no case file). Exit 1 when something lies
-    /// beyond the signature, 0 otherwise.
+    /// cases as a whole are held to the rest of the signature, as the gate judges them:
+    /// on their boundary tiles the rate cap (beyond counting noise), the tightness
+    /// signature (per regime and pooled) and the admitted share, on the tiles at the
+    /// method's own tile-reject limit their violation rate; one line per breach (a
+    /// looser or more often wrong method has no single witness, so no case file). Exit
+    /// 1 when something lies beyond the signature, 0 otherwise.
     #[command(allow_negative_numbers = true)]
     Search {
         /// The method id (see `cullproof methods`), or a deliberately broken variant
