@@ -477,3 +477,41 @@ fn a_plugin_that_sets_flush_to_zero_is_reported_and_the_environment_reset() {
     // The answers themselves (the whole domain) are judged as given: proven.
     assert!(r.rows.iter().all(|x| x.violations == 0), "{:?}", r.rows.iter().map(|x| x.violations).collect::<Vec<_>>());
 }
+
+/// From an empty directory outside the checkout, with only the built binary: the
+/// broken C plugin is gated (fails), searched (its case file lands in the directory's
+/// own corpus), explained, and replayed with `--method` against the broken bound (still
+/// violated) and the fixed one (fixed); the project's corpus is unchanged.
+#[test]
+fn a_c_plugin_is_gated_searched_replayed_and_explained_from_an_empty_directory() {
+    let (safe, broken) = (build(false), build(true));
+    let d = common::scratch("plugin-anywhere");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    assert!(!d.canonicalize().unwrap().starts_with(root.canonicalize().unwrap()));
+    let project: Vec<PathBuf> = cullproof::corpus::case_files(&[root.join("corpus/cases")]).unwrap();
+    let (safe, broken) = (safe.to_str().unwrap(), broken.to_str().unwrap());
+    let run = |args: &[&str]| {
+        let r = common::Cli::new(args).dir(&d).deadline(Duration::from_secs(300)).run();
+        r.no_panic();
+        r
+    };
+    let r = run(&["--plugin", broken, "check", "--method", "c-bbox-broken", "--cases", "96"]);
+    assert_eq!(r.code, Some(1), "{}{}", r.stdout, r.stderr);
+    assert!(r.stdout.contains("UNEXPECTED VIOLATION"), "{}", r.stdout);
+    let r = run(&["--plugin", broken, "search", "--method", "c-bbox-broken", "--time", "10", "--max", "1"]);
+    assert_eq!(r.code, Some(0), "{}{}", r.stdout, r.stderr);
+    let written = cullproof::corpus::case_files(&[d.join("cullproof-corpus/cases/c-bbox-broken")]).unwrap();
+    assert_eq!(written.len(), 1, "{}", r.stdout);
+    let file = written[0].to_str().unwrap();
+    let r = run(&["--plugin", broken, "explain", file]);
+    assert_eq!(r.code, Some(0), "{}{}", r.stdout, r.stderr);
+    assert!(r.stdout.starts_with("c-bbox-broken (") && r.stdout.contains("a VIOLATION"), "{}", r.stdout);
+    let r = run(&["--plugin", broken, "replay", "--method", "c-bbox-broken"]);
+    assert_eq!(r.code, Some(1), "{}{}", r.stdout, r.stderr);
+    assert!(r.stdout.contains("still violated"), "{}", r.stdout);
+    let r = run(&["--plugin", broken, "--plugin", safe, "replay", "--method", "c-bbox-safe"]);
+    assert_eq!(r.code, Some(0), "{}{}", r.stdout, r.stderr);
+    assert!(r.stdout.contains("fixed"), "{}", r.stdout);
+    assert_eq!(cullproof::corpus::case_files(&[root.join("corpus/cases")]).unwrap(), project);
+    std::fs::remove_dir_all(&d).ok();
+}
