@@ -463,9 +463,19 @@ impl<'a> TileJudge<'a> {
                         // A gap: a claim within a rounding of the extent. Decide it as a
                         // constraint with its exact linear cut (u, v and t sides).
                         // A depth end: moving planes through the vertices, over the tile.
+                        // Then the same planes certified against the covered samples only,
+                        // with the edge values' multipliers ([`super::depth_cut`]).
                         let t = [tile.x0 as f64, tile.x1 as f64, tile.y0 as f64, tile.y1 as f64];
                         if coord.is_none()
-                            && oracles::extents::depth_end_by_planes(self.tri, t, bound, !is_max, cfg.side_budget)
+                            && (oracles::extents::depth_end_by_planes(self.tri, t, bound, !is_max, cfg.side_budget)
+                                || super::depth_cut::proves(
+                                    self.tri,
+                                    &tile,
+                                    bound,
+                                    !is_max,
+                                    SIDE_CUT_BUDGET_FACTOR * cfg.side_budget,
+                                    cfg.constraint_min_width,
+                                ))
                         {
                             continue;
                         }

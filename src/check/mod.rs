@@ -19,6 +19,7 @@
 //! each case draws from its own stream, and the merge is in case order.
 
 pub mod baseline;
+pub mod depth_cut;
 pub mod expect;
 pub mod judge;
 pub mod merge;

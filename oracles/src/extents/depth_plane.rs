@@ -148,3 +148,101 @@ pub fn depth_end_by_planes(tri: &Tri, tile: [f64; 4], z: f64, lower: bool, budge
     }
     true
 }
+
+/// The moving-plane certificate of a depth end as three [`super::Cut`]s over one box
+/// of samples (`b`: x, y, u, v, t), for the constraint search's edge combinations: cut
+/// k is `P_k = s F_k` (`s = 1` for a lower end `depth >= z`, `-1` for an upper end),
+/// with `alpha`, `gamma` affine in t through the planes at the box's two times (at its
+/// middle lens position). If `P_k >= 0` at an interior sample for every k, the depth
+/// there is beyond no end: `depth - z = sum_k (E_k / D) F_k` with positive weights (the
+/// module doc). Certifying each cut against the interior samples of the box (no
+/// interior sample with `P_k < err`) therefore proves the end over the box, while the
+/// edge values in the combination discount the pixels of the tile that the triangle
+/// does not cover (which the whole-tile check of [`depth_end_by_planes`] must not
+/// ignore).
+///
+/// `F_k` expands into monomials of x, y, u, v, t up to `t^2`. Each coefficient is
+/// enclosed in outward-rounded interval arithmetic from the f64 inputs; the cut keeps
+/// the midpoints, and `err` bounds what that leaves out over the box: the sum of each
+/// coefficient interval's width times the largest magnitude of its monomial there. So
+/// `P_k(s) >= err` implies `s F_k(s) >= 0`. None for a singular plane or values that
+/// are not finite.
+pub fn depth_plane_cuts(tri: &Tri, b: [Interval; 5], z: f64, lower: bool) -> Option<[super::Cut; 3]> {
+    use super::Cut;
+    if !z.is_finite() || b.iter().any(|iv| !iv.lo.is_finite() || !iv.hi.is_finite()) {
+        return None;
+    }
+    let (um, vm) = (b[2].mid(), b[3].mid());
+    let (t0, t1) = (b[4].lo, b[4].hi);
+    let (p0, p1) = (plane_slopes(tri, um, vm, t0)?, plane_slopes(tri, um, vm, t1)?);
+    // alpha = a0 + a1 t, gamma = g0 + g1 t through the two planes (exact f64 values:
+    // any numbers serve, only the enclosure of F_k's coefficients must be rigorous).
+    let line = |x0: f64, x1: f64| {
+        let s = if t1 > t0 { (x1 - x0) / (t1 - t0) } else { 0.0 };
+        [x0 - s * t0, s]
+    };
+    let (a, g) = (line(p0.0, p1.0), line(p0.1, p1.1));
+    if a.iter().chain(g.iter()).any(|v| !v.is_finite()) {
+        return None;
+    }
+    let pt = Interval::point;
+    let sign = if lower { 1.0 } else { -1.0 };
+    // The largest magnitude of each coordinate over the box.
+    let mag: [f64; 5] = std::array::from_fn(|i| b[i].lo.abs().max(b[i].hi.abs()));
+    let monomial_max = |m: usize, t2: bool| {
+        let mut p = (0..5).filter(|i| m >> i & 1 == 1).fold(1.0f64, |acc, i| acc * mag[i]);
+        if t2 {
+            p *= mag[4] * mag[4];
+        }
+        p
+    };
+    let cut_k = |k: usize| -> Option<Cut> {
+        let aff = |p: f64, q: f64| [pt(p), pt(q) - pt(p)];
+        let (x, y) = (aff(tri.q[k][0], tri.r[k][0]), aff(tri.q[k][1], tri.r[k][1]));
+        let (zz, w) = (aff(tri.q[k][2], tri.r[k][2]), aff(tri.q[k][3], tri.r[k][3]));
+        let c = aff(tri.c0[k], tri.c1[k]);
+        let kc = [pt(tri.k) * c[0], pt(tri.k) * c[1]];
+        // Coefficients: lin[m] for the multilinear monomial m (bits x 1, y 2, u 4, v 8,
+        // t 16), sq[m] for t^2 times the monomial m of x, y, u, v.
+        let mut lin = [pt(0.0); 32];
+        let mut sq = [pt(0.0); 16];
+        // z_k - z w_k
+        lin[0] = lin[0] + zz[0] - pt(z) * w[0];
+        lin[Cut::T] = lin[Cut::T] + zz[1] - pt(z) * w[1];
+        // (m0 + m1 t) (p0 + p1 t) q for a plane slope m and an affine term p of monomial q.
+        let mut add = |m: [f64; 2], p: [Interval; 2], q: usize| {
+            lin[q] = lin[q] + pt(m[0]) * p[0];
+            lin[q | Cut::T] = lin[q | Cut::T] + pt(m[0]) * p[1] + pt(m[1]) * p[0];
+            sq[q] = sq[q] + pt(m[1]) * p[1];
+        };
+        // T_k = x_k + u c_k - x w_k, S_k = y_k + k v c_k - y w_k.
+        add(a, x, 0);
+        add(a, c, Cut::U);
+        add(a, [-w[0], -w[1]], Cut::X);
+        add(g, y, 0);
+        add(g, kc, Cut::V);
+        add(g, [-w[0], -w[1]], Cut::Y);
+        let mut cut = Cut::zero();
+        let mut err = 0.0f64;
+        for (m, iv) in lin.iter().enumerate() {
+            let iv = pt(sign) * *iv;
+            if !(iv.lo.is_finite() && iv.hi.is_finite()) {
+                return None;
+            }
+            cut.coef[m] = iv.mid();
+            err += (iv.hi - iv.lo) * monomial_max(m, false);
+        }
+        for (m, iv) in sq.iter().enumerate() {
+            let iv = pt(sign) * *iv;
+            if !(iv.lo.is_finite() && iv.hi.is_finite()) {
+                return None;
+            }
+            cut.t2[m] = iv.mid();
+            err += (iv.hi - iv.lo) * monomial_max(m, true);
+        }
+        // The sum above is rounded: pad it by far more than its own rounding.
+        cut.err = err * (1.0 + 1e-10) + f64::MIN_POSITIVE;
+        cut.err.is_finite().then_some(cut)
+    };
+    Some([cut_k(0)?, cut_k(1)?, cut_k(2)?])
+}

@@ -91,7 +91,7 @@ mod testgen;
 pub mod tpoly;
 
 pub use cut::Cut;
-pub use depth_plane::depth_end_by_planes;
+pub use depth_plane::{depth_end_by_planes, depth_plane_cuts};
 
 pub use elimination::clipped_point as covered_point;
 pub use enclosure::{

@@ -1,0 +1,164 @@
+//! An independent attack on `check::depth_cut::proves`, the judge's decision of a depth
+//! end by the moving-plane cuts certified with the edge values: for triangles and tiles
+//! of this file's own generator (moving, defocused, facing flips, a vertex behind the
+//! lens), depth ends at the least (greatest) depth the tile's samples show, a few ulps
+//! either side of it and a little outside it. Every end it proves is attacked with the
+//! samples that gave the estimate, a fresh dense set and samples pushed towards the
+//! estimate's point: none may be interior with a hit depth beyond the end. An end one
+//! f32 step inside a depth that an interior sample reaches must never be proved.
+
+use cullproof::check::depth_cut::proves;
+use cullproof::Tile;
+use oracles::{classify_depth, DepthCheck, Tri};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+const BUDGET: usize = 2000;
+
+/// A triangle with f32 numbers: screen positions within a few hundred pixels, depths
+/// in front of the far plane, motion in seven of ten, defocus in half, a vertex behind
+/// the lens in one of eight, and in one of five a vertex that crosses the others
+/// during the shutter (a facing flip).
+fn triangle(g: &mut ChaCha8Rng) -> Tri {
+    let behind = g.gen_bool(0.125);
+    let moving = g.gen_bool(0.7);
+    let defocus = g.gen_bool(0.5);
+    let flip = moving && g.gen_bool(0.2);
+    let mut key = |g: &mut ChaCha8Rng, k: usize| {
+        let w: f64 = if behind && k == 0 { -g.gen_range(0.1..2.0) } else { g.gen_range(0.3..20.0) };
+        let (x, y): (f64, f64) = (g.gen_range(-300.0..300.0), g.gen_range(-300.0..300.0));
+        let z = w * g.gen_range(-0.3..0.99) + g.gen_range(-0.5..0.5);
+        [x * w, y * w, z, w].map(|v| v as f32 as f64)
+    };
+    let q: [[f64; 4]; 3] = std::array::from_fn(|k| key(g, k));
+    let mut r = q;
+    if moving {
+        for (k, v) in r.iter_mut().enumerate() {
+            let d: f64 = if flip && k == 1 { 600.0 } else { 40.0 };
+            v[0] = (v[0] + g.gen_range(-d..d) * v[3].abs()) as f32 as f64;
+            v[1] = (v[1] + g.gen_range(-d..d) * v[3].abs()) as f32 as f64;
+            v[2] = (v[2] + g.gen_range(-0.1..0.1) * v[3].abs()) as f32 as f64;
+        }
+    }
+    let coc = |g: &mut ChaCha8Rng| if defocus { g.gen_range(-6.0f64..6.0) as f32 as f64 } else { 0.0 };
+    let c0: [f64; 3] = std::array::from_fn(|_| coc(g));
+    let c1: [f64; 3] = if moving { std::array::from_fn(|_| coc(g)) } else { c0 };
+    Tri { q, r, c0, c1, k: g.gen_range(0.5f64..2.0) as f32 as f64 }
+}
+
+/// The hit depth of a sample in plain f64 when its three edge values and D agree in
+/// sign (an estimate, for placing ends near the extreme only).
+fn depth_estimate(tri: &Tri, [x, y, u, v, t]: [f64; 5]) -> Option<f64> {
+    let l = |a: f64, b: f64| a + (b - a) * t;
+    let p: [[f64; 4]; 3] = std::array::from_fn(|k| {
+        let (c, w) = (l(tri.c0[k], tri.c1[k]), l(tri.q[k][3], tri.r[k][3]));
+        [
+            l(tri.q[k][0], tri.r[k][0]) + u * c - x * w,
+            l(tri.q[k][1], tri.r[k][1]) + tri.k * v * c - y * w,
+            l(tri.q[k][2], tri.r[k][2]),
+            w,
+        ]
+    });
+    let e: [f64; 3] = std::array::from_fn(|k| {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        p[i][0] * p[j][1] - p[i][1] * p[j][0]
+    });
+    let d: f64 = (0..3).map(|k| e[k] * p[k][3]).sum();
+    let n: f64 = (0..3).map(|k| e[k] * p[k][2]).sum();
+    (d != 0.0 && e.iter().all(|&ek| ek * d > 0.0)).then(|| n / d)
+}
+
+/// Samples of the tile and the domain: every corner at the lens corners and shutter
+/// ends, then random points with each coordinate at an end of its range one time in
+/// three.
+fn dense(g: &mut ChaCha8Rng, tile: &Tile, n: usize) -> Vec<[f64; 5]> {
+    let lo = [tile.x0 as f64, tile.y0 as f64, -1.0, -1.0, 0.0];
+    let hi = [tile.x1 as f64, tile.y1 as f64, 1.0, 1.0, 1.0];
+    let mut out: Vec<[f64; 5]> =
+        (0..32usize).map(|c| std::array::from_fn(|i| if c >> i & 1 == 1 { hi[i] } else { lo[i] })).collect();
+    for _ in 0..n {
+        out.push(std::array::from_fn(|i| match g.gen_range(0..6) {
+            0 => lo[i],
+            1 => hi[i],
+            _ => g.gen_range(lo[i]..=hi[i]),
+        }));
+    }
+    out
+}
+
+/// Samples pushed from `s` towards random points of the box by 1e-9 to 1e-2 of the
+/// box: where the extreme depth is reached, just beside the estimate.
+fn around(g: &mut ChaCha8Rng, tile: &Tile, s: [f64; 5], n: usize) -> Vec<[f64; 5]> {
+    let lo = [tile.x0 as f64, tile.y0 as f64, -1.0, -1.0, 0.0];
+    let hi = [tile.x1 as f64, tile.y1 as f64, 1.0, 1.0, 1.0];
+    (0..n)
+        .map(|_| {
+            let f = [1e-9, 1e-6, 1e-4, 1e-2][g.gen_range(0..4)];
+            std::array::from_fn(|i| (s[i] + f * (g.gen_range(lo[i]..=hi[i]) - s[i])).clamp(lo[i], hi[i]))
+        })
+        .collect()
+}
+
+fn beyond(tri: &Tri, s: [f64; 5], z: f64, lower: bool) -> bool {
+    let (z0, z1) = if lower { (z, f64::INFINITY) } else { (f64::NEG_INFINITY, z) };
+    matches!(classify_depth(tri, s, z0, z1), DepthCheck::Below | DepthCheck::Above)
+}
+
+#[test]
+fn no_depth_end_the_cuts_prove_is_beaten_by_an_exact_attack() {
+    let mut g = ChaCha8Rng::seed_from_u64(0xde9_7c07);
+    let (mut proved, mut near, mut refused_inside, mut tried) = (0usize, 0usize, 0usize, 0usize);
+    while tried < 250 {
+        let tri = triangle(&mut g);
+        // A tile of 1, 4 or 16 px around an interior sample.
+        let size = [1.0f32, 4.0, 16.0][g.gen_range(0..3)];
+        let probe = Tile { x0: -400.0, x1: 400.0, y0: -400.0, y1: 400.0 };
+        let Some(c) = dense(&mut g, &probe, 4000).into_iter().find(|&s| depth_estimate(&tri, s).is_some()) else {
+            continue;
+        };
+        let (ax, ay) = (g.gen_range(0.0..size), g.gen_range(0.0..size));
+        let (x0, y0) = ((c[0] as f32 - ax).floor(), (c[1] as f32 - ay).floor());
+        let tile = Tile { x0, x1: x0 + size, y0, y1: y0 + size };
+        let est = dense(&mut g, &tile, 3000);
+        let seen: Vec<([f64; 5], f64)> = est.iter().filter_map(|&s| depth_estimate(&tri, s).map(|d| (s, d))).collect();
+        if seen.is_empty() {
+            continue;
+        }
+        tried += 1;
+        for lower in [true, false] {
+            let pick = |a: &&([f64; 5], f64), b: &&([f64; 5], f64)| a.1.total_cmp(&b.1);
+            let &(at, ext) = if lower { seen.iter().min_by(pick) } else { seen.iter().max_by(pick) }.unwrap();
+            let e32 = ext as f32;
+            let (inward, outward) =
+                if lower { (e32.next_up(), e32.next_down()) } else { (e32.next_down(), e32.next_up()) };
+            let far = if lower { ext - 1e-3 * ext.abs() - 1e-4 } else { ext + 1e-3 * ext.abs() + 1e-4 };
+            let mut attack = est.clone();
+            attack.extend(around(&mut g, &tile, at, 400));
+            // An end one step inside a depth some sample of the attack reaches.
+            let reached = attack.iter().any(|&s| beyond(&tri, s, inward as f64, lower));
+            if reached {
+                assert!(
+                    !proves(&tri, &tile, inward as f64, lower, BUDGET, 1e-9),
+                    "end {inward} (lower: {lower}) proved over {tile:?}, but a sample is beyond it\n{tri:?}"
+                );
+                refused_inside += 1;
+            }
+            for (z, close) in [(e32 as f64, true), (outward as f64, true), (far, false)] {
+                if !proves(&tri, &tile, z, lower, BUDGET, 1e-9) {
+                    continue;
+                }
+                proved += 1;
+                near += close as usize;
+                attack.extend(dense(&mut g, &tile, 1000));
+                for &s in &attack {
+                    assert!(
+                        !beyond(&tri, s, z, lower),
+                        "end {z} (lower: {lower}) proved over {tile:?}, but {s:?} is interior beyond it\n{tri:?}"
+                    );
+                }
+            }
+        }
+    }
+    eprintln!("{proved} depth ends proved and attacked ({near} within an ulp of the estimate); {refused_inside} ends inside a reached depth refused");
+    assert!(proved > 100 && near > 30 && refused_inside > 100, "{proved} {near} {refused_inside}");
+}
