@@ -657,6 +657,9 @@ pub struct RegimeSeen {
     pub violated: u64,
     /// The signature's rate cap (null: none).
     pub max_rate: Option<f64>,
+    /// The signature's cap on the search's boundary-tile rate (null: none, or not at
+    /// these settings); the table shows it in place of `max_rate` where there is one.
+    pub max_boundary_rate: Option<f64>,
     pub tight: BTreeMap<String, crate::check::expect::TightStat>,
     /// Tiles judged at the method's own tile-reject limit, and those with a violation.
     pub limit_tiles: u64,
@@ -952,12 +955,14 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
             }
             if let Some(e) = entry(regime) {
                 seen.max_rate = e.max_rate;
+                seen.max_boundary_rate = e.max_boundary_rate;
                 seen.max_limit_rate = e.max_limit_rate;
                 seen.max_admit = e.max_admit;
                 if o.gate {
                     let lines = e
                         .rate_breach(seen.violated, seen.cases)
                         .into_iter()
+                        .chain(e.boundary_rate_breach(seen.violated, seen.cases))
                         .chain(e.limit_rate_breach(seen.limit_violations, seen.limit_tiles))
                         .chain(e.looser(&seen.tight))
                         .chain(e.admit_breach(seen.admit_fraction, seen.cases));
@@ -976,6 +981,9 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
             })
             .collect();
         breaches.extend(pooled_looser(rows.iter().map(|(e, seen)| (e, &seen.tight))).into_iter().map(|(_, l)| l));
+        breaches.extend(crate::check::expect::pooled_boundary_breach(
+            rows.iter().map(|(e, seen)| (e, seen.violated, seen.cases)),
+        ));
     }
     Ok(SearchReport {
         method: id.into(),
@@ -1096,7 +1104,7 @@ pub fn render_search(r: &SearchReport) -> String {
                     g.regime,
                     g.cases,
                     g.violated,
-                    cap(g.max_rate),
+                    cap(g.max_boundary_rate.or(g.max_rate)),
                     format!("{}/{}", g.limit_violations, g.limit_tiles),
                     cap(g.max_limit_rate),
                     g.admit_fraction,
