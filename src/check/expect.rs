@@ -182,28 +182,23 @@ impl Entry {
         self
     }
 
-    /// The search's boundary-tile rate cap against `violated` of `cases`, with the
-    /// counting noise of [`Entry::rate_breach`].
+    /// A share cap `cap` against `hits` of `n` (cases or tiles), with the counting noise
+    /// of [`Entry::rate_breach`]; the line names `what` was hit.
+    fn share_breach(cap: Option<f64>, what: &str, hits: u64, n: u64) -> Option<String> {
+        let r = cap?;
+        (n > 0 && hits as f64 > Allowance::cases_allowed(r, n))
+            .then(|| format!("{what} violated {hits}/{n} = {:.3} above the cap {r}", hits as f64 / n as f64))
+    }
+
+    /// The search's boundary-tile rate cap against `violated` of `cases`.
     pub fn boundary_rate_breach(&self, violated: u64, cases: u64) -> Option<String> {
-        let r = self.max_boundary_rate?;
-        (cases > 0 && violated as f64 > Allowance::cases_allowed(r, cases)).then(|| {
-            format!(
-                "boundary tiles violated {violated}/{cases} = {:.3} above the cap {r}",
-                violated as f64 / cases as f64
-            )
-        })
+        Self::share_breach(self.max_boundary_rate, "boundary tiles", violated, cases)
     }
 
     /// The limit-tile rate cap against `violations` of `tiles` judged at the method's
-    /// own tile-reject limit, with the counting noise of [`Entry::rate_breach`].
+    /// own tile-reject limit.
     pub fn limit_rate_breach(&self, violations: u64, tiles: u64) -> Option<String> {
-        let r = self.max_limit_rate?;
-        (tiles > 0 && violations as f64 > Allowance::cases_allowed(r, tiles)).then(|| {
-            format!(
-                "limit tiles violated {violations}/{tiles} = {:.3} above the cap {r}",
-                violations as f64 / tiles as f64
-            )
-        })
+        Self::share_breach(self.max_limit_rate, "limit tiles", violations, tiles)
     }
 
     /// The admit cap against the mean admitted share `mean` of `cases` boundary tiles:

@@ -224,21 +224,20 @@ pub fn depth_plane_cuts(tri: &Tri, b: [Interval; 5], z: f64, lower: bool) -> Opt
         add(g, [-w[0], -w[1]], Cut::Y);
         let mut cut = Cut::zero();
         let mut err = 0.0f64;
-        for (m, iv) in lin.iter().enumerate() {
+        // Each coefficient's midpoint into the cut, its width times its monomial's
+        // largest magnitude into the error.
+        let terms = lin
+            .iter()
+            .enumerate()
+            .map(|(m, iv)| (m, false, iv))
+            .chain(sq.iter().enumerate().map(|(m, iv)| (m, true, iv)));
+        for (m, squared, iv) in terms {
             let iv = pt(sign) * *iv;
             if !(iv.lo.is_finite() && iv.hi.is_finite()) {
                 return None;
             }
-            cut.coef[m] = iv.mid();
-            err += (iv.hi - iv.lo) * monomial_max(m, false);
-        }
-        for (m, iv) in sq.iter().enumerate() {
-            let iv = pt(sign) * *iv;
-            if !(iv.lo.is_finite() && iv.hi.is_finite()) {
-                return None;
-            }
-            cut.t2[m] = iv.mid();
-            err += (iv.hi - iv.lo) * monomial_max(m, true);
+            *(if squared { &mut cut.t2[m] } else { &mut cut.coef[m] }) = iv.mid();
+            err += (iv.hi - iv.lo) * monomial_max(m, squared);
         }
         // The sum above is rounded: pad it by far more than its own rounding.
         cut.err = err * (1.0 + 1e-10) + f64::MIN_POSITIVE;
