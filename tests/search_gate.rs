@@ -166,3 +166,28 @@ fn a_looser_or_more_often_wrong_method_breaks_the_signature_as_a_whole() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Two slips whose every violation lies inside the published method's signature are
+/// caught by its measured parts: culling covered limit tiles more often (the CoCs
+/// swapped in bbox: the limit tiles' violation rate) and culling nothing at all (the
+/// CoC dropped from mam2012: the admitted share). The clean methods on the same seed
+/// and time leave neither.
+#[test]
+fn the_measured_parts_catch_slips_inside_the_signature() {
+    for (slip, clean, line) in [
+        ("broken/swap-coc/bbox", "bbox", "limit tiles violated"),
+        ("broken/no-coc-pad/mam2012", "mam2012", "looser: the answers admit"),
+    ] {
+        let r = gated_search(slip, "8", "5", &["--dry-run"]);
+        assert_eq!(r.code, Some(1), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
+        assert!(
+            r.stdout
+                .lines()
+                .any(|l| l.starts_with(&format!("beyond the signature: {slip}, regime")) && l.contains(line)),
+            "{}",
+            r.stdout
+        );
+        let r = gated_search(clean, "8", "5", &["--dry-run"]);
+        assert!(!r.stdout.contains(line), "{}", r.stdout);
+    }
+}
