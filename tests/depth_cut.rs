@@ -24,7 +24,7 @@ fn triangle(g: &mut ChaCha8Rng) -> Tri {
     let moving = g.gen_bool(0.7);
     let defocus = g.gen_bool(0.5);
     let flip = moving && g.gen_bool(0.2);
-    let mut key = |g: &mut ChaCha8Rng, k: usize| {
+    let key = |g: &mut ChaCha8Rng, k: usize| {
         let w: f64 = if behind && k == 0 { -g.gen_range(0.1..2.0) } else { g.gen_range(0.3..20.0) };
         let (x, y): (f64, f64) = (g.gen_range(-300.0..300.0), g.gen_range(-300.0..300.0));
         let z = w * g.gen_range(-0.3..0.99) + g.gen_range(-0.5..0.5);

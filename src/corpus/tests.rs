@@ -1,5 +1,6 @@
 //! The unit tests of `corpus` (a file of their own to keep the method's file to its method).
 
+use super::shrink::{round_bits, steps};
 use super::*;
 
 #[test]
