@@ -4,7 +4,7 @@
 //! A case file (`corpus/cases/<method>/<short-hash>.json`) holds one method, one
 //! triangle (with its thin lens when it has one) and one tile as plain numbers, the
 //! witness sample with the bound that culls it and the margin needed, the expected
-//! verdict and where it came from. [`replay`] re-judges it: the stored witness is
+//! verdict and where it came from. [`replay()`] re-judges it: the stored witness is
 //! re-decided exactly (it must still be interior and still culled), and the method is
 //! judged afresh on the case.
 //!

@@ -286,7 +286,7 @@ fn admit_share(a: &TileResult, uniform: &[Sample]) -> f64 {
     }
 }
 
-/// The share of case `i`'s uniform samples of `tile` (the gate's, as [`judge`] draws
+/// The share of case `i`'s uniform samples of `tile` (the gate's, as [`judge()`] draws
 /// them) that method `m`'s answer admits: the quantity a row's `admit_fraction`
 /// averages.
 pub fn admitted_share(cfg: &CheckConfig, m: &dyn Method, case: &Case, tile: &Tile, i: u64) -> f64 {

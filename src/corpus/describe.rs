@@ -11,7 +11,7 @@ pub fn describe(cf: &CaseFile) -> String {
     describe_with(cf, method_of(&cf.method).expect("checked at load"))
 }
 
-/// [`describe`], the method's answer given by `m` (a bound of the caller's own, or
+/// [`describe()`], the method's answer given by `m` (a bound of the caller's own, or
 /// another than the file names).
 pub fn describe_with(cf: &CaseFile, m: &dyn Method) -> String {
     use oracles::extents::{Extent, ExtentsConfig, Occupancy, TileSolver};

@@ -66,7 +66,7 @@ pub fn replay(path: &Path, cfg: &CheckConfig) -> Result<Replay> {
     replay_with(path, cfg, &Declared::default())
 }
 
-/// [`replay`], with the sample set, snap or viewport given in `over` in place of the
+/// [`replay()`], with the sample set, snap or viewport given in `over` in place of the
 /// file's (to ask whether a case found under one set holds under another).
 pub fn replay_with(path: &Path, cfg: &CheckConfig, over: &Declared) -> Result<Replay> {
     let cf = CaseFile::load(path)?;

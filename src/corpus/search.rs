@@ -151,7 +151,7 @@ pub fn search(
     search_with(cfg, m, &o)
 }
 
-/// [`search`], each violation held against the method's expected signature for its
+/// [`search()`], each violation held against the method's expected signature for its
 /// regime (`corpus/expectations.json`, see [`crate::check::expect`]): every kind of
 /// bound it violates, with its margin. Without the gate, one finding per regime and
 /// bound (one per regime, bound and side of the signature when expectations are
