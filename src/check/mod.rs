@@ -286,15 +286,6 @@ fn admit_share(a: &TileResult, uniform: &[Sample]) -> f64 {
     }
 }
 
-/// The share of case `i`'s uniform samples of `tile` (the gate's, as [`judge()`] draws
-/// them) that method `m`'s answer admits: the quantity a row's `admit_fraction`
-/// averages.
-pub fn admitted_share(cfg: &CheckConfig, m: &dyn Method, case: &Case, tile: &Tile, i: u64) -> f64 {
-    let Ok((seen, _)) = samples::judged_triangles(cfg.snap, case) else { return 0.0 };
-    let uniform = uniform_samples(cfg, tile, UNIFORM_STREAM, i, cfg.samples);
-    admit_share(&m.setup(&seen).tile(tile), &uniform)
-}
-
 /// Judge every method on one case: the boundary tile for all, the limit tiles for the
 /// methods whose turn it is.
 fn judge_case(cfg: &CheckConfig, i: u64) -> CaseResult {
@@ -410,15 +401,33 @@ fn cross_check(case: &Case, embree: Option<&oracles::embree::EmbreeOracle>, unif
 /// Under snapping the methods see the snapped triangle and the oracle judges it exactly;
 /// a case that cannot be snapped is not judged ([`Verdict::NotJudged`]).
 pub fn judge(cfg: &CheckConfig, methods: &[MethodRef], case: &Case, tile: &Tile, i: u64) -> (Vec<Judgement>, u64) {
+    let (js, _, boxes) = judge_admitted(cfg, methods, case, tile, i);
+    (js, boxes)
+}
+
+/// [`judge()`], with the share of the tile's uniform samples each method's answer admits
+/// (the quantity a row's `admit_fraction` averages; 0 for a case that is not judged).
+pub fn judge_admitted(
+    cfg: &CheckConfig,
+    methods: &[MethodRef],
+    case: &Case,
+    tile: &Tile,
+    i: u64,
+) -> (Vec<Judgement>, Vec<f64>, u64) {
     let Ok((seen, tri)) = samples::judged_triangles(cfg.snap, case) else {
-        let j = Judgement::not_judged();
-        return (vec![j; methods.len()], 0);
+        return (vec![Judgement::not_judged(); methods.len()], vec![0.0; methods.len()], 0);
     };
     let embree = if cfg.snap.is_none() { embree_for(case) } else { None };
     let uniform = uniform_samples(cfg, tile, UNIFORM_STREAM, i, cfg.samples);
     let mut tj = SetJudge::new(TileJudge::new(cfg, *case, *tile, i, &tri, embree.as_ref(), &uniform));
-    let js = methods.iter().map(|m| tj.judge(&m.setup(&seen).tile(tile))).collect();
-    (js, tj.boxes())
+    let (js, admit) = methods
+        .iter()
+        .map(|m| {
+            let answer = m.setup(&seen).tile(tile);
+            (tj.judge(&answer), admit_share(&answer, &uniform))
+        })
+        .unzip();
+    (js, admit, tj.boxes())
 }
 
 /// Run the gate: judge the cases, then hold each row against the expectations and

@@ -240,8 +240,9 @@ pub(crate) fn pooled_tightness(rows: &mut [Row]) {
 
 /// A row's means from its exact sums, and its status.
 pub(crate) fn finish_row(row: &mut Row) {
-    row.pass_fraction = fixed::mean_fraction(row.sums.pass, row.cases);
-    row.admit_fraction = fixed::mean_fraction(row.sums.admit, row.cases);
+    // The means are over the cases judged (a case not judged adds nothing to the sums).
+    row.pass_fraction = fixed::mean_fraction(row.sums.pass, row.cases - row.not_judged);
+    row.admit_fraction = fixed::mean_fraction(row.sums.admit, row.cases - row.not_judged);
     row.limit_slack = fixed::mean_slack(row.sums.slack, row.limit_found);
     set_status(row);
 }

@@ -352,7 +352,7 @@ pub(crate) fn not_judged_result(cfg: &CheckConfig, regime: Regime) -> super::Cas
     super::CaseResult {
         regime,
         judgements: vec![j; cfg.methods.len()],
-        pass: vec![(1.0, 1.0); cfg.methods.len()],
+        pass: vec![(0.0, 0.0); cfg.methods.len()],
         boxes: 0,
         cross: Default::default(),
         placed: true,

@@ -4,7 +4,7 @@
 use super::*;
 use crate::bounds::MethodRef;
 use crate::check::expect::{pooled_looser, Entry};
-use crate::check::{judge, try_make_case, Cap, CheckConfig, Expectations, Judgement};
+use crate::check::{try_make_case, Cap, CheckConfig, Expectations, Judgement};
 use crate::gen::Regime;
 use crate::num_or_inf;
 use anyhow::Result;
@@ -205,9 +205,8 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
             .par_iter()
             .filter_map(|&i| {
                 let (regime, case, tile) = try_make_case(cfg, i)?;
-                let (js, _) = judge(cfg, std::slice::from_ref(&m), &case, &tile, i);
-                let j = js.into_iter().next().unwrap();
-                let admit = crate::check::admitted_share(cfg, m.as_ref(), &case, &tile, i);
+                let (js, admit, _) = crate::check::judge_admitted(cfg, std::slice::from_ref(&m), &case, &tile, i);
+                let (j, admit) = (js.into_iter().next().unwrap(), admit[0]);
                 // Also the tiles at the method's own tile-reject limit (the witness
                 // then carries the case, moved on screen, and the tile), counted for
                 // the limit-tile rate.
