@@ -115,11 +115,13 @@ impl Problem for ConstraintProblem<'_> {
         let sb = sample_box(&b);
         let mut cuts = Vec::new();
         let mut all_cut = true;
+        let mut culling = Vec::new();
         for c in &self.bounds.constraints {
             let lo = c.eval_box(&sb).lo;
             if lo >= 0.0 {
                 continue;
             }
+            culling.push(c);
             if !c.lower_cuts(&sb, &mut cuts) {
                 all_cut = false;
             }
@@ -132,6 +134,19 @@ impl Problem for ConstraintProblem<'_> {
         let bv = box_values_cutting(tri, &b, &cuts, &mut ok);
         if classify_values(&bv) == BoxClass::Empty || (all_cut && ok.iter().all(|&o| o)) {
             return Flow::Continue;
+        }
+        // One constraint culling alone: its other families of cuts, each on its own.
+        if let [c] = culling[..] {
+            for family in 1..c.cut_families() {
+                cuts.clear();
+                if c.lower_cuts_of(&sb, family, &mut cuts) {
+                    let mut ok = vec![false; cuts.len()];
+                    box_values_cutting(tri, &b, &cuts, &mut ok);
+                    if ok.iter().all(|&o| o) {
+                        return Flow::Continue;
+                    }
+                }
+            }
         }
         // Samples of the box: its centre and two scattered points.
         let mut pts = vec![b.map(|i| i.mid())];

@@ -161,6 +161,19 @@ pub trait SampleConstraint: Send + Sync + std::fmt::Debug {
             None => false,
         }
     }
+    /// How many families of cuts the constraint offers (see
+    /// [`lower_cuts_of`](Self::lower_cuts_of)); the default offers one,
+    /// [`lower_cuts`](Self::lower_cuts).
+    fn cut_families(&self) -> usize {
+        1
+    }
+    /// Family `family` of the cuts, each family vouching on its own as
+    /// [`lower_cuts`](Self::lower_cuts) does (family 0 is `lower_cuts`). Where a box is
+    /// the only one culling and its first family cannot be certified, the judge tries the
+    /// others on the same box.
+    fn lower_cuts_of(&self, b: &SampleBox, family: usize, out: &mut Vec<Cut>) -> bool {
+        family == 0 && self.lower_cuts(b, out)
+    }
 }
 
 /// The non-empty answer of a tile test.

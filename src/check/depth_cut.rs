@@ -22,7 +22,7 @@ use crate::bounds::{SampleBox, SampleConstraint, TileBounds};
 use crate::csearch::{self, ConstraintVerdict};
 use crate::model::{Sample, Tile};
 use crate::Interval;
-use oracles::extents::Cut;
+use oracles::extents::{Cut, Slopes};
 use oracles::{DepthCheck, Tri};
 
 /// A depth end as a constraint: interior samples with a hit depth below `z` (a lower
@@ -48,15 +48,48 @@ impl SampleConstraint for DepthClaim {
             1.0
         }
     }
-    /// Unknown over any box: only the cuts (or an empty box) close one.
-    fn eval_box(&self, _b: &SampleBox) -> Interval {
-        Interval::new(-1.0, 1.0)
+    /// 1 over a box where every vertex keeps `s (z_k - z w_k) >= 0` at both ends of its
+    /// time range (`s` = 1 for a lower end): those terms are affine in t, so they keep
+    /// it over the range, and at an interior sample the depth beyond z is their
+    /// combination with positive weights (`depth - z = sum_k (E_k / D) (z_k - z w_k)`,
+    /// [`oracles::extents::depth_plane_cuts`]), so nothing there is culled. Unknown
+    /// elsewhere: only the cuts (or an empty box) close it.
+    fn eval_box(&self, b: &SampleBox) -> Interval {
+        let s = Interval::point(if self.lower { 1.0 } else { -1.0 });
+        let lerp = |p: f64, q: f64, t: f64| {
+            let t = Interval::point(t);
+            (Interval::point(1.0) - t) * Interval::point(p) + t * Interval::point(q)
+        };
+        let holds = (0..3).all(|k| {
+            [b.t.lo, b.t.hi].into_iter().all(|t| {
+                let (z, w) = (lerp(self.tri.q[k][2], self.tri.r[k][2], t), lerp(self.tri.q[k][3], self.tri.r[k][3], t));
+                (s * (z - Interval::point(self.z) * w)).lo >= 0.0
+            })
+        });
+        if holds {
+            Interval::point(1.0)
+        } else {
+            Interval::new(-1.0, 1.0)
+        }
     }
     /// The three moving-plane cuts over the box: where all hold, an interior sample's
     /// depth is beyond no end, and elsewhere `eval` culls only interior samples beyond
     /// it, so at a sample where every cut holds `eval` is 1.
     fn lower_cuts(&self, b: &SampleBox, out: &mut Vec<Cut>) -> bool {
-        match oracles::extents::depth_plane_cuts(&self.tri, [b.x, b.y, b.u, b.v, b.t], self.z, self.lower) {
+        self.lower_cuts_of(b, 0, out)
+    }
+    /// Family 0: the plane's slopes; family 1: the balanced slopes ([`Slopes`]), which a
+    /// vertex behind the lens does not defeat. Both certify the same way.
+    fn cut_families(&self) -> usize {
+        2
+    }
+    fn lower_cuts_of(&self, b: &SampleBox, family: usize, out: &mut Vec<Cut>) -> bool {
+        let slopes = match family {
+            0 => Slopes::Plane,
+            1 => Slopes::Balanced,
+            _ => return false,
+        };
+        match oracles::extents::depth_cuts(&self.tri, [b.x, b.y, b.u, b.v, b.t], self.z, self.lower, slopes) {
             Some(cuts) => {
                 out.extend(cuts);
                 true
@@ -68,7 +101,8 @@ impl SampleConstraint for DepthClaim {
 
 /// True when no interior sample of the tile, at any lens position and time, has a hit
 /// depth beyond `z` (below it for a `lower` end), certified by the constraint search
-/// with the moving-plane cuts within `budget` boxes; false when that is not shown.
+/// with the vertex terms and the two families of cuts within `budget` boxes; false
+/// when that is not shown.
 pub fn proves(tri: &Tri, tile: &Tile, z: f64, lower: bool, budget: usize, min_width: f64) -> bool {
     if !z.is_finite() {
         return false;

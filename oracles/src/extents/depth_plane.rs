@@ -168,13 +168,62 @@ pub fn depth_end_by_planes(tri: &Tri, tile: [f64; 4], z: f64, lower: bool, budge
 /// `P_k(s) >= err` implies `s F_k(s) >= 0`. None for a singular plane or values that
 /// are not finite.
 pub fn depth_plane_cuts(tri: &Tri, b: [Interval; 5], z: f64, lower: bool) -> Option<[super::Cut; 3]> {
+    depth_cuts(tri, b, z, lower, Slopes::Plane)
+}
+
+/// How `alpha` and `gamma` of the depth certificate are chosen at a point (any choice
+/// is sound: only the enclosure of the resulting `F_k` certifies).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slopes {
+    /// The negated slopes of the plane through the three vertices: `F_k = w_k` times the
+    /// plane's depth beyond z, independent of the pixel. With a vertex behind the lens
+    /// (`w_k < 0`) that `F_k` has the wrong sign wherever the plane lies beyond z.
+    Plane,
+    /// The values that make the three `F_k` equal at the point (the box's middle pixel
+    /// and lens position): `F_k = m` with `m = sum_k E_k (z_k - z w_k) / sum_k E_k`,
+    /// positive at an interior point whose depth is beyond no end, whatever the signs
+    /// of the vertices' w.
+    Balanced,
+}
+
+/// The `(alpha, gamma)` that make `F_k` equal for the three vertices at the pixel
+/// (x, y) and (u, v, t): the solution of `alpha T_k + gamma S_k - m = -(z_k - z w_k)`,
+/// k = 0, 1, 2 (plain f64; None when singular).
+fn balanced_slopes(tri: &Tri, p: [f64; 5], z: f64) -> Option<(f64, f64)> {
+    let [x, y, u, v, t] = p;
+    let l = |a: f64, b: f64| (1.0 - t) * a + t * b;
+    let rows: [[f64; 4]; 3] = std::array::from_fn(|k| {
+        let c = l(tri.c0[k], tri.c1[k]);
+        let w = l(tri.q[k][3], tri.r[k][3]);
+        let tk = l(tri.q[k][0], tri.r[k][0]) + u * c - x * w;
+        let sk = l(tri.q[k][1], tri.r[k][1]) + tri.k * v * c - y * w;
+        [tk, sk, -1.0, -(l(tri.q[k][2], tri.r[k][2]) - z * w)]
+    });
+    let det3 = |c0: usize, c1: usize, c2: usize| {
+        let m = &rows;
+        m[0][c0] * (m[1][c1] * m[2][c2] - m[1][c2] * m[2][c1]) - m[0][c1] * (m[1][c0] * m[2][c2] - m[1][c2] * m[2][c0])
+            + m[0][c2] * (m[1][c0] * m[2][c1] - m[1][c1] * m[2][c0])
+    };
+    let d = det3(0, 1, 2);
+    let (a, g) = (det3(3, 1, 2) / d, det3(0, 3, 2) / d);
+    (d != 0.0 && a.is_finite() && g.is_finite()).then_some((a, g))
+}
+
+/// [`depth_plane_cuts`] with `alpha`, `gamma` chosen by `slopes` at the box's two times
+/// (its middle lens position and, for [`Slopes::Balanced`], its middle pixel), affine in
+/// t between them.
+pub fn depth_cuts(tri: &Tri, b: [Interval; 5], z: f64, lower: bool, slopes: Slopes) -> Option<[super::Cut; 3]> {
     use super::Cut;
     if !z.is_finite() || b.iter().any(|iv| !iv.lo.is_finite() || !iv.hi.is_finite()) {
         return None;
     }
     let (um, vm) = (b[2].mid(), b[3].mid());
     let (t0, t1) = (b[4].lo, b[4].hi);
-    let (p0, p1) = (plane_slopes(tri, um, vm, t0)?, plane_slopes(tri, um, vm, t1)?);
+    let at = |t: f64| match slopes {
+        Slopes::Plane => plane_slopes(tri, um, vm, t),
+        Slopes::Balanced => balanced_slopes(tri, [b[0].mid(), b[1].mid(), um, vm, t], z),
+    };
+    let (p0, p1) = (at(t0)?, at(t1)?);
     // alpha = a0 + a1 t, gamma = g0 + g1 t through the two planes (exact f64 values:
     // any numbers serve, only the enclosure of F_k's coefficients must be rigorous).
     let line = |x0: f64, x1: f64| {

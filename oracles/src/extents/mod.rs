@@ -91,7 +91,7 @@ mod testgen;
 pub mod tpoly;
 
 pub use cut::Cut;
-pub use depth_plane::{depth_end_by_planes, depth_plane_cuts};
+pub use depth_plane::{depth_cuts, depth_end_by_planes, depth_plane_cuts, Slopes};
 
 pub use elimination::clipped_point as covered_point;
 pub use enclosure::{
