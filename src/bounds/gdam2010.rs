@@ -1091,7 +1091,4 @@ impl Method for Gdam2010Safe {
 pub static METHOD_SAFE: &dyn Method = &Gdam2010Safe;
 
 #[cfg(test)]
-mod safe_old;
-
-#[cfg(test)]
 mod tests;

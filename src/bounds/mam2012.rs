@@ -1085,7 +1085,4 @@ impl TileGrid for SafeGrid {
 }
 
 #[cfg(test)]
-mod safe_old;
-
-#[cfg(test)]
 mod tests;

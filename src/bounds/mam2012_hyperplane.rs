@@ -1404,8 +1404,6 @@ impl TileGrid for SafeGrid<'_> {
 
 #[cfg(test)]
 mod grid_cases;
-#[cfg(test)]
-mod safe_old;
 
 #[cfg(test)]
 mod tests;

@@ -248,3 +248,23 @@ pub(crate) fn random_lens(rng: &mut ChaCha8Rng) -> crate::model::ThinLens {
         far: 50.0,
     }
 }
+
+/// A fingerprint of a stream of answers: FNV-1a (64 bits) over each answer's text,
+/// with a separator after each. The bit-identity tests compare the stream's
+/// fingerprint with the one recorded when the code was restructured, so any changed
+/// bit of any answer on the stream (a value, a sign of zero, a constraint) changes it.
+pub struct Fingerprint(u64);
+
+impl Fingerprint {
+    pub fn new() -> Self {
+        Fingerprint(0xcbf2_9ce4_8422_2325)
+    }
+    pub fn add(&mut self, answer: &str) {
+        for b in answer.bytes().chain([0xff]) {
+            self.0 = (self.0 ^ b as u64).wrapping_mul(0x100_0000_01b3);
+        }
+    }
+    pub fn value(&self) -> u64 {
+        self.0
+    }
+}

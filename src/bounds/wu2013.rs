@@ -1130,7 +1130,4 @@ pub static METHOD_SAFE: &dyn Method = &Wu2013Safe;
 mod grid;
 
 #[cfg(test)]
-mod safe_old;
-
-#[cfg(test)]
 mod tests;
