@@ -78,15 +78,17 @@ impl SampleConstraint for DepthClaim {
     fn lower_cuts(&self, b: &SampleBox, out: &mut Vec<Cut>) -> bool {
         self.lower_cuts_of(b, 0, out)
     }
-    /// Family 0: the plane's slopes; family 1: the balanced slopes ([`Slopes`]), which a
-    /// vertex behind the lens does not defeat. Both certify the same way.
+    /// Family 0: the plane's slopes; family 1: the balanced slopes, which a vertex behind
+    /// the lens does not defeat; family 2: the widest slopes, which stay finite where the
+    /// triangle turns edge-on ([`Slopes`]). All certify the same way.
     fn cut_families(&self) -> usize {
-        2
+        3
     }
     fn lower_cuts_of(&self, b: &SampleBox, family: usize, out: &mut Vec<Cut>) -> bool {
         let slopes = match family {
             0 => Slopes::Plane,
             1 => Slopes::Balanced,
+            2 => Slopes::Widest,
             _ => return false,
         };
         match oracles::extents::depth_cuts(&self.tri, [b.x, b.y, b.u, b.v, b.t], self.z, self.lower, slopes) {

@@ -184,6 +184,81 @@ pub enum Slopes {
     /// positive at an interior point whose depth is beyond no end, whatever the signs
     /// of the vertices' w.
     Balanced,
+    /// The values that keep the smallest `s F_k` (`s` = 1 for a lower end, -1 for an
+    /// upper one) largest at the box's middle and at its four pixel corners (its middle
+    /// lens position), with `|alpha|, |gamma|` at most 16 times the largest `|z_k - z
+    /// w_k|` over the largest `|T_k|, |S_k|` there: a small linear program. Where the
+    /// triangle turns edge-on (a facing flip) the plane's and the balanced slopes grow
+    /// without bound, these stay finite.
+    Widest,
+}
+
+/// The `(alpha, gamma)` of [`Slopes::Widest`] at the pixels `xy` and (u, v, t): the
+/// linear program "maximise m with s (z_k - z w_k + alpha T_k + gamma S_k) >= m at
+/// every pixel, k = 0, 1, 2, and the bounds on alpha, gamma" solved by trying every
+/// vertex (three of its constraints taken as equalities; plain f64, None when no
+/// vertex is feasible).
+fn widest_slopes(tri: &Tri, xy: &[(f64, f64)], [u, v, t]: [f64; 3], z: f64, lower: bool) -> Option<(f64, f64)> {
+    let s = if lower { 1.0 } else { -1.0 };
+    let l = |a: f64, b: f64| (1.0 - t) * a + t * b;
+    // Rows `a . (alpha, gamma, m) >= b`.
+    let mut rows: Vec<([f64; 3], f64)> = Vec::with_capacity(3 * xy.len() + 5);
+    let (mut base_max, mut ts_max) = (0.0f64, 0.0f64);
+    for &(x, y) in xy {
+        for k in 0..3 {
+            let c = l(tri.c0[k], tri.c1[k]);
+            let w = l(tri.q[k][3], tri.r[k][3]);
+            let tk = l(tri.q[k][0], tri.r[k][0]) + u * c - x * w;
+            let sk = l(tri.q[k][1], tri.r[k][1]) + tri.k * v * c - y * w;
+            let base = s * (l(tri.q[k][2], tri.r[k][2]) - z * w);
+            base_max = base_max.max(base.abs());
+            ts_max = ts_max.max(tk.abs()).max(sk.abs());
+            rows.push(([s * tk, s * sk, -1.0], -base));
+        }
+    }
+    if !(base_max > 0.0 && ts_max > 0.0 && base_max.is_finite() && ts_max.is_finite()) {
+        return None;
+    }
+    let r = 16.0 * base_max / ts_max;
+    rows.push(([1.0, 0.0, 0.0], -r));
+    rows.push(([-1.0, 0.0, 0.0], -r));
+    rows.push(([0.0, 1.0, 0.0], -r));
+    rows.push(([0.0, -1.0, 0.0], -r));
+    rows.push(([0.0, 0.0, -1.0], -2.0 * base_max));
+    let det = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
+        a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])
+    };
+    let n = rows.len();
+    let mut best: Option<(f64, f64, f64)> = None;
+    for i in 0..n {
+        for j in i + 1..n {
+            for k in j + 1..n {
+                let (a, b, c) = (rows[i].0, rows[j].0, rows[k].0);
+                let d = det(a, b, c);
+                if d.abs() < 1e-300 || !d.is_finite() {
+                    continue;
+                }
+                let col = |m: usize, r: [f64; 3], q: f64| {
+                    let mut r = r;
+                    r[m] = q;
+                    r
+                };
+                let (bi, bj, bk) = (rows[i].1, rows[j].1, rows[k].1);
+                let x: [f64; 3] = std::array::from_fn(|m| det(col(m, a, bi), col(m, b, bj), col(m, c, bk)) / d);
+                if !x.iter().all(|v| v.is_finite()) {
+                    continue;
+                }
+                let feasible = rows.iter().all(|(a, b)| {
+                    let lhs = a[0] * x[0] + a[1] * x[1] + a[2] * x[2];
+                    lhs >= b - 1e-9 * (b.abs() + (a[0] * x[0]).abs() + (a[1] * x[1]).abs() + x[2].abs())
+                });
+                if feasible && best.is_none_or(|(_, _, m)| x[2] > m) {
+                    best = Some((x[0], x[1], x[2]));
+                }
+            }
+        }
+    }
+    best.map(|(a, g, _)| (a, g))
 }
 
 /// The `(alpha, gamma)` that make `F_k` equal for the three vertices at the pixel
@@ -222,6 +297,16 @@ pub fn depth_cuts(tri: &Tri, b: [Interval; 5], z: f64, lower: bool, slopes: Slop
     let at = |t: f64| match slopes {
         Slopes::Plane => plane_slopes(tri, um, vm, t),
         Slopes::Balanced => balanced_slopes(tri, [b[0].mid(), b[1].mid(), um, vm, t], z),
+        Slopes::Widest => {
+            let xy = [
+                (b[0].mid(), b[1].mid()),
+                (b[0].lo, b[1].lo),
+                (b[0].lo, b[1].hi),
+                (b[0].hi, b[1].lo),
+                (b[0].hi, b[1].hi),
+            ];
+            widest_slopes(tri, &xy, [um, vm, t], z, lower)
+        }
     };
     let (p0, p1) = (at(t0)?, at(t1)?);
     // alpha = a0 + a1 t, gamma = g0 + g1 t through the two planes (exact f64 values:
