@@ -1,0 +1,104 @@
+//! Helpers shared by the commands: flag checks run before any work, the expectations and the
+//! baseline found as `locate` finds them, JSON output, and the exit path that reports plugin breaches.
+
+use crate::BUILT_IN;
+use anyhow::{Context, Result};
+use std::path::PathBuf;
+
+/// Check `--jobs` (see [`cullproof::args::jobs`]) and size the global pool.
+pub fn set_jobs(jobs: Option<usize>) -> Result<()> {
+    if let Some(j) = cullproof::args::jobs(jobs)? {
+        rayon::ThreadPoolBuilder::new().num_threads(j).build_global().context("setting the thread count")?;
+    }
+    Ok(())
+}
+
+/// Print a located file's note (a checkout file that differs from the copy built in).
+pub fn noted<T>(l: cullproof::locate::Located<T>) -> cullproof::locate::Located<T> {
+    if let Some(n) = &l.note {
+        eprintln!("{n}");
+    }
+    l
+}
+
+/// Is a method id known (built in or plugged)?
+pub fn known(id: &str) -> bool {
+    cullproof::bounds::by_id(id).is_some()
+}
+
+/// The expectations (required: an error says `why` when the file is missing).
+pub fn expectations_for(
+    given: &Option<PathBuf>,
+    in_checkout: bool,
+    why: &str,
+) -> Result<cullproof::check::Expectations> {
+    let ex = cullproof::locate::expectations(given.as_deref(), Some(why), in_checkout, &BUILT_IN, &known)?;
+    Ok(noted(ex.expect("required expectations are loaded or an error")).value)
+}
+
+/// The baseline compared with, and the file `--write-baseline` writes.
+pub fn baseline_for(given: &Option<PathBuf>, in_checkout: bool) -> Result<cullproof::locate::Baseline> {
+    Ok(noted(cullproof::locate::baseline(given.as_deref(), in_checkout, &BUILT_IN)?).value)
+}
+
+/// The regimes of `--regime` (`all`: every one).
+pub fn parse_regimes(name: &str) -> Result<Vec<cullproof::gen::Regime>> {
+    Ok(match cullproof::args::regime(name)? {
+        Some(r) => vec![r],
+        None => cullproof::gen::Regime::ALL.to_vec(),
+    })
+}
+
+/// Write a JSON report to `path` (checked before the run with [`check_json`]; "-" is
+/// standard output), replacing an existing file only by the whole new report.
+pub fn write_json(path: &std::path::Path, text: &str) -> Result<()> {
+    if path.as_os_str() == "-" {
+        println!("{text}");
+        Ok(())
+    } else {
+        cullproof::output::write(path, text)
+    }
+}
+
+/// Check a `--json` path before any work (see [`cullproof::output`]).
+pub fn check_json(json: &Option<PathBuf>) -> Result<()> {
+    match json {
+        Some(p) => cullproof::output::file_or_stdout("--json", p),
+        None => Ok(()),
+    }
+}
+
+/// Check a `--junit` path (and its witness directory) before any work.
+pub fn check_junit(junit: &Option<PathBuf>) -> Result<()> {
+    match junit {
+        Some(p) => cullproof::junit::check_path(p),
+        None => Ok(()),
+    }
+}
+
+/// `--plugin PATH` and `--exec 'COMMAND'` for each loaded bound, shell-quoted (single
+/// quotes, an inner one written `'\''`).
+pub fn loader_flags(plugins: &[PathBuf], execs: &[String]) -> String {
+    let quote = |s: &str| format!("'{}'", s.replace('\'', "'\\''"));
+    let mut out: Vec<String> = Vec::new();
+    for p in plugins {
+        out.push(format!("--plugin {}", quote(&p.display().to_string())));
+    }
+    for c in execs {
+        out.push(format!("--exec {}", quote(c)));
+    }
+    out.join(" ")
+}
+
+/// One line per plugin that broke the contract of include/cullproof.h during the run.
+pub fn report_breaches() {
+    for b in cullproof::plugin::breaches().iter().filter(|b| b.answers > 0) {
+        eprintln!("warning: {}", b.line());
+    }
+}
+
+/// End the process with `code`, after the plugins' contract breaches.
+pub fn exit(code: i32) -> ! {
+    report_breaches();
+    std::process::exit(code)
+}
