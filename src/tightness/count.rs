@@ -3,7 +3,8 @@
 //! constraint once per row ([`SampleConstraint::eval_row`]), or the verdicts of a
 //! tile-independent answer's constraints looked up ([`region_pass`]).
 
-use super::{Counts, Local, SampleTable};
+use super::table::Local;
+use super::{Counts, SampleTable};
 use crate::bounds::{SampleCols, SampleConstraint};
 
 /// The samples of one tile being counted: the rows (`tile_rows`) over the table and

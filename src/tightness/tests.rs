@@ -1,10 +1,15 @@
 //! Tests of the measurement on tiny scenes (each a fraction of a second in release).
 
+use super::coverage::exact_coverage_scalar;
 use super::pattern::{Pattern, PatternKind};
 use super::scene::{self, Scene, Setting};
 use super::*;
-use crate::bounds::registry;
+use crate::bounds::{registry, TileResult};
+use crate::model::Sample;
 use crate::tightness::cli::TightnessArgs;
+use indicatif::ProgressBar;
+use oracles::batch::Batch;
+use oracles::Coverage;
 
 fn tiny(name: &str, w: u32, h: u32) -> Scene {
     scene::by_name(name, 7, w, h).unwrap()
