@@ -1,6 +1,7 @@
 //! The unit tests of `gdam2010` (a file of their own to keep the method's file to its method).
 
 use super::super::testkit::assert_spot;
+use super::safe::*;
 use super::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -1,6 +1,7 @@
 //! The unit tests of `mam2012` (a file of their own to keep the method's file to its method).
 
 use super::super::testkit::{assert_keeps_covered, covered, near_miss_check, random_sample, spot_check};
+use super::safe::*;
 use super::*;
 use crate::model::ThinLens;
 use rand::{Rng, SeedableRng};

@@ -5,6 +5,7 @@
 //! is not a finite ordered range answers the full domain), and edges whose plane is not
 //! finite on some tiles only.
 
+use super::safe::*;
 use super::*;
 use crate::bounds::grid_tests::boundaries;
 use crate::gen::{bit_compare_case, rng_for};

@@ -1,5 +1,5 @@
 # wu2013-safe: the padded f32 line evaluates at or above the exact line it pads
-# (src/bounds/wu2013.rs, `safe_line` and `TimeLine::eval`; derivation in
+# (`safe_line` in src/bounds/wu2013/safe.rs, `TimeLine::eval`; derivation in
 # docs/proofs.md, "wu2013-safe"). The code's constants (tests/proofs.rs checks them):
 PAD = 1b-21;
 FLOOR = 1b-100;

@@ -6,6 +6,9 @@
 //! constraints. Every part is computed by the same functions as in `tile`, so each answer
 //! is `tile`'s, bit for bit (`grid_tests.rs`).
 
+use super::safe::{
+    hull_within, safe_line_cut, sign_hull, sign_parts, Columns, Iv, LineCut, LineEnds, SafeAxis, SafePrep,
+};
 use super::*;
 
 /// The lens range of stage 1 on one axis as `tile` leaves it: `Some(range)` (the full
@@ -18,11 +21,11 @@ type LensRange = Option<[f32; 2]>;
 
 /// What one column boundary (or row boundary) `s` gives every column next to it.
 struct SafeBoundary {
-    /// Per vertex, [`SafeVertex::at_column`] at `s`.
+    /// Per vertex, [`SafeVertex::at_column`](super::safe::SafeVertex::at_column) at `s`.
     at: [(Iv, Iv); 3],
     /// Per vertex, [`SafeAxis::lens_at`] at `s` (only when stage 1 applies on the axis).
     lens: Option<[[Iv; 2]; 3]>,
-    /// Per vertex, [`SafeVertex::line_ends`] at `s`.
+    /// Per vertex, [`SafeVertex::line_ends`](super::safe::SafeVertex::line_ends) at `s`.
     ends: [Option<LineEnds>; 3],
 }
 
