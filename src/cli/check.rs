@@ -1,9 +1,7 @@
 //! `cullproof check`: the conservativeness gate, every method judged on random cases of every regime
 //! and held to the expectations and the stored baseline.
 
-use super::common::{
-    baseline_for, check_json, check_junit, exit, expectations_for, parse_regimes, set_jobs, write_json,
-};
+use super::common::{baseline_for, check_json, check_junit, expectations_for, finish_report, parse_regimes, set_jobs};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
 
@@ -186,14 +184,5 @@ pub fn run(args: CheckArgs, plugged: &[&'static str], loaders: &str) -> Result<(
         f.save(&path)?;
         println!("wrote the baseline for these settings to {}", path.display());
     }
-    if let Some(p) = &json {
-        write_json(p, &serde_json::to_string_pretty(&r)?)?;
-    }
-    if let Some(p) = &junit {
-        cullproof::junit::write(&r, p, loaders)?;
-    }
-    if r.failed() {
-        exit(1);
-    }
-    Ok(())
+    finish_report(&r, &json, &junit, loaders)
 }

@@ -102,3 +102,23 @@ pub fn exit(code: i32) -> ! {
     report_breaches();
     std::process::exit(code)
 }
+
+/// The end of `check` and `merge`: the report's JSON and JUnit files (each when asked
+/// for), then exit 1 when a row failed.
+pub fn finish_report(
+    r: &cullproof::check::CheckReport,
+    json: &Option<PathBuf>,
+    junit: &Option<PathBuf>,
+    loaders: &str,
+) -> Result<()> {
+    if let Some(p) = json {
+        write_json(p, &serde_json::to_string_pretty(r)?)?;
+    }
+    if let Some(p) = junit {
+        cullproof::junit::write(r, p, loaders)?;
+    }
+    if r.failed() {
+        exit(1);
+    }
+    Ok(())
+}

@@ -1,7 +1,7 @@
 //! `cullproof merge`: the shard reports of `check --shard K/N --json F`, validated and merged into the
 //! report of the unsharded run, judged like `check`.
 
-use super::common::{baseline_for, check_json, check_junit, exit, expectations_for, write_json};
+use super::common::{baseline_for, check_json, check_junit, expectations_for, finish_report};
 use anyhow::Result;
 use std::path::PathBuf;
 
@@ -40,14 +40,5 @@ pub fn run(args: MergeArgs, loaders: &str) -> Result<()> {
     let shards = reports.iter().map(|p| Ok((p.clone(), merge::load_report(p)?))).collect::<Result<Vec<_>>>()?;
     let r = merge::merge(shards, &ex, base.as_ref())?;
     print!("{}", cullproof::check::render(&r));
-    if let Some(p) = &json {
-        write_json(p, &serde_json::to_string_pretty(&r)?)?;
-    }
-    if let Some(p) = &junit {
-        cullproof::junit::write(&r, p, loaders)?;
-    }
-    if r.failed() {
-        exit(1);
-    }
-    Ok(())
+    finish_report(&r, &json, &junit, loaders)
 }
