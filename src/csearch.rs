@@ -115,13 +115,15 @@ impl Problem for ConstraintProblem<'_> {
         let sb = sample_box(&b);
         let mut cuts = Vec::new();
         let mut all_cut = true;
-        let mut culling = Vec::new();
+        // The constraint that may cull here, when it is the only one.
+        let (mut culling, mut alone) = (0usize, None);
         for c in &self.bounds.constraints {
             let lo = c.eval_box(&sb).lo;
             if lo >= 0.0 {
                 continue;
             }
-            culling.push(c);
+            culling += 1;
+            alone = Some(c);
             if !c.lower_cuts(&sb, &mut cuts) {
                 all_cut = false;
             }
@@ -136,7 +138,7 @@ impl Problem for ConstraintProblem<'_> {
             return Flow::Continue;
         }
         // One constraint culling alone: its other families of cuts, each on its own.
-        if let [c] = culling[..] {
+        if let (1, Some(c)) = (culling, alone) {
             for family in 1..c.cut_families() {
                 cuts.clear();
                 if c.lower_cuts_of(&sb, family, &mut cuts) {

@@ -139,9 +139,8 @@ fn no_depth_end_the_cuts_prove_is_beaten_by_an_exact_attack() {
             // An end one step inside a depth some sample of the attack reaches.
             let reached = attack.iter().any(|&s| beyond(&tri, s, inward as f64, lower));
             if reached {
-                // (A smaller budget: an end that must not be proved costs every box of it.)
                 assert!(
-                    !proves(&tri, &tile, inward as f64, lower, BUDGET / 4, 1e-9),
+                    !proves(&tri, &tile, inward as f64, lower, BUDGET, 1e-9),
                     "end {inward} (lower: {lower}) proved over {tile:?}, but a sample is beyond it\n{tri:?}"
                 );
                 refused_inside += 1;

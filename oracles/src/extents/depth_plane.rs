@@ -31,6 +31,12 @@ use crate::interval::Interval;
 use crate::ring::Ring;
 use crate::tri::Tri;
 
+/// The determinant of the columns `c` of a matrix of three rows (plain f64).
+fn det3_cols(m: &[[f64; 4]; 3], [c0, c1, c2]: [usize; 3]) -> f64 {
+    m[0][c0] * (m[1][c1] * m[2][c2] - m[1][c2] * m[2][c1]) - m[0][c1] * (m[1][c0] * m[2][c2] - m[1][c2] * m[2][c0])
+        + m[0][c2] * (m[1][c0] * m[2][c1] - m[1][c1] * m[2][c0])
+}
+
 /// The plane's negated slopes `(-A, -B)` through the three vertices at (u, v, t) in the
 /// sheared, homogeneous coordinates (plain f64; None when singular).
 fn plane_slopes(tri: &Tri, u: f64, v: f64, t: f64) -> Option<(f64, f64)> {
@@ -44,10 +50,7 @@ fn plane_slopes(tri: &Tri, u: f64, v: f64, t: f64) -> Option<(f64, f64)> {
             l(tri.q[k][2], tri.r[k][2]),
         ]
     });
-    let det3 = |c0: usize, c1: usize, c2: usize| {
-        m[0][c0] * (m[1][c1] * m[2][c2] - m[1][c2] * m[2][c1]) - m[0][c1] * (m[1][c0] * m[2][c2] - m[1][c2] * m[2][c0])
-            + m[0][c2] * (m[1][c0] * m[2][c1] - m[1][c1] * m[2][c0])
-    };
+    let det3 = |c0: usize, c1: usize, c2: usize| det3_cols(&m, [c0, c1, c2]);
     let d = det3(0, 1, 2);
     let (a, b) = (det3(3, 1, 2) / d, det3(0, 3, 2) / d);
     (d != 0.0 && a.is_finite() && b.is_finite()).then_some((-a, -b))
@@ -226,7 +229,7 @@ fn widest_slopes(tri: &Tri, xy: &[(f64, f64)], [u, v, t]: [f64; 3], z: f64, lowe
     rows.push(([0.0, -1.0, 0.0], -r));
     rows.push(([0.0, 0.0, -1.0], -2.0 * base_max));
     let det = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
-        a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])
+        det3_cols(&[[a[0], a[1], a[2], 0.0], [b[0], b[1], b[2], 0.0], [c[0], c[1], c[2], 0.0]], [0, 1, 2])
     };
     let n = rows.len();
     let mut best: Option<(f64, f64, f64)> = None;
@@ -274,11 +277,7 @@ fn balanced_slopes(tri: &Tri, p: [f64; 5], z: f64) -> Option<(f64, f64)> {
         let sk = l(tri.q[k][1], tri.r[k][1]) + tri.k * v * c - y * w;
         [tk, sk, -1.0, -(l(tri.q[k][2], tri.r[k][2]) - z * w)]
     });
-    let det3 = |c0: usize, c1: usize, c2: usize| {
-        let m = &rows;
-        m[0][c0] * (m[1][c1] * m[2][c2] - m[1][c2] * m[2][c1]) - m[0][c1] * (m[1][c0] * m[2][c2] - m[1][c2] * m[2][c0])
-            + m[0][c2] * (m[1][c0] * m[2][c1] - m[1][c1] * m[2][c0])
-    };
+    let det3 = |c0: usize, c1: usize, c2: usize| det3_cols(&rows, [c0, c1, c2]);
     let d = det3(0, 1, 2);
     let (a, g) = (det3(3, 1, 2) / d, det3(0, 3, 2) / d);
     (d != 0.0 && a.is_finite() && g.is_finite()).then_some((a, g))
