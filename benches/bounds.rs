@@ -2,7 +2,7 @@
 //! 1 and 4 px tiles, and the per-sample test (intervals, per-sample constraints, and the
 //! depth interval z^ when the method gives one).
 //!
-//! Each method runs on the first 64 cases of the check's placement (`make_case`, seed 7,
+//! Each method runs on the first 64 cases of the check's placement (`cases::make_case`, seed 7,
 //! every regime in turn) whose triangle has dimensions the method is designed for
 //! (`MethodInfo::dims`): a motion-only method is not timed on defocused triangles,
 //! where it only answers "disabled". Setup and the tile test are timed with what they
@@ -14,8 +14,9 @@
 use criterion::measurement::WallTime;
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion, Throughput};
 use cullproof::bounds::{registry, Method, Prepared, TileBounds, TileResult};
-use cullproof::check::{make_case, CheckConfig};
-use cullproof::gen::{rng_for, tile_sample};
+use cullproof::cases::generate::{rng_for, tile_sample};
+use cullproof::cases::make_case;
+use cullproof::gate::CheckConfig;
 use cullproof::model::{Sample, Tile, Triangle};
 use std::time::Duration;
 
@@ -52,8 +53,8 @@ fn cases(methods: &[&'static dyn Method]) -> Vec<Case> {
         if enough {
             break;
         }
-        let (_, c, t0) = make_case(&cfgs[0], index);
-        let (_, c1, t1) = make_case(&cfgs[1], index);
+        let (_, c, t0) = make_case(&cfgs[0].draw(), index);
+        let (_, c1, t1) = make_case(&cfgs[1].draw(), index);
         // The case is drawn before the tile: the same triangle at every size.
         assert_eq!(c.triangle, c1.triangle);
         out.push(Case { index, tri: c.triangle, tiles: [t0, t1] });

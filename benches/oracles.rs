@@ -3,8 +3,8 @@
 //! `cargo bench --bench oracles`; criterion writes estimates.json under target/criterion.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
-use cullproof::agree::lens_tri;
-use cullproof::gen::{physical_case, rng_for, samples_for, Regime};
+use cullproof::cases::generate::{physical_case, rng_for, samples_for, Regime};
+use cullproof::judge::agree::lens_tri;
 use oracles::embree::EmbreeOracle;
 use oracles::extents::{box_values_with, tile_extents, Box5, ExtentsConfig};
 use oracles::interval::Interval;

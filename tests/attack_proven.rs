@@ -10,7 +10,8 @@
 //! `CULLPROOF_ATTACK_CASES=N` attacks N cases (default 120).
 
 use cullproof::bounds::registry;
-use cullproof::check::{judge, CheckConfig, Verdict};
+use cullproof::gate::{judge, CheckConfig};
+use cullproof::judge::Verdict;
 use cullproof::{Case, Sample, Tile, TileResult, Triangle};
 use oracles::coverage::{classify, Coverage};
 use oracles::{classify_depth, DepthCheck};

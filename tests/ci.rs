@@ -4,9 +4,9 @@
 //! x regime with failing rows naming a witness file that replays.
 
 use cullproof::bounds::{by_id, Method};
-use cullproof::check::baseline::BaselineFile;
-use cullproof::check::{merge, run_with_baseline, CheckConfig, CheckReport, Expectations};
-use cullproof::junit;
+use cullproof::gate::baseline::BaselineFile;
+use cullproof::gate::junit;
+use cullproof::gate::{merge, run_with_baseline, CheckConfig, CheckReport, Expectations};
 use std::path::{Path, PathBuf};
 
 fn expectations() -> Expectations {
@@ -66,8 +66,8 @@ fn shards_merge_into_the_unsharded_report() {
     let merged = merge::merge(load(&paths), &ex, None).unwrap();
     assert_eq!(comparable(&merged), comparable(&whole));
     assert_eq!(
-        cullproof::check::render(&merged).lines().skip(1).collect::<Vec<_>>(),
-        cullproof::check::render(&whole).lines().skip(1).collect::<Vec<_>>()
+        cullproof::gate::render(&merged).lines().skip(1).collect::<Vec<_>>(),
+        cullproof::gate::render(&whole).lines().skip(1).collect::<Vec<_>>()
     );
     // any order
     let rev: Vec<PathBuf> = paths.iter().rev().cloned().collect();
@@ -126,18 +126,18 @@ fn junit_has_a_case_per_row_and_failures_name_a_replayable_witness() {
     // the planted slip fails with a witness file that replays as a violation
     let broken = failing.iter().find(|x| x.method == "broken/shrink/bbox-safe" && x.worst.is_some()).expect("caught");
     let wdir = junit::witness_dir(&path);
-    let files = cullproof::corpus::case_files(std::slice::from_ref(&wdir)).unwrap();
+    let files = cullproof::search::case_files(std::slice::from_ref(&wdir)).unwrap();
     assert!(!files.is_empty());
     let named: Vec<&PathBuf> = files.iter().filter(|f| xml.contains(&*f.display().to_string())).collect();
     assert_eq!(named.len(), files.len(), "every witness file is named in the XML");
     let mine = files
         .iter()
         .find(|f| {
-            let cf = cullproof::corpus::CaseFile::load(f).unwrap();
+            let cf = cullproof::search::CaseFile::load(f).unwrap();
             cf.method == broken.method && cf.provenance.regime == broken.regime
         })
         .expect("the broken row's witness file");
-    let rep = cullproof::corpus::replay(mine, &config()).unwrap();
+    let rep = cullproof::search::replay(mine, &config()).unwrap();
     assert!(rep.ok, "{rep:?}");
     // a second write keeps the files (never overwritten) and gives the same XML
     junit::write(&r, &path, "").unwrap();

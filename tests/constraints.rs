@@ -3,7 +3,7 @@
 //!
 //! The contract of [`SampleConstraint::eval_box`] (`src/bounds/mod.rs`) is that it
 //! encloses *every value `eval` can return* for a sample in the box, f32 rounding
-//! included. The certified constraint search (`csearch`) relies on it: a box whose
+//! included. The certified constraint search (`judge::constraints`) relies on it: a box whose
 //! enclosure has `lo >= 0` is dropped as "culls nothing", so an enclosure that misses an
 //! `eval` value can hide a violation from the gate.
 //!
@@ -20,7 +20,7 @@
 //!
 //! Per coordinate, a box side is the whole range, a point (a random f32 or an end of the
 //! range), a thin side (1..4 f32 ulps, or an f64 sliver that holds a single f32), a
-//! random sub-range (f32 or plain f64 ends, as `csearch`'s bisection makes), or a
+//! random sub-range (f32 or plain f64 ends, as the constraint search's bisection makes), or a
 //! sub-range touching the low or the high end of the range. Box 0 is the whole region,
 //! box 1 a single point (which takes gdam2010's exact path), box 2 a point in (x, y) with
 //! the whole region in (u, v, t). In each box, f32 samples (`Sample::new`) are taken at
@@ -53,8 +53,8 @@
 //! the harness: deliberately wrong enclosures must be caught.
 
 use cullproof::bounds::{registry, Cut, SampleBox, SampleConstraint, TileResult};
-use cullproof::check::{bound_kind, boundary_tile};
-use cullproof::gen::{physical_case, rng_for, Regime};
+use cullproof::cases::generate::{boundary_tile, physical_case, rng_for, Regime};
+use cullproof::judge::bound_kind;
 use cullproof::model::{Sample, Tile};
 use cullproof::Interval;
 use rand::Rng;
@@ -434,7 +434,7 @@ fn check_constraint(
                 // are only emitted with finite f32 coefficients (`a.is_finite()`,
                 // `line()` / `plane()` return None otherwise), and gdam2010's span ends
                 // lie in [0, 1], so their outward-rounded f64 arithmetic over a finite
-                // box cannot produce NaN either. `csearch` would read a NaN lower end as
+                // box cannot produce NaN either. The constraint search would read a NaN lower end as
                 // "may cull" (its key becomes -inf), which is safe for the search, but the
                 // trait promises an enclosure and NaN encloses nothing: a finite eval with
                 // a NaN enclosure is a failure.

@@ -2,8 +2,8 @@
 //! still shows what it expects (a stored witness of a violation is re-decided exactly
 //! and must still be interior and culled).
 
-use cullproof::check::CheckConfig;
-use cullproof::corpus::{case_files, replay, CaseFile, Verdict};
+use cullproof::gate::CheckConfig;
+use cullproof::search::{case_files, replay, CaseFile, Verdict};
 use std::path::PathBuf;
 
 #[test]
@@ -29,11 +29,11 @@ fn every_corpus_case_replays_as_expected() {
 #[test]
 fn every_expected_violation_is_backed_by_a_case_file() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let ex = cullproof::check::Expectations::load(&root.join("corpus/expectations.json")).unwrap();
+    let ex = cullproof::gate::Expectations::load(&root.join("corpus/expectations.json")).unwrap();
     let files = case_files(&[root.join("corpus/cases")]).unwrap();
     let cases: Vec<CaseFile> = files.iter().map(|f| CaseFile::load(f).unwrap()).collect();
     for (method, regimes) in &ex.0 {
-        if regimes.values().any(|e| e.expect == cullproof::check::Expected::Violation) {
+        if regimes.values().any(|e| e.expect == cullproof::gate::Expected::Violation) {
             assert!(
                 cases.iter().any(|c| &c.method == method && c.expected == Verdict::Violation),
                 "{method}: expected to violate, but no case file in corpus/cases/{method}"
@@ -47,7 +47,7 @@ fn explain_renders_every_corpus_case() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     for f in case_files(&[root.join("corpus/cases")]).unwrap() {
         let cf = CaseFile::load(&f).unwrap();
-        let text = cullproof::corpus::describe(&cf);
+        let text = cullproof::search::describe(&cf);
         assert!(text.contains(&cf.method), "{}: the description does not name the method", f.display());
         // Extents only in the dimensions the triangle has.
         let t = &cf.case.triangle;
@@ -68,7 +68,7 @@ fn explain_renders_every_corpus_case() {
             let (x, y) = cf.tile.center();
             [x as f64, y as f64, 0.0, 0.0, 0.5]
         });
-        let svg = cullproof::explain::svg(&cf.case, &cf.tile, m, w, "corpus test")
+        let svg = cullproof::search::explain::svg(&cf.case, &cf.tile, m, w, "corpus test")
             .unwrap_or_else(|e| panic!("{}: {e}", f.display()));
         assert!(svg.starts_with("<svg") && svg.contains("witness"), "{}: not a picture of the witness", f.display());
     }
@@ -116,16 +116,16 @@ fn replay_with_another_method_says_fixed_or_still_violated() {
     let files = case_files(&[dir]).unwrap();
     assert!(!files.is_empty());
     let cfg = CheckConfig::default_with(cullproof::bounds::registry());
-    let none = cullproof::check::Declared::default();
+    let none = cullproof::gate::Declared::default();
     for f in &files {
         // The safe variant admits every stored witness and is proven on the case.
-        let r = cullproof::corpus::rejudge(f, &cfg, &none, "la2011-safe").unwrap();
+        let r = cullproof::search::rejudge(f, &cfg, &none, "la2011-safe").unwrap();
         assert_eq!((r.outcome, r.found_for.as_str()), ("fixed", "la2011"), "{}: {r:?}", f.display());
         assert!(matches!(r.witness, Some(Err(_))), "{r:?}");
         // The published method still culls its own witness.
-        let r = cullproof::corpus::rejudge(f, &cfg, &none, "la2011").unwrap();
+        let r = cullproof::search::rejudge(f, &cfg, &none, "la2011").unwrap();
         assert_eq!(r.outcome, "still violated", "{}: {r:?}", f.display());
     }
-    let e = cullproof::corpus::rejudge(&files[0], &cfg, &none, "no-such-bound").unwrap_err().to_string();
+    let e = cullproof::search::rejudge(&files[0], &cfg, &none, "no-such-bound").unwrap_err().to_string();
     assert!(e.contains("no-such-bound"), "{e}");
 }

@@ -40,7 +40,7 @@ fn the_gate_returns_every_counterexample_and_writes_them_on_request() {
         .run();
     let m = &r.methods[0];
     assert!(m.violated > 40, "{}", r.render());
-    assert_eq!(m.every_counterexample.len() as u64, m.violated.min(2 * cullproof::check::row::EXAMPLES_PER_ROW as u64));
+    assert_eq!(m.every_counterexample.len() as u64, m.violated.min(2 * cullproof::gate::row::EXAMPLES_PER_ROW as u64));
     assert_eq!(m.counterexamples.len(), 2);
     // in regime order, then case order
     let keys: Vec<(usize, u64)> = m

@@ -7,7 +7,7 @@
 //! estimate's point: none may be interior with a hit depth beyond the end. An end one
 //! f32 step inside a depth that an interior sample reaches must never be proved.
 
-use cullproof::check::depth_cut::proves;
+use cullproof::judge::depth_cut::proves;
 use cullproof::Tile;
 use oracles::{classify_depth, DepthCheck, Tri};
 use rand::{Rng, SeedableRng};

@@ -1,4 +1,4 @@
-//! The methods whose tile path is written over `F32Arith` (`cullproof::symbolic`) answer
+//! The methods whose tile path is written over `F32Arith` (`cullproof::tools::symbolic`) answer
 //! bit for bit as the code they replaced (kept in `tests/encoded/`), on physical cases
 //! of every regime, wild random triangles and planted NaN, infinities, signed zeros and
 //! w <= 0: the encoded code is the method, not a copy beside it.

@@ -7,7 +7,7 @@ mod common;
 
 use common::Cli;
 use cullproof::bounds::Method;
-use cullproof::check::{run, CheckConfig, CheckReport, Expectations};
+use cullproof::gate::{run, CheckConfig, CheckReport, Expectations};
 use std::path::Path;
 use std::time::Duration;
 
@@ -17,7 +17,7 @@ fn python(args: &str) -> String {
 }
 
 fn start(command: &str) -> &'static dyn Method {
-    cullproof::exec::start(command, Duration::from_secs(30)).expect("the process starts and greets")
+    cullproof::external::exec::start(command, Duration::from_secs(30)).expect("the process starts and greets")
 }
 
 fn gate(m: &'static dyn Method, cases: u64) -> CheckReport {
@@ -69,7 +69,7 @@ fn stops(f: impl FnOnce() -> CheckReport) -> Box<dyn std::any::Any + Send> {
 fn fails_with(command: &str, cases: u64, want: &str) {
     let m = start(command);
     let e = stops(|| gate(m, cases));
-    let msg = e.downcast_ref::<cullproof::exec::ExecFailure>().expect("an ExecFailure payload").0.clone();
+    let msg = e.downcast_ref::<cullproof::external::exec::ExecFailure>().expect("an ExecFailure payload").0.clone();
     assert!(msg.starts_with("exec bound ") && msg.contains(want), "{msg}");
     assert!(msg.contains("\"op\":\"tile\""), "the request is named: {msg}");
 }
@@ -106,17 +106,17 @@ fn an_inverted_interval_is_reported_with_its_field() {
 #[test]
 fn a_silent_process_is_reported_after_the_timeout() {
     let cmd = format!("python3 -c '{HELLO}import time\ntime.sleep(60)'");
-    let m = cullproof::exec::start(&cmd, Duration::from_secs(3)).unwrap();
+    let m = cullproof::external::exec::start(&cmd, Duration::from_secs(3)).unwrap();
     let e = stops(|| gate(m, 2));
-    let msg = e.downcast_ref::<cullproof::exec::ExecFailure>().expect("an ExecFailure payload").0.clone();
+    let msg = e.downcast_ref::<cullproof::external::exec::ExecFailure>().expect("an ExecFailure payload").0.clone();
     assert!(msg.contains("no answer within 3 s"), "{msg}");
 }
 
 #[test]
 fn a_bad_greeting_is_an_error_naming_the_command() {
-    let e = cullproof::exec::start("python3 -c 'print(\"{}\")'", Duration::from_secs(10)).err().unwrap();
+    let e = cullproof::external::exec::start("python3 -c 'print(\"{}\")'", Duration::from_secs(10)).err().unwrap();
     assert!(format!("{e:#}").contains("missing field `protocol`"), "{e:#}");
-    let e = cullproof::exec::start(
+    let e = cullproof::external::exec::start(
         "python3 -c 'import json; print(json.dumps({\"protocol\": 9, \"id\": \"x\"}))'",
         Duration::from_secs(10),
     )

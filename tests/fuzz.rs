@@ -338,8 +338,9 @@ fn field(t: &mut Triangle, i: usize) -> &mut f32 {
 }
 
 fn physical(rng: &mut ChaCha8Rng) -> Case {
-    let regime = cullproof::gen::Regime::ALL[rng.gen_range(0..cullproof::gen::Regime::ALL.len())];
-    cullproof::gen::physical_case(rng, regime)
+    let regime =
+        cullproof::cases::generate::Regime::ALL[rng.gen_range(0..cullproof::cases::generate::Regime::ALL.len())];
+    cullproof::cases::generate::physical_case(rng, regime)
 }
 
 /// A triangle, and how it was made.
@@ -839,7 +840,7 @@ fn case_files_take_any_text() {
     let path = dir.join("case.json");
     // The seeds themselves must load (else the mutants start from nothing).
     std::fs::write(&path, SEED_CASE).unwrap();
-    if let Err(e) = cullproof::corpus::CaseFile::load(&path) {
+    if let Err(e) = cullproof::search::CaseFile::load(&path) {
         panic!("the seed case does not load: {e:#}");
     }
     let mut fz = Fuzz::new("case_files");
@@ -850,17 +851,17 @@ fn case_files_take_any_text() {
         let text = mutate(&mut rng, seed);
         std::fs::write(&path, &text).unwrap();
         fz.input(format!("case file text: {}", short(&String::from_utf8_lossy(&text), 4000)));
-        let Some(Ok(cf)) = fz.call("CaseFile::load", || cullproof::corpus::CaseFile::load(&path)) else { continue };
+        let Some(Ok(cf)) = fz.call("CaseFile::load", || cullproof::search::CaseFile::load(&path)) else { continue };
         ok += 1;
-        let Some(m) = cullproof::corpus::method_of(&cf.method) else {
+        let Some(m) = cullproof::search::method_of(&cf.method) else {
             panic!("CaseFile::load accepted an unknown method {:?}", cf.method)
         };
         if let Some(w) = &cf.witness {
-            fz.call("witness_holds", || cullproof::corpus::witness_holds(m, &cf.case, &cf.tile, w.sample));
+            fz.call("witness_holds", || cullproof::search::witness_holds(m, &cf.case, &cf.tile, w.sample));
         }
         if described < describe_max && rng.gen_range(0..8) == 0 {
             described += 1;
-            fz.call("describe", || cullproof::corpus::describe(&cf));
+            fz.call("describe", || cullproof::search::describe(&cf));
         }
     }
     println!("fuzz case_files: {ok} mutants loaded, {described} described");
@@ -981,7 +982,7 @@ fn obj_text(rng: &mut ChaCha8Rng) -> Vec<u8> {
 
 #[test]
 fn obj_files_take_any_text() {
-    use cullproof::tightness::scene::{self, Setting};
+    use cullproof::tools::tightness::scene::{self, Setting};
     let n = (n_inputs() / 4).max(1);
     let mut rng = ChaCha8Rng::seed_from_u64(0xf022_0004);
     let dir = temp_dir("obj");
@@ -994,10 +995,13 @@ fn obj_files_take_any_text() {
         std::fs::write(&path, &text).unwrap();
         let (w, h) = [(1, 1), (32, 24), (320, 240), (16384, 16384), (1, 16384), (16384, 1)][rng.gen_range(0..6)];
         fz.input(format!("OBJ text ({w}x{h} screen):\n{}", short(&String::from_utf8_lossy(&text), 4000)));
-        let Some(Ok(tris)) = fz.call("obj::load", || cullproof::tightness::obj::load(&path)) else { continue };
+        let Some(Ok(tris)) = fz.call("obj::load", || cullproof::tools::tightness::obj::load(&path)) else { continue };
         loaded += 1;
         assert!(
-            tris.iter().flatten().flatten().all(|x| x.is_finite() && x.abs() <= cullproof::tightness::obj::MAX_COORD),
+            tris.iter()
+                .flatten()
+                .flatten()
+                .all(|x| x.is_finite() && x.abs() <= cullproof::tools::tightness::obj::MAX_COORD),
             "the loader accepted a coordinate beyond its limit: {tris:?}"
         );
         let Some(Ok(sc)) = fz.call("scene::from_obj", || scene::from_obj(&path, 1, w, h)) else { continue };

@@ -4,8 +4,8 @@
 //! wrong with a bound that culls nothing.
 
 use cullproof::bounds::{Method, MethodInfo, Outputs, Prepared, TileBounds, TileResult};
-use cullproof::check::baseline::BaselineFile;
-use cullproof::check::{run, run_with_baseline, CheckConfig, CheckReport, Expectations, Status};
+use cullproof::gate::baseline::BaselineFile;
+use cullproof::gate::{run, run_with_baseline, CheckConfig, CheckReport, Expectations, Status};
 use cullproof::model::{Tile, Triangle};
 use std::path::Path;
 
@@ -14,10 +14,10 @@ fn expectations() -> Expectations {
 }
 
 fn render(r: &CheckReport) -> String {
-    cullproof::check::render(r)
+    cullproof::gate::render(r)
 }
 
-fn sum(r: &CheckReport, f: fn(&cullproof::check::Row) -> u64) -> u64 {
+fn sum(r: &CheckReport, f: fn(&cullproof::gate::Row) -> u64) -> u64 {
     r.rows.iter().map(f).sum()
 }
 
@@ -54,7 +54,7 @@ fn gate_passes_on_a_fixed_budget() {
     );
     // every method x every regime got cases
     for m in &cfg.methods {
-        for g in cullproof::gen::Regime::ALL {
+        for g in cullproof::cases::generate::Regime::ALL {
             let n: u64 =
                 r.rows.iter().filter(|x| x.method == m.info().id && x.regime == g.name()).map(|x| x.cases).sum();
             assert!(n >= 8, "{} x {}: {n} cases", m.info().id, g.name());
@@ -100,9 +100,9 @@ fn budgets_that_run_out_leave_cases_unproven() {
     let run_with = |budget: usize| {
         let mut cfg = CheckConfig::default_with(ms.to_vec());
         cfg.cases = 64;
-        cfg.side_budget = budget;
-        cfg.constraint_budget = budget;
-        cfg.side_stall = 0;
+        cfg.judge.side_budget = budget;
+        cfg.judge.constraint_budget = budget;
+        cfg.judge.side_stall = 0;
         cfg.limit_every = 0;
         run(&cfg, &Expectations::default(), false)
     };
@@ -158,7 +158,7 @@ fn slips_in_known_bad_methods_leave_their_signature() {
 fn a_dropped_lens_padding_term_is_caught_within_a_few_cases() {
     let m = cullproof::bounds::broken::parse("broken/no-coc-pad/bbox").unwrap();
     let mut cfg = CheckConfig::default_with(vec![m]);
-    cfg.regimes = vec![cullproof::gen::Regime::Defocus];
+    cfg.regimes = vec![cullproof::cases::generate::Regime::Defocus];
     cfg.cases = 8;
     let r = run(&cfg, &Expectations::default(), false);
     assert!(r.rows[0].violations > 0 && r.failed(), "{}", render(&r));
@@ -238,7 +238,7 @@ fn stalled_side_searches_give_up_early() {
     let run_with = |stall: usize| {
         let mut cfg = CheckConfig::default_with(vec![m]);
         cfg.cases = 96;
-        cfg.side_stall = stall;
+        cfg.judge.side_stall = stall;
         run(&cfg, &expectations(), false)
     };
     let (full, stalled) = (run_with(0), run_with(50));
@@ -257,7 +257,7 @@ fn the_stored_baseline_holds_at_960_cases() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let file = BaselineFile::load(&root.join("corpus/baseline.json")).unwrap();
     let mut cfg = CheckConfig::default_with(cullproof::bounds::registry());
-    let default = cullproof::check::settings::Settings::of(&cfg).unwrap();
+    let default = cullproof::gate::settings::Settings::of(&cfg).unwrap();
     assert!(file.find(&default).is_some(), "no baseline for the default gate");
     cfg.cases = 960;
     let r = run_with_baseline(&cfg, &expectations(), Some(&file), false);

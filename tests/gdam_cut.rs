@@ -12,7 +12,7 @@
 //! raised past the pad) shows the attack can fail.
 
 use cullproof::bounds::{by_id, Cut, SampleBox, TileResult};
-use cullproof::csearch::{self, ConstraintVerdict};
+use cullproof::judge::constraints::{self, ConstraintVerdict};
 use cullproof::{Interval, Sample, Tile, Triangle};
 use oracles::coverage::{classify, Coverage};
 use rand::{Rng, SeedableRng};
@@ -260,7 +260,7 @@ fn every_tile_the_judge_proves_keeps_its_covered_edge_samples() {
             let tile = Tile::square(x0, y0, [1.0, 2.0, 4.0][rng.gen_range(0..3)]);
             let TileResult::Bounds(b) = prep.tile(&tile) else { continue };
             tiles += 1;
-            if csearch::search(&o, &tile, &b, 2000, 1e-9).verdict != ConstraintVerdict::Proved {
+            if constraints::search(&o, &tile, &b, 2000, 1e-9).verdict != ConstraintVerdict::Proved {
                 continue;
             }
             proved += 1;

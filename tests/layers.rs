@@ -1,14 +1,21 @@
-//! The library's layers keep data flowing one way: no import loop among the top-level
-//! modules of `src/` (a file `src/X.rs` or a folder `src/X/`), nor among the files of
-//! `src/check/` (`check/mod.rs`, which declares them and runs the gate, is no node; a
-//! file's submodules, like `merge/validate.rs`, count as that file).
+//! The library's layers keep data flowing one way. `src/` holds one folder per layer,
+//! in this order (`LAYERS`):
+//!
+//! `io` -> `model` -> `bounds` -> `external` -> `cases` -> `judge` -> `gate` -> `search`
+//! -> `tools` -> `cli`
+//!
+//! and a layer imports only the layers before it: no import from an earlier layer to a
+//! later one, and so no import loop among the layers. Inside each layer the files (a
+//! folder's `mod.rs`, which declares them, is no node; a file's submodules, like
+//! `gate/merge/validate.rs`, count as that file) import one another without a loop.
+//! Every top-level module of `src/` is one of the layers.
 //!
 //! How the graph is read, from the source text alone:
 //! - The modules compiled into the library are found from `src/lib.rs` by following
 //!   `mod NAME;` declarations, so a file declared only under `#[cfg(test)]` is left out.
 //! - Comments and the contents of string and character literals are blanked; a string
 //!   that is exactly a path from `crate::` or `super::` is kept (serde's
-//!   `#[serde(with = "crate::num_or_inf")]` names a module that way).
+//!   `#[serde(with = "crate::io::num_or_inf")]` names a module that way).
 //! - An item under `#[cfg(test)]` is blanked up to its end (a `;` or a closing brace at
 //!   its own level): test code may reach anywhere.
 //! - Every path from `crate::` or `super::` (use trees with their `{...}` groups
@@ -39,7 +46,7 @@ fn src() -> PathBuf {
 // ---------------------------------------------------------------------------------
 // Source text: comments, literals and test items blanked.
 
-/// Is `s` exactly a path from `crate::` or `super::` (`crate::num_or_inf`)?
+/// Is `s` exactly a path from `crate::` or `super::` (`crate::io::num_or_inf`)?
 fn is_path_text(s: &str) -> bool {
     let mut parts = s.split("::");
     matches!(parts.next(), Some("crate" | "super"))
@@ -535,9 +542,10 @@ impl Crate {
         Some(m)
     }
 
-    /// The graph among the top-level modules, and the one among the files of `check/`.
-    fn graphs(&self) -> (Graph, Graph) {
-        let (mut top, mut check) = (Graph::new(), Graph::new());
+    /// The graph among the top-level modules, and per top-level module the one among
+    /// its files.
+    fn graphs(&self) -> (Graph, BTreeMap<String, Graph>) {
+        let (mut top, mut inner) = (Graph::new(), BTreeMap::<String, Graph>::new());
         for r in &self.refs {
             let Some(abs) = absolute(self, &r.from, &r.path) else { continue };
             let Some(to) = self.resolve(&abs, 0) else { continue };
@@ -546,12 +554,13 @@ impl Crate {
                 top.entry(a.clone()).or_default().entry(b.clone()).or_insert_with(|| r.at.clone());
             }
             if let ([c1, x, ..], [c2, y, ..]) = (r.from.as_slice(), to.as_slice()) {
-                if c1 == "check" && c2 == "check" && x != y {
-                    check.entry(x.clone()).or_default().entry(y.clone()).or_insert_with(|| r.at.clone());
+                if c1 == c2 && x != y {
+                    let g = inner.entry(c1.clone()).or_default();
+                    g.entry(x.clone()).or_default().entry(y.clone()).or_insert_with(|| r.at.clone());
                 }
             }
         }
-        (top, check)
+        (top, inner)
     }
 }
 
@@ -618,22 +627,58 @@ fn show(g: &Graph) -> String {
 // ---------------------------------------------------------------------------------
 // The tests.
 
+/// The layers, in the order data flows through them.
+const LAYERS: &[&str] = &["io", "model", "bounds", "external", "cases", "judge", "gate", "search", "tools", "cli"];
+
+/// Every edge of `top` that runs from a layer to a later one (or names a module that is
+/// no layer), with where it is made.
+fn back_edges(top: &Graph) -> Vec<String> {
+    let rank = |m: &str| LAYERS.iter().position(|l| *l == m);
+    let mut out = Vec::new();
+    for (a, edges) in top {
+        for (b, at) in edges {
+            match (rank(a), rank(b)) {
+                (Some(i), Some(j)) if j < i => {}
+                (Some(_), Some(_)) => out.push(format!("  {a} -> {b} ({at}): {b} comes after {a}")),
+                _ => out.push(format!("  {a} -> {b} ({at}): not a layer of {LAYERS:?}")),
+            }
+        }
+    }
+    out
+}
+
 #[test]
-fn no_import_loop_among_the_top_level_modules() {
-    let (top, _) = Crate::read().graphs();
-    eprintln!("top-level modules:\n{}", show(&top));
+fn every_import_runs_to_an_earlier_layer() {
+    let krate = Crate::read();
+    let (top, _) = krate.graphs();
+    eprintln!("layers:\n{}", show(&top));
+    let tops: BTreeSet<&str> = krate.modules.keys().filter_map(|m| m.first()).map(|m| m.as_str()).collect();
+    let strays: Vec<&&str> = tops.iter().filter(|m| !LAYERS.contains(m)).collect();
+    assert!(strays.is_empty(), "top-level modules that are no layer of {LAYERS:?}: {strays:?}");
+    let back = back_edges(&top);
+    assert!(back.is_empty(), "imports against the layer order:\n{}", back.join("\n"));
     if let Some(c) = find_cycle(&top) {
-        panic!("an import loop among the top-level modules of src/:\n{}", describe(&top, &c));
+        panic!("an import loop among the layers:\n{}", describe(&top, &c));
     }
 }
 
 #[test]
-fn no_import_loop_among_the_files_of_check() {
-    let (_, check) = Crate::read().graphs();
-    eprintln!("files of src/check/:\n{}", show(&check));
-    if let Some(c) = find_cycle(&check) {
-        panic!("an import loop among the files of src/check/:\n{}", describe(&check, &c));
+fn no_import_loop_among_the_files_of_a_layer() {
+    let (_, inner) = Crate::read().graphs();
+    for (layer, g) in &inner {
+        eprintln!("files of src/{layer}/:\n{}", show(g));
+        if let Some(c) = find_cycle(g) {
+            panic!("an import loop among the files of src/{layer}/:\n{}", describe(g, &c));
+        }
     }
+}
+
+#[test]
+fn the_order_check_reports_an_edge_against_the_order() {
+    let g = graph(&[("judge", "model"), ("cases", "gate"), ("gate", "stray")]);
+    let back = back_edges(&g);
+    assert_eq!(back.len(), 2, "{back:?}");
+    assert!(back[0].contains("cases -> gate") && back[1].contains("gate -> stray"), "{back:?}");
 }
 
 #[test]
@@ -686,22 +731,23 @@ fn after() { super::q::r(); }
 #[test]
 fn the_reader_sees_the_real_edges() {
     let krate = Crate::read();
-    let (top, check) = krate.graphs();
+    let (top, inner) = krate.graphs();
     let has = |g: &Graph, a: &str, b: &str| g.get(a).is_some_and(|e| e.contains_key(b));
     // a use, an inline path, a serde path in a string, a re-export of lib.rs
-    for (a, b) in [("corpus", "check"), ("check", "bounds"), ("corpus", "num_or_inf"), ("gate", "check")] {
+    for (a, b) in [("search", "gate"), ("gate", "bounds"), ("search", "io"), ("judge", "model"), ("cli", "tools")] {
         assert!(has(&top, a, b), "{a} -> {b} not seen:\n{}", show(&top));
     }
-    // `super::` paths, and names re-exported by check/mod.rs
+    // `super::` paths, and names re-exported by gate/mod.rs
+    let gate = &inner["gate"];
     for (a, b) in [("report", "row"), ("merge", "report"), ("strength", "row"), ("baseline", "report")] {
-        assert!(has(&check, a, b), "check/{a} -> check/{b} not seen:\n{}", show(&check));
+        assert!(has(gate, a, b), "gate/{a} -> gate/{b} not seen:\n{}", show(gate));
     }
     // test code is left out: files declared under #[cfg(test)] are not read at all
     assert!(!krate.modules.contains_key(&vec!["bounds".to_string(), "testkit".to_string()]));
     // a name lib.rs takes from another crate lands in no module (`crate::Interval` is
     // oracles'); one it re-exports from a module, in that module
     assert_eq!(krate.resolve(&["Interval".to_string()], 0), Some(vec![]));
-    assert_eq!(krate.resolve(&["Gate".to_string()], 0), Some(vec!["gate".to_string()]));
+    assert_eq!(krate.resolve(&["Gate".to_string()], 0), Some(vec!["gate".to_string(), "builder".to_string()]));
 }
 
 /// Every `.rs` file under `dir`.

@@ -6,7 +6,7 @@
 mod common;
 
 use cullproof::bounds::{by_id, plug, Method};
-use cullproof::check::{run, CheckConfig, Expectations};
+use cullproof::gate::{run, CheckConfig, Expectations};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use std::time::Duration;
@@ -55,15 +55,15 @@ fn compile(src: &Path, name: &str, defines: &[&str]) -> PathBuf {
 fn plugins() -> (&'static dyn Method, &'static dyn Method) {
     static P: OnceLock<(&'static dyn Method, &'static dyn Method)> = OnceLock::new();
     *P.get_or_init(|| {
-        let safe = cullproof::plugin::load(&build(false)).expect("load the safe plugin");
-        let broken = cullproof::plugin::load(&build(true)).expect("load the broken plugin");
+        let safe = cullproof::external::plugin::load(&build(false)).expect("load the safe plugin");
+        let broken = cullproof::external::plugin::load(&build(true)).expect("load the broken plugin");
         plug(safe).unwrap();
         plug(broken).unwrap();
         (safe, broken)
     })
 }
 
-fn gate(m: &'static dyn Method, cases: u64) -> cullproof::check::CheckReport {
+fn gate(m: &'static dyn Method, cases: u64) -> cullproof::gate::CheckReport {
     let mut cfg = CheckConfig::default_with(vec![m]);
     cfg.cases = cases;
     run(&cfg, &Expectations::default(), false)
@@ -103,7 +103,7 @@ fn the_c_bbox_safe_agrees_with_the_built_in_one() {
     let cfg = CheckConfig::default_with(vec![built_in]);
     let mut culled = 0;
     for i in 0..2000 {
-        let (_, case, tile) = cullproof::check::make_case(&cfg, i);
+        let (_, case, tile) = cullproof::cases::make_case(&cfg.draw(), i);
         let tri = case.triangle;
         let (a, b) = (safe.setup(&tri), built_in.setup(&tri));
         assert_eq!(a.disabled().is_some(), b.disabled().is_some());
@@ -132,11 +132,11 @@ fn the_broken_c_bound_is_caught_shrunk_and_replayed() {
     let _ = std::fs::remove_dir_all(&out);
     let cfg = CheckConfig::default_with(vec![broken]);
     let s =
-        cullproof::corpus::search(&cfg, cullproof::bounds::shared(broken), 30.0, 1, 0.0, Some(&out), false).unwrap();
+        cullproof::search::search(&cfg, cullproof::bounds::shared(broken), 30.0, 1, 0.0, Some(&out), false).unwrap();
     assert_eq!(s.found.len(), 1, "{s:?}");
     let file = PathBuf::from(s.found[0].file.as_ref().expect("a case file was written"));
     assert!(file.starts_with(out.join("c-bbox-broken")), "{}", file.display());
-    let rep = cullproof::corpus::replay(&file, &cfg).unwrap();
+    let rep = cullproof::search::replay(&file, &cfg).unwrap();
     assert!(rep.ok, "{rep:?}");
     assert_eq!(rep.method, "c-bbox-broken");
     assert!(rep.judged.starts_with("violation"), "{}", rep.judged);
@@ -157,7 +157,7 @@ fn compile_text_with(text: &str, name: &str, defines: &[&str]) -> PathBuf {
 }
 
 fn refusal(path: &Path) -> String {
-    match cullproof::plugin::load(path) {
+    match cullproof::external::plugin::load(path) {
         Ok(m) => panic!("{} loaded as {}", path.display(), m.info().id),
         Err(e) => format!("{e:#}"),
     }
@@ -193,7 +193,8 @@ fn a_library_of_another_abi_version_or_without_a_tile_test_is_refused() {
     let e = refusal(&compile_text(&table("CULLPROOF_ABI_VERSION", "0"), "no_tile"));
     assert!(e.contains("`setup` and `tile` are required"), "{e}");
     // The same table with its tile test loads.
-    let ok = cullproof::plugin::load(&compile_text(&table("CULLPROOF_ABI_VERSION", "tile"), "minimal")).unwrap();
+    let ok =
+        cullproof::external::plugin::load(&compile_text(&table("CULLPROOF_ABI_VERSION", "tile"), "minimal")).unwrap();
     assert_eq!(ok.info().id, "x");
 }
 
@@ -286,14 +287,14 @@ fn too_many_constraints_stop_the_run_with_a_clear_error() {
         &[&format!("plugin {lib} (`c-huge`): tile() answered n_constraints = 4000000000, more than the cap 4096")],
     );
     // A library caller gets the failure as a panic payload, before any allocation.
-    let m = cullproof::plugin::load(Path::new(lib)).unwrap();
+    let m = cullproof::external::plugin::load(Path::new(lib)).unwrap();
     let cfg = CheckConfig::default_with(vec![m]);
-    let (_, case, tile) = cullproof::check::make_case(&cfg, 0);
+    let (_, case, tile) = cullproof::cases::make_case(&cfg.draw(), 0);
     let p = m.setup(&case.triangle);
     let Err(e) = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| p.tile(&tile))) else {
         panic!("the tile test stops")
     };
-    let f = e.downcast_ref::<cullproof::plugin::PluginFailure>().expect("a PluginFailure payload");
+    let f = e.downcast_ref::<cullproof::external::plugin::PluginFailure>().expect("a PluginFailure payload");
     assert!(f.0.contains("n_constraints = 4000000000") && f.0.contains("cap 4096"), "{}", f.0);
 }
 
@@ -319,7 +320,9 @@ const cp_method *cullproof_method(void) { return &m; }
 
 fn breach_plugin() -> &'static dyn Method {
     static P: OnceLock<&'static dyn Method> = OnceLock::new();
-    *P.get_or_init(|| cullproof::plugin::load(&compile_text(BREACH, "breach")).expect("load the breaching plugin"))
+    *P.get_or_init(|| {
+        cullproof::external::plugin::load(&compile_text(BREACH, "breach")).expect("load the breaching plugin")
+    })
 }
 
 #[test]
@@ -407,9 +410,9 @@ const cp_method *cullproof_method(void) {
 fn bad_answer_codes_enclosures_and_long_names_are_caught() {
     use cullproof::bounds::{SampleBox, TileResult};
     use cullproof::Interval;
-    let m = cullproof::plugin::load(&compile_text(BREACH_BOX, "breach_box")).unwrap();
+    let m = cullproof::external::plugin::load(&compile_text(BREACH_BOX, "breach_box")).unwrap();
     let cfg = CheckConfig::default_with(vec![m]);
-    let (_, case, _) = cullproof::check::make_case(&cfg, 0);
+    let (_, case, _) = cullproof::cases::make_case(&cfg.draw(), 0);
     let p = m.setup(&case.triangle);
     let t = |x0: f32| cullproof::model::Tile { x0, y0: 0.0, x1: x0 + 1.0, y1: 1.0 };
     assert!(matches!(p.tile(&t(-4.0)), TileResult::Empty), "an answer of 7 is taken as CP_EMPTY");
@@ -424,9 +427,9 @@ fn bad_answer_codes_enclosures_and_long_names_are_caught() {
     }
     assert_eq!(b.constraints[1].name(), "ok");
     let e = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| b.constraints[0].name())).err().unwrap();
-    let f = e.downcast_ref::<cullproof::plugin::PluginFailure>().expect("a PluginFailure payload");
+    let f = e.downcast_ref::<cullproof::external::plugin::PluginFailure>().expect("a PluginFailure payload");
     assert!(f.0.contains("constraint_name() returned a name with no NUL within 1024 bytes"), "{}", f.0);
-    let all = cullproof::plugin::breaches();
+    let all = cullproof::external::plugin::breaches();
     let r = all.iter().find(|b| b.method == "c-breach-box").unwrap();
     assert_eq!(r.answers, 3, "{r:?}");
     for k in ["tile-answer-code", "eval-box-nan-end", "eval-box-lo-above-hi"] {
@@ -464,9 +467,9 @@ fn a_plugin_that_sets_flush_to_zero_is_reported_and_the_environment_reset() {
         // SAFETY: reading MXCSR cannot fault on x86-64.
         unsafe { std::arch::x86_64::_mm_getcsr() }
     }
-    let m = cullproof::plugin::load(&compile_text(FTZ, "ftz")).expect("load the FTZ plugin");
+    let m = cullproof::external::plugin::load(&compile_text(FTZ, "ftz")).expect("load the FTZ plugin");
     assert_eq!(mxcsr() & 0x8040, 0, "the loading thread runs without FTZ/DAZ after the load");
-    let after_load = cullproof::plugin::breaches();
+    let after_load = cullproof::external::plugin::breaches();
     let b = after_load.iter().find(|b| b.method == "c-ftz").expect("the load is reported");
     assert_eq!(b.kinds["fp-environment"], 1, "{b:?}");
     let r = gate(m, 48);
@@ -488,7 +491,7 @@ fn a_c_plugin_is_gated_searched_replayed_and_explained_from_an_empty_directory()
     let d = common::scratch("plugin-anywhere");
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     assert!(!d.canonicalize().unwrap().starts_with(root.canonicalize().unwrap()));
-    let project: Vec<PathBuf> = cullproof::corpus::case_files(&[root.join("corpus/cases")]).unwrap();
+    let project: Vec<PathBuf> = cullproof::search::case_files(&[root.join("corpus/cases")]).unwrap();
     let (safe, broken) = (safe.to_str().unwrap(), broken.to_str().unwrap());
     let run = |args: &[&str]| {
         let r = common::Cli::new(args).dir(&d).deadline(Duration::from_secs(300)).run();
@@ -500,7 +503,7 @@ fn a_c_plugin_is_gated_searched_replayed_and_explained_from_an_empty_directory()
     assert!(r.stdout.contains("UNEXPECTED VIOLATION"), "{}", r.stdout);
     let r = run(&["--plugin", broken, "search", "--method", "c-bbox-broken", "--time", "10", "--max", "1"]);
     assert_eq!(r.code, Some(0), "{}{}", r.stdout, r.stderr);
-    let written = cullproof::corpus::case_files(&[d.join("cullproof-corpus/cases/c-bbox-broken")]).unwrap();
+    let written = cullproof::search::case_files(&[d.join("cullproof-corpus/cases/c-bbox-broken")]).unwrap();
     assert_eq!(written.len(), 1, "{}", r.stdout);
     let file = written[0].to_str().unwrap();
     let r = run(&["--plugin", broken, "explain", file]);
@@ -512,6 +515,6 @@ fn a_c_plugin_is_gated_searched_replayed_and_explained_from_an_empty_directory()
     let r = run(&["--plugin", broken, "--plugin", safe, "replay", "--method", "c-bbox-safe"]);
     assert_eq!(r.code, Some(0), "{}{}", r.stdout, r.stderr);
     assert!(r.stdout.contains("fixed"), "{}", r.stdout);
-    assert_eq!(cullproof::corpus::case_files(&[root.join("corpus/cases")]).unwrap(), project);
+    assert_eq!(cullproof::search::case_files(&[root.join("corpus/cases")]).unwrap(), project);
     std::fs::remove_dir_all(&d).ok();
 }

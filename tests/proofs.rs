@@ -4,8 +4,9 @@
 //! false lemma must fail, so that a passing run means something. Needs `z3` and `gappa`
 //! on the PATH (`.ci/run` installs both); a missing tool fails with how to install it.
 
-use cullproof::bounds::proofs::{check, run, Tool, BBOX_PAD, SCRIPTS, STEP, VARIANTS, WU_PAD};
-use cullproof::proofs::cli;
+use cullproof::bounds::proofs::{Tool, BBOX_PAD, SCRIPTS, STEP, VARIANTS, WU_PAD};
+use cullproof::cli::proofs as cli;
+use cullproof::tools::proofs::{check, run};
 use std::time::Duration;
 
 const LIMIT: Duration = Duration::from_secs(300);
@@ -118,7 +119,7 @@ fn a_missing_tool_is_a_failure_that_says_how_to_install() {
 /// judge confirms; `cullproof proofs` then reports the failure.
 #[test]
 fn a_dropped_outward_step_in_la2011_safe_fails_the_template_obligation() {
-    use cullproof::proofs::composition;
+    use cullproof::tools::proofs::composition;
     let ok = composition::run("la2011-safe", LIMIT);
     assert_eq!(ok.len(), 2, "{ok:?}");
     for s in &ok {

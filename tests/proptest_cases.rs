@@ -6,8 +6,8 @@
 //! proptest replays them first on every run).
 
 use cullproof::bounds::Method;
-use cullproof::check::{boundary_tile, judge, CheckConfig};
-use cullproof::gen::{rng_for, strategy, Regime};
+use cullproof::cases::generate::{boundary_tile, rng_for, strategy, Regime};
+use cullproof::gate::{judge, CheckConfig};
 use cullproof::model::{Case, Tile};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence, RngAlgorithm, TestError, TestRng, TestRunner};

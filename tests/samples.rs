@@ -13,9 +13,10 @@
 //!   a witness off the recorded set is refused by name.
 
 use cullproof::bounds::{Method, MethodInfo, Outputs, Prepared, TileBounds, TileResult};
-use cullproof::check::{judge, try_make_case, CheckConfig};
-use cullproof::corpus::{case_files, CaseFile};
+use cullproof::cases::try_make_case;
+use cullproof::gate::{judge, CheckConfig};
 use cullproof::model::samples::snap_coord;
+use cullproof::search::{case_files, CaseFile};
 use cullproof::{Bound, Case, Gate, MethodVerdict, Regime, SampleSet, Snap, Tile, Triangle, Viewport};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -165,7 +166,7 @@ fn snapping_decides_coverage_of_the_snapped_triangle_exactly() {
     let mut cfg = CheckConfig::default_for(m.clone());
     cfg.sample_set = SampleSet::PixelCentres;
     let (js, _) = judge(&cfg, &m, &case, &tile, 0);
-    assert_eq!(js[0].verdict(), cullproof::check::Verdict::Proven);
+    assert_eq!(js[0].verdict(), cullproof::judge::Verdict::Proven);
     cfg.snap = Some(Snap { bits: 2 });
     let (js, _) = judge(&cfg, &m, &case, &tile, 0);
     let w = js[0].violation.as_ref().expect("the snapped triangle covers the centre");
@@ -174,11 +175,11 @@ fn snapping_decides_coverage_of_the_snapped_triangle_exactly() {
     // Without a sample set the unsnapped triangle is covered in the tile anyway.
     cfg.sample_set = SampleSet::Any;
     cfg.snap = None;
-    assert_eq!(judge(&cfg, &m, &case, &tile, 0).0[0].verdict(), cullproof::check::Verdict::Violated);
+    assert_eq!(judge(&cfg, &m, &case, &tile, 0).0[0].verdict(), cullproof::judge::Verdict::Violated);
 }
 
 fn oracles_class(case: &Case, snap: Option<Snap>, p: [f64; 5]) -> String {
-    let (_, tri) = cullproof::check::samples::judged_triangles(snap, case).unwrap();
+    let (_, tri) = cullproof::cases::place::judged_triangles(snap, case).unwrap();
     format!("{:?}", oracles::classify(&tri, p))
 }
 
@@ -190,13 +191,13 @@ fn every_case_placed_in_a_viewport_lies_in_its_guard_band() {
     let g = vp.guard_rect();
     let (mut placed, mut skipped) = (0, 0);
     for i in 0..320 {
-        let Some((regime, case, tile)) = try_make_case(&cfg, i) else {
+        let Some((regime, case, tile)) = try_make_case(&cfg.draw(), i) else {
             skipped += 1;
             assert!(matches!(cfg.regimes[(i % 16) as usize], Regime::BehindLens | Regime::Huge | Regime::HugeCoc));
             continue;
         };
         placed += 1;
-        let f = cullproof::check::samples::footprint(&case.triangle).expect("in front of the lens");
+        let f = cullproof::cases::place::footprint(&case.triangle).expect("in front of the lens");
         assert!(f[0] >= g[0] && f[1] <= g[1] && f[2] >= g[2] && f[3] <= g[3], "{regime:?} {f:?}");
         assert!(vp.holds_tile(&tile), "{regime:?} {tile:?}");
         assert!(case.validate().is_ok());
@@ -277,8 +278,8 @@ fn a_pixel_centre_filter_with_snapping_in_a_centred_viewport_is_proven_or_not_ju
     assert!(text.contains("not judged"), "{text}");
     let behind = r.raw.rows.iter().find(|x| x.regime == "behind-lens").expect("its row is there");
     assert_eq!((behind.not_judged, behind.cases), (20, 20), "{text}");
-    assert_eq!(behind.status, cullproof::check::Status::NotJudged, "{text}");
-    let xml = cullproof::junit::render(&r.raw, &std::env::temp_dir(), "").unwrap();
+    assert_eq!(behind.status, cullproof::gate::Status::NotJudged, "{text}");
+    let xml = cullproof::gate::junit::render(&r.raw, &std::env::temp_dir(), "").unwrap();
     assert!(xml.contains("name=\"behind-lens\" time=\"0\"><skipped message=\"not judged"), "{xml}");
     assert!(!xml.contains("<failure"), "{xml}");
 }

@@ -34,7 +34,7 @@ fn slip_under_every_kind(dir: &Path, why: &str, max_rate: &str, extra: &[&str]) 
 }
 
 fn json_files(dir: &Path) -> Vec<PathBuf> {
-    cullproof::corpus::case_files(&[dir.to_path_buf()]).unwrap_or_default()
+    cullproof::search::case_files(&[dir.to_path_buf()]).unwrap_or_default()
 }
 
 /// A planted slip in a method expected conservative (a broken variant is held to the
@@ -63,11 +63,11 @@ fn a_planted_slip_is_beyond_the_signature_and_written() {
     );
     let files = json_files(&out);
     assert_eq!(files.len(), 1, "one case file: {files:?}\n{}", r.stdout);
-    let cf = cullproof::corpus::CaseFile::load(&files[0]).unwrap();
+    let cf = cullproof::search::CaseFile::load(&files[0]).unwrap();
     assert_eq!(cf.method, id);
     assert!(cf.note.contains("beyond") && cf.note.contains("signature"), "{}", cf.note);
-    let cfg = cullproof::check::CheckConfig::default_with(cullproof::bounds::registry());
-    let rp = cullproof::corpus::replay(&files[0], &cfg).unwrap();
+    let cfg = cullproof::gate::CheckConfig::default_with(cullproof::bounds::registry());
+    let rp = cullproof::search::replay(&files[0], &cfg).unwrap();
     assert!(rp.ok, "the written case does not replay: {rp:?}");
     let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     let f = &j["found"][0];

@@ -5,9 +5,10 @@
 //! witness the exact oracle confirms beyond it. Claims it proves are attacked with dense exact samples
 //! just beyond them.
 
-use cullproof::check::side_cut::{decide, SideClaim};
-use cullproof::check::{make_case, CheckConfig};
-use cullproof::csearch::ConstraintVerdict;
+use cullproof::cases::make_case;
+use cullproof::gate::CheckConfig;
+use cullproof::judge::constraints::ConstraintVerdict;
+use cullproof::judge::side_cut::{decide, SideClaim};
 use cullproof::Regime;
 use oracles::coverage::{classify, Coverage};
 use oracles::extents::{Extent, ExtentsConfig, TileSolver};
@@ -45,7 +46,7 @@ fn tight_sides_are_decided_and_pulled_in_sides_are_never_proved() {
     let mut rng = ChaCha8Rng::seed_from_u64(0x51de_c075);
     let (mut tight, mut proved, mut inward, mut caught, mut attacked) = (0, 0, 0, 0, 0u64);
     for i in 0..45u64 {
-        let (_, case, tile) = make_case(&cfg, i);
+        let (_, case, tile) = make_case(&cfg.draw(), i);
         let tri = case.triangle.to_oracle();
         let tb = [tile.x0 as f64, tile.x1 as f64, tile.y0 as f64, tile.y1 as f64];
         let mut solver = TileSolver::new(&tri, tb, [[-1.0, 1.0], [-1.0, 1.0], [0.0, 1.0]], &ecfg);

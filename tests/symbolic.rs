@@ -10,13 +10,13 @@ use cullproof::bounds::arith::{F32Arith, Plain, TriOf};
 use cullproof::bounds::bbox::{aabb_of, rejects};
 use cullproof::bounds::broken::planted::{BAND_HI, BAND_LO};
 use cullproof::bounds::{by_id, TileResult};
-use cullproof::symbolic::prove::{
+use cullproof::tools::symbolic::prove::{
     family, prove, queries, range_sets, Limits, ProveReport, QueryReport, Rule, Strategy, DEFAULT_FREE_SHARE,
     DEFAULT_RLIMIT,
 };
-use cullproof::symbolic::smt::Smt;
-use cullproof::symbolic::solver::{self, Solvers};
-use cullproof::symbolic::z3::{self, Answer};
+use cullproof::tools::symbolic::smt::Smt;
+use cullproof::tools::symbolic::solver::{self, Solvers};
+use cullproof::tools::symbolic::z3::{self, Answer};
 use cullproof::{Tile, Triangle};
 
 /// xorshift in [0, 1).
@@ -162,7 +162,7 @@ fn the_emitted_method_evaluates_to_the_f32_bits() {
             let (en, bx) = aabb_of(&Plain, &rule, &TriOf::of(&tri));
             let rej = rejects(&Plain, &en, &bx, &[tile.x0, tile.y0, tile.x1, tile.y1]);
             // The f32 instance is the method the gate runs.
-            let m = cullproof::args::method("--method", id, true).unwrap();
+            let m = cullproof::cli::args::method("--method", id, true).unwrap();
             assert_eq!(rej, matches!(m.setup(&tri).tile(&tile), TileResult::Empty), "{id} {tri:?} {tile:?}");
             culled += rej as usize;
             let st = TriOf::of(&tri).map(|v| smt.lit(*v));
@@ -183,7 +183,7 @@ fn the_emitted_method_evaluates_to_the_f32_bits() {
 /// The default concolic search of a method for a seed, with a generous plan (it stops
 /// at the first confirmed violation).
 fn search(id: &str, seed: u64, jobs: usize) -> ProveReport {
-    let m = cullproof::args::method("--method", id, true).unwrap();
+    let m = cullproof::cli::args::method("--method", id, true).unwrap();
     let f = family(id).unwrap();
     let sets = range_sets(f.as_ref(), None);
     let plan = queries(f.as_ref(), Strategy::Concolic, &sets, seed, 4000, DEFAULT_FREE_SHARE);
@@ -240,9 +240,10 @@ fn the_symbolic_search_finds_bbox_f32_tile_cull() {
 fn a_whole_query_finds_bbox_f32_tile_cull_in_narrow_ranges() {
     let m = by_id("bbox").unwrap();
     let f = family("bbox").unwrap();
-    let r = cullproof::symbolic::family::parse_ranges(f.as_ref(), "--ranges", "a=128:256,c=1:2,w=1.875:2,t=96:128")
-        .unwrap();
-    let plan = vec![cullproof::symbolic::family::Query::free(0, r)];
+    let r =
+        cullproof::tools::symbolic::family::parse_ranges(f.as_ref(), "--ranges", "a=128:256,c=1:2,w=1.875:2,t=96:128")
+            .unwrap();
+    let plan = vec![cullproof::tools::symbolic::family::Query::free(0, r)];
     let limits = Limits { timeout: 900.0, rlimit: None, jobs: 1, solvers: Solvers::Z3 };
     let r = prove(m, Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
     let (q, _, tile) = confirmed(&r, "bbox");
@@ -264,7 +265,7 @@ fn the_symbolic_search_finds_the_planted_slips() {
         } else {
             assert!((BAND_LO..BAND_HI).contains(&v[2]), "the band slip fired outside the band: {v:?}");
         }
-        let m = cullproof::args::method("--method", id, true).unwrap();
+        let m = cullproof::cli::args::method("--method", id, true).unwrap();
         assert!(matches!(m.setup(&tri).tile(&tile), TileResult::Empty));
         assert!(!matches!(safe.setup(&tri).tile(&tile), TileResult::Empty), "{id}: bbox-safe culls it too");
         assert!(r.render().contains("first confirmed violation"));
@@ -488,7 +489,7 @@ fn the_emitted_mam2012_hyperplane_tile_path_evaluates_to_the_f32_bits() {
 fn the_la2011_query_holds_a_known_violation() {
     let v = [236.125f32, 1.8749528, 1.9463676, 120.35242];
     let pin: Vec<[f32; 2]> = v.iter().map(|&x| [x, x.next_up()]).collect();
-    let plan = vec![cullproof::symbolic::family::Query::free(0, pin)];
+    let plan = vec![cullproof::tools::symbolic::family::Query::free(0, pin)];
     let limits = Limits { timeout: 300.0, rlimit: None, jobs: 1, solvers: Solvers::Z3 };
     let r = prove(by_id("la2011").unwrap(), Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
     let (q, tri, tile) = confirmed(&r, "la2011");
@@ -520,8 +521,10 @@ fn the_scripts_are_standard_and_bitwuzla_agrees_with_z3() {
         let f = family(id).unwrap();
         for side in 0..f.sides().len() {
             for r in f.default_ranges(side) {
-                let (s, _) =
-                    cullproof::symbolic::family::script(f.as_ref(), &cullproof::symbolic::family::Query::free(side, r));
+                let (s, _) = cullproof::tools::symbolic::family::script(
+                    f.as_ref(),
+                    &cullproof::tools::symbolic::family::Query::free(side, r),
+                );
                 assert!(s.starts_with("(set-logic QF_BVFP)"), "{id}: {}", &s[..60]);
                 assert!(!s.contains("to_ieee_bv"), "{id}: a z3-only function in the script");
             }
@@ -529,7 +532,7 @@ fn the_scripts_are_standard_and_bitwuzla_agrees_with_z3() {
     }
     let v = [236.125f32, 1.8749528, 1.9463676, 120.35242];
     let pin: Vec<[f32; 2]> = v.iter().map(|&x| [x, x.next_up()]).collect();
-    let plan = vec![cullproof::symbolic::family::Query::free(0, pin)];
+    let plan = vec![cullproof::tools::symbolic::family::Query::free(0, pin)];
     let limits = Limits { timeout: 300.0, rlimit: None, jobs: 1, solvers: Solvers::BITWUZLA };
     let r = prove(by_id("la2011").unwrap(), Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
     let (q, _, _) = confirmed(&r, "la2011");
@@ -547,7 +550,7 @@ fn the_scripts_are_standard_and_bitwuzla_agrees_with_z3() {
 fn an_unsat_with_contradictory_hypotheses_is_not_counted() {
     let v = [236.125f32, 1.8749528, 1.9463676, 120.35242];
     let empty: Vec<[f32; 2]> = v.iter().map(|&x| [x, x]).collect();
-    let plan = vec![cullproof::symbolic::family::Query::free(0, empty)];
+    let plan = vec![cullproof::tools::symbolic::family::Query::free(0, empty)];
     for solvers in [Solvers::Z3, Solvers::BITWUZLA] {
         let limits = Limits { timeout: 60.0, rlimit: None, jobs: 1, solvers };
         let r = prove(by_id("la2011-safe").unwrap(), Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
@@ -563,9 +566,10 @@ fn an_unsat_with_contradictory_hypotheses_is_not_counted() {
 fn the_portfolio_finds_bbox_f32_tile_cull_in_narrow_ranges() {
     let m = by_id("bbox").unwrap();
     let f = family("bbox").unwrap();
-    let r = cullproof::symbolic::family::parse_ranges(f.as_ref(), "--ranges", "a=128:256,c=1:2,w=1.875:2,t=96:128")
-        .unwrap();
-    let plan = vec![cullproof::symbolic::family::Query::free(0, r)];
+    let r =
+        cullproof::tools::symbolic::family::parse_ranges(f.as_ref(), "--ranges", "a=128:256,c=1:2,w=1.875:2,t=96:128")
+            .unwrap();
+    let plan = vec![cullproof::tools::symbolic::family::Query::free(0, r)];
     let limits = Limits { timeout: 600.0, rlimit: None, jobs: 1, solvers: Solvers::BOTH };
     let r = prove(m, Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
     let (q, _, tile) = confirmed(&r, "bbox");

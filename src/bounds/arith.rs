@@ -1,6 +1,6 @@
 //! One description, two meanings: the f32 operations a bound is written in, as a trait
 //! with two instances. [`Plain`] computes in f32 (what the gate runs); the SMT-LIB2
-//! builder of the symbolic search ([`crate::symbolic::smt::Smt`]) emits the same
+//! builder of the symbolic search ([`crate::tools::symbolic::smt::Smt`]) emits the same
 //! operations, in the same order, as IEEE binary32 terms with round-to-nearest-even.
 //! Code written once over [`F32Arith`] is the method and its encoding at the same time,
 //! so the two cannot drift apart.

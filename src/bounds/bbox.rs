@@ -126,7 +126,7 @@ use super::*;
 use crate::bounds::arith::{F32Arith, Plain, TriOf};
 
 /// How one corner value is enclosed, written once over [`F32Arith`] (so the f32
-/// method and its SMT-LIB2 encoding in `crate::symbolic` are the same code): from the
+/// method and its SMT-LIB2 encoding in `crate::tools::symbolic` are the same code): from the
 /// vertex's coordinate `a` (x or y), its shear `s` (`c`, or `fl(k c)` for y), the
 /// sheared value `n = fl(a ± s)` and the depth `w`, the enclosure `[lo, hi]` of the
 /// corner value.

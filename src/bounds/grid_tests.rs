@@ -5,7 +5,7 @@
 //! subnormals) and on the unit grids a rasterizer walks.
 
 use super::*;
-use crate::gen::{bit_compare_case, boundary_tile, physical_case, rng_for, Regime};
+use crate::cases::generate::{bit_compare_case, boundary_tile, physical_case, rng_for, Regime};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 

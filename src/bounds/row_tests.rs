@@ -4,7 +4,7 @@
 //! (a NaN matches a NaN: which NaN an operation returns is not part of f32 arithmetic).
 
 use super::*;
-use crate::gen::{boundary_tile, physical_case, rng_for, tile_sample, Regime};
+use crate::cases::generate::{boundary_tile, physical_case, rng_for, tile_sample, Regime};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 

@@ -12,7 +12,7 @@ pub(crate) fn covered(tri: &Triangle, s: &Sample) -> bool {
     oracles::classify(&tri.to_oracle(), s.to_oracle()) == oracles::Coverage::Interior
 }
 
-pub(crate) use crate::gen::tile_sample as random_sample;
+pub(crate) use crate::cases::generate::tile_sample as random_sample;
 
 /// The method's answer for one tile; None when the tile is culled.
 pub(crate) fn bounds_of(m: &dyn Method, tri: &Triangle, tile: &Tile) -> Option<TileBounds> {

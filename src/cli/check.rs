@@ -89,7 +89,7 @@ pub struct CheckArgs {
     #[arg(long)]
     write_baseline: bool,
     #[command(flatten)]
-    sample: cullproof::args::SampleFlags,
+    sample: crate::cli::args::SampleFlags,
     /// Write the report as JUnit XML to this file as well (one test case per method
     /// x regime; a failing row names the witness case file written beside it, in
     /// FILE's stem + `.witnesses/`).
@@ -121,10 +121,10 @@ pub fn run(args: CheckArgs, plugged: &[&'static str], loaders: &str) -> Result<(
         junit,
         sample,
     } = args;
-    use cullproof::args;
+    use crate::cli::args;
     let method = method.unwrap_or_else(|| if plugged.is_empty() { "all".into() } else { plugged.join(",") });
     let methods = args::methods("--method", &method, true)?;
-    let mut cfg = cullproof::check::CheckConfig::default_with(methods);
+    let mut cfg = crate::gate::CheckConfig::default_with(methods);
     sample.parse()?.apply(&mut cfg);
     cfg.regimes = parse_regimes(&regime)?;
     if let Some(t) = tile {
@@ -144,13 +144,14 @@ pub fn run(args: CheckArgs, plugged: &[&'static str], loaders: &str) -> Result<(
     // Every output is checked before the run, so none fails after it.
     check_json(&json)?;
     check_junit(&junit)?;
-    let in_checkout = cullproof::locate::in_checkout();
+    let in_checkout = crate::gate::locate::in_checkout();
     if write_baseline {
         anyhow::ensure!(
             time.is_none() && (k, n) == (0, 1),
             "--write-baseline: a baseline needs a fixed case count, not --time or --shard"
         );
-        let target = baseline.clone().or_else(|| in_checkout.then(|| PathBuf::from(cullproof::locate::BASELINE_FILE)));
+        let target =
+            baseline.clone().or_else(|| in_checkout.then(|| PathBuf::from(crate::gate::locate::BASELINE_FILE)));
         let Some(target) = target else {
             anyhow::bail!(
                 "--write-baseline: no baseline file to write: the current directory is not the cullproof \
@@ -158,7 +159,7 @@ pub fn run(args: CheckArgs, plugged: &[&'static str], loaders: &str) -> Result<(
                  --baseline FILE to write this run's entry to FILE (created if missing, its other entries kept)"
             );
         };
-        cullproof::output::file("--baseline", &target)?;
+        crate::io::output::file("--baseline", &target)?;
     }
     set_jobs(jobs)?;
     let ex = expectations_for(&expectations, in_checkout, "the expectations file is required")?;
@@ -169,14 +170,14 @@ pub fn run(args: CheckArgs, plugged: &[&'static str], loaders: &str) -> Result<(
     cfg.shard = (k, n);
     anyhow::ensure!(side_budget > 0, "--side-budget 0: a search needs at least one box");
     anyhow::ensure!(constraint_budget > 0, "--constraint-budget 0: a search needs at least one box");
-    cfg.side_budget = side_budget;
-    cfg.side_stall = side_stall;
-    cfg.extents.second_chance = !no_second_chance;
-    cfg.constraint_budget = constraint_budget;
+    cfg.judge.side_budget = side_budget;
+    cfg.judge.side_stall = side_stall;
+    cfg.judge.extents.second_chance = !no_second_chance;
+    cfg.judge.constraint_budget = constraint_budget;
     cfg.limit_every = limit_every;
-    let cullproof::locate::Baseline { file: base, path: base_path } = baseline_for(&baseline, in_checkout)?;
-    let r = cullproof::check::run_with_baseline(&cfg, &ex, base.as_ref(), true);
-    print!("{}", cullproof::check::render(&r));
+    let crate::gate::locate::Baseline { file: base, path: base_path } = baseline_for(&baseline, in_checkout)?;
+    let r = crate::gate::run_with_baseline(&cfg, &ex, base.as_ref(), true);
+    print!("{}", crate::gate::render(&r));
     if write_baseline {
         let path = base_path.context("--write-baseline: checked before the run")?;
         let mut f = base.unwrap_or_default();

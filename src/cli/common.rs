@@ -1,20 +1,19 @@
 //! Helpers shared by the commands: flag checks run before any work, the expectations and the
 //! baseline found as `locate` finds them, JSON output, and the exit path that reports plugin breaches.
 
-use crate::BUILT_IN;
 use anyhow::{Context, Result};
 use std::path::PathBuf;
 
-/// Check `--jobs` (see [`cullproof::args::jobs`]) and size the global pool.
+/// Check `--jobs` (see [`crate::cli::args::jobs`]) and size the global pool.
 pub fn set_jobs(jobs: Option<usize>) -> Result<()> {
-    if let Some(j) = cullproof::args::jobs(jobs)? {
+    if let Some(j) = crate::cli::args::jobs(jobs)? {
         rayon::ThreadPoolBuilder::new().num_threads(j).build_global().context("setting the thread count")?;
     }
     Ok(())
 }
 
 /// Print a located file's note (a checkout file that differs from the copy built in).
-pub fn noted<T>(l: cullproof::locate::Located<T>) -> cullproof::locate::Located<T> {
+pub fn noted<T>(l: crate::gate::locate::Located<T>) -> crate::gate::locate::Located<T> {
     if let Some(n) = &l.note {
         eprintln!("{n}");
     }
@@ -23,29 +22,25 @@ pub fn noted<T>(l: cullproof::locate::Located<T>) -> cullproof::locate::Located<
 
 /// Is a method id known (built in or plugged)?
 pub fn known(id: &str) -> bool {
-    cullproof::bounds::by_id(id).is_some()
+    crate::bounds::by_id(id).is_some()
 }
 
 /// The expectations (required: an error says `why` when the file is missing).
-pub fn expectations_for(
-    given: &Option<PathBuf>,
-    in_checkout: bool,
-    why: &str,
-) -> Result<cullproof::check::Expectations> {
-    let ex = cullproof::locate::expectations(given.as_deref(), Some(why), in_checkout, &BUILT_IN, &known)?;
+pub fn expectations_for(given: &Option<PathBuf>, in_checkout: bool, why: &str) -> Result<crate::gate::Expectations> {
+    let ex = crate::gate::locate::expectations(given.as_deref(), Some(why), in_checkout, super::built_in(), &known)?;
     Ok(noted(ex.expect("required expectations are loaded or an error")).value)
 }
 
 /// The baseline compared with, and the file `--write-baseline` writes.
-pub fn baseline_for(given: &Option<PathBuf>, in_checkout: bool) -> Result<cullproof::locate::Baseline> {
-    Ok(noted(cullproof::locate::baseline(given.as_deref(), in_checkout, &BUILT_IN)?).value)
+pub fn baseline_for(given: &Option<PathBuf>, in_checkout: bool) -> Result<crate::gate::locate::Baseline> {
+    Ok(noted(crate::gate::locate::baseline(given.as_deref(), in_checkout, super::built_in())?).value)
 }
 
 /// The regimes of `--regime` (`all`: every one).
-pub fn parse_regimes(name: &str) -> Result<Vec<cullproof::gen::Regime>> {
-    Ok(match cullproof::args::regime(name)? {
+pub fn parse_regimes(name: &str) -> Result<Vec<crate::cases::generate::Regime>> {
+    Ok(match crate::cli::args::regime(name)? {
         Some(r) => vec![r],
-        None => cullproof::gen::Regime::ALL.to_vec(),
+        None => crate::cases::generate::Regime::ALL.to_vec(),
     })
 }
 
@@ -56,14 +51,14 @@ pub fn write_json(path: &std::path::Path, text: &str) -> Result<()> {
         println!("{text}");
         Ok(())
     } else {
-        cullproof::output::write(path, text)
+        crate::io::output::write(path, text)
     }
 }
 
-/// Check a `--json` path before any work (see [`cullproof::output`]).
+/// Check a `--json` path before any work (see [`crate::io::output`]).
 pub fn check_json(json: &Option<PathBuf>) -> Result<()> {
     match json {
-        Some(p) => cullproof::output::file_or_stdout("--json", p),
+        Some(p) => crate::io::output::file_or_stdout("--json", p),
         None => Ok(()),
     }
 }
@@ -71,7 +66,7 @@ pub fn check_json(json: &Option<PathBuf>) -> Result<()> {
 /// Check a `--junit` path (and its witness directory) before any work.
 pub fn check_junit(junit: &Option<PathBuf>) -> Result<()> {
     match junit {
-        Some(p) => cullproof::junit::check_path(p),
+        Some(p) => crate::gate::junit::check_path(p),
         None => Ok(()),
     }
 }
@@ -92,7 +87,7 @@ pub fn loader_flags(plugins: &[PathBuf], execs: &[String]) -> String {
 
 /// One line per plugin that broke the contract of include/cullproof.h during the run.
 pub fn report_breaches() {
-    for b in cullproof::plugin::breaches().iter().filter(|b| b.answers > 0) {
+    for b in crate::external::plugin::breaches().iter().filter(|b| b.answers > 0) {
         eprintln!("warning: {}", b.line());
     }
 }
@@ -106,7 +101,7 @@ pub fn exit(code: i32) -> ! {
 /// The end of `check` and `merge`: the report's JSON and JUnit files (each when asked
 /// for), then exit 1 when a row failed.
 pub fn finish_report(
-    r: &cullproof::check::CheckReport,
+    r: &crate::gate::CheckReport,
     json: &Option<PathBuf>,
     junit: &Option<PathBuf>,
     loaders: &str,
@@ -115,7 +110,7 @@ pub fn finish_report(
         write_json(p, &serde_json::to_string_pretty(r)?)?;
     }
     if let Some(p) = junit {
-        cullproof::junit::write(r, p, loaders)?;
+        crate::gate::junit::write(r, p, loaders)?;
     }
     if r.failed() {
         exit(1);

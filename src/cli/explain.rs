@@ -11,14 +11,14 @@ pub struct ExplainArgs {
     /// file), looked up under the corpus's cases/ (see --corpus).
     case: PathBuf,
     #[command(flatten)]
-    corpus: cullproof::args::CorpusFlag,
+    corpus: crate::cli::args::CorpusFlag,
     /// Write the picture here (refuses to overwrite an existing file).
     #[arg(long)]
     svg: Option<PathBuf>,
     /// Flags given here explain the case under another sample set, snap or viewport
     /// than the one the file records.
     #[command(flatten)]
-    sample: cullproof::args::SampleFlags,
+    sample: crate::cli::args::SampleFlags,
 }
 
 /// Run `cullproof explain`.
@@ -30,17 +30,17 @@ pub fn run(args: ExplainArgs) -> Result<()> {
             "--svg {}: the file exists (an existing file is never overwritten)",
             out.display()
         );
-        cullproof::output::file("--svg", out)?;
+        crate::io::output::file("--svg", out)?;
     }
-    let case = cullproof::locate::case_path(&case, &corpus.dir(cullproof::locate::in_checkout())?)?;
-    let mut cf = cullproof::corpus::CaseFile::load(&case)?;
+    let case = crate::gate::locate::case_path(&case, &corpus.dir(crate::gate::locate::in_checkout())?)?;
+    let mut cf = crate::search::CaseFile::load(&case)?;
     let over = sample.parse()?;
     cf.samples = over.samples.unwrap_or(cf.samples);
     cf.snap = over.snap.or(cf.snap);
     cf.viewport = over.viewport.or(cf.viewport);
-    print!("{}", cullproof::corpus::describe(&cf));
+    print!("{}", crate::search::describe(&cf));
     if let Some(out) = &svg {
-        let m = cullproof::corpus::method_of(&cf.method).expect("checked at load");
+        let m = crate::search::method_of(&cf.method).expect("checked at load");
         let w = cf.witness.as_ref().map(|w| w.sample).unwrap_or_else(|| {
             let (x, y) = cf.tile.center();
             [x as f64, y as f64, 0.0, 0.0, 0.5]
@@ -50,10 +50,10 @@ pub fn run(args: ExplainArgs) -> Result<()> {
             None => "no witness".into(),
         };
         // Under snapping the picture is of the snapped triangle the method saw.
-        let (seen, _) = cullproof::check::samples::judged_triangles(cf.snap, &cf.case)
+        let (seen, _) = crate::cases::place::judged_triangles(cf.snap, &cf.case)
             .map_err(|e| anyhow::anyhow!("{}: {e}", case.display()))?;
-        let shown = if cf.snap.is_some() { cullproof::Case { triangle: seen, lens: None } } else { cf.case };
-        let text = cullproof::explain::svg(&shown, &cf.tile, m, w, &caption)?;
+        let shown = if cf.snap.is_some() { crate::Case { triangle: seen, lens: None } } else { cf.case };
+        let text = crate::search::explain::svg(&shown, &cf.tile, m, w, &caption)?;
         let mut f = std::fs::OpenOptions::new().write(true).create_new(true).open(out).with_context(|| {
             format!("--svg {}: cannot create (an existing file is never overwritten)", out.display())
         })?;

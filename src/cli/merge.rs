@@ -31,14 +31,14 @@ pub struct MergeArgs {
 /// Run `cullproof merge`.
 pub fn run(args: MergeArgs, loaders: &str) -> Result<()> {
     let MergeArgs { reports, expectations, baseline, json, junit } = args;
-    use cullproof::check::{baseline::BaselineFile, merge, Expectations};
+    use crate::gate::{baseline::BaselineFile, merge, Expectations};
     check_json(&json)?;
     check_junit(&junit)?;
-    let in_checkout = cullproof::locate::in_checkout();
+    let in_checkout = crate::gate::locate::in_checkout();
     let ex: Expectations = expectations_for(&expectations, in_checkout, "the expectations file is required")?;
     let base: Option<BaselineFile> = baseline_for(&baseline, in_checkout)?.file;
     let shards = reports.iter().map(|p| Ok((p.clone(), merge::load_report(p)?))).collect::<Result<Vec<_>>>()?;
     let r = merge::merge(shards, &ex, base.as_ref())?;
-    print!("{}", cullproof::check::render(&r));
+    print!("{}", crate::gate::render(&r));
     finish_report(&r, &json, &junit, loaders)
 }

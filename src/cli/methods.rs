@@ -13,11 +13,11 @@ pub struct MethodsArgs {
 /// Run `cullproof methods`.
 pub fn run(args: MethodsArgs) -> Result<()> {
     let MethodsArgs { json } = args;
-    let ms: Vec<_> = cullproof::bounds::registry().iter().map(|m| *m.info()).collect();
+    let ms: Vec<_> = crate::bounds::registry().iter().map(|m| *m.info()).collect();
     if json {
         println!("{}", serde_json::to_string_pretty(&ms)?);
     } else {
-        print!("{}", cullproof::bounds::render_methods(&ms));
+        print!("{}", crate::bounds::render_methods(&ms));
     }
     Ok(())
 }

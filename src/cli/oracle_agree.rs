@@ -25,13 +25,13 @@ pub struct OracleAgreeArgs {
 /// Run `cullproof oracle-agree`.
 pub fn run(args: OracleAgreeArgs) -> Result<()> {
     let OracleAgreeArgs { samples, seed, json, jobs } = args;
-    cullproof::args::count("--samples", samples, cullproof::args::AGREE_MAX_SAMPLES, "samples")?;
+    crate::cli::args::count("--samples", samples, crate::cli::args::AGREE_MAX_SAMPLES, "samples")?;
     check_json(&json)?;
     set_jobs(jobs)?;
-    let r = cullproof::agree::run(seed, samples, json.is_none());
+    let r = crate::judge::agree::run(seed, samples, json.is_none());
     match &json {
         Some(p) => write_json(p, &serde_json::to_string_pretty(&r)?)?,
-        None => print!("{}", cullproof::agree::render(&r)),
+        None => print!("{}", crate::judge::agree::render(&r)),
     }
     if r.total.unsettled > 0 {
         exit(1);

@@ -38,18 +38,18 @@ pub struct PowerArgs {
 pub fn run(args: PowerArgs) -> Result<()> {
     let PowerArgs { method, cases, seed, expectations, baseline, json, jobs } = args;
     set_jobs(jobs)?;
-    let methods = cullproof::args::methods("--method", &method, false)?;
-    let cases = cullproof::args::count("--cases", cases, 1_000_000, "cases")?;
+    let methods = crate::cli::args::methods("--method", &method, false)?;
+    let cases = crate::cli::args::count("--cases", cases, 1_000_000, "cases")?;
     check_json(&json)?;
-    let in_checkout = cullproof::locate::in_checkout();
+    let in_checkout = crate::gate::locate::in_checkout();
     let ex = expectations_for(&expectations, in_checkout, "the expectations file is required")?;
     let base = baseline_for(&baseline, in_checkout)?.file;
-    let mut cfg = cullproof::check::CheckConfig::default_with(methods);
+    let mut cfg = crate::gate::CheckConfig::default_with(methods);
     cfg.cases = cases;
     cfg.seed = seed;
-    let slips = cullproof::bounds::broken::KINDS;
-    let r = cullproof::check::power::run(&cfg, &ex, base.as_ref(), &slips, true);
-    print!("{}", cullproof::check::power::render(&r, &slips));
+    let slips = crate::bounds::broken::KINDS;
+    let r = crate::gate::power::run(&cfg, &ex, base.as_ref(), &slips, true);
+    print!("{}", crate::gate::power::render(&r, &slips));
     if let Some(p) = &json {
         write_json(p, &serde_json::to_string_pretty(&r)?)?;
     }

@@ -18,8 +18,8 @@ pub struct ProveArgs {
     /// How the queries are made: `concolic` (many small queries, some inputs fixed
     /// to values drawn for the seed, the rest free) or `whole` (one query per side
     /// and range set, every input free).
-    #[arg(long, value_enum, default_value_t = cullproof::symbolic::prove::Strategy::Concolic)]
-    strategy: cullproof::symbolic::prove::Strategy,
+    #[arg(long, value_enum, default_value_t = crate::tools::symbolic::prove::Strategy::Concolic)]
+    strategy: crate::tools::symbolic::prove::Strategy,
     /// Seed of the concolic plan (the report for a seed does not depend on --jobs).
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -28,7 +28,7 @@ pub struct ProveArgs {
     queries: usize,
     /// Share of concolic queries that leave one triangle input free (0 to 1; the
     /// others fix the triangle and leave the tile to the solver).
-    #[arg(long, default_value_t = cullproof::symbolic::prove::DEFAULT_FREE_SHARE)]
+    #[arg(long, default_value_t = crate::tools::symbolic::prove::DEFAULT_FREE_SHARE)]
     free_share: f64,
     /// Wall-clock seconds per query (z3's limit; 1 to 3600). A query that hits it is
     /// reported as a timeout (machine-dependent).
@@ -56,7 +56,7 @@ pub struct ProveArgs {
     #[arg(long)]
     out: Option<PathBuf>,
     #[command(flatten)]
-    corpus: cullproof::args::CorpusFlag,
+    corpus: crate::cli::args::CorpusFlag,
     /// Do not write case files (report only).
     #[arg(long)]
     dry_run: bool,
@@ -100,16 +100,16 @@ pub fn run(args: ProveArgs) -> Result<()> {
     check_json(&json)?;
     let (out_flag, out) = match out {
         Some(o) => ("--out", o),
-        None => ("--corpus", corpus.dir(cullproof::locate::in_checkout())?.join("cases")),
+        None => ("--corpus", corpus.dir(crate::gate::locate::in_checkout())?.join("cases")),
     };
     if !dry_run {
-        cullproof::output::dir(out_flag, &out)?;
+        crate::io::output::dir(out_flag, &out)?;
     }
     if let Some(d) = &emit_smt {
-        cullproof::output::dir("--emit-smt", d)?;
+        crate::io::output::dir("--emit-smt", d)?;
     }
-    let m = cullproof::args::method("--method", &method, true)?;
-    use cullproof::symbolic::{family, prove};
+    let m = crate::cli::args::method("--method", &method, true)?;
+    use crate::tools::symbolic::{family, prove};
     let fam = prove::family(m.info().id)?;
     let given = ranges.as_deref().map(|r| family::parse_ranges(fam.as_ref(), "--ranges", r)).transpose()?;
     let sets = prove::range_sets(fam.as_ref(), given);
@@ -120,9 +120,9 @@ pub fn run(args: ProveArgs) -> Result<()> {
         (None, prove::Strategy::Concolic) => Some(prove::DEFAULT_RLIMIT),
     };
     let solvers = match (solvers.as_deref(), strategy) {
-        (Some(s), _) => cullproof::symbolic::solver::Solvers::parse("--solvers", s)?,
-        (None, prove::Strategy::Concolic) => cullproof::symbolic::solver::Solvers::Z3,
-        (None, prove::Strategy::Whole) => cullproof::symbolic::solver::Solvers::BOTH,
+        (Some(s), _) => crate::tools::symbolic::solver::Solvers::parse("--solvers", s)?,
+        (None, prove::Strategy::Concolic) => crate::tools::symbolic::solver::Solvers::Z3,
+        (None, prove::Strategy::Whole) => crate::tools::symbolic::solver::Solvers::BOTH,
     };
     let limits = prove::Limits { timeout, rlimit, jobs, solvers };
     let r =

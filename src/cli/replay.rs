@@ -11,7 +11,7 @@ pub struct ReplayArgs {
     /// Case files or directories (default: the corpus's cases/).
     paths: Vec<PathBuf>,
     #[command(flatten)]
-    corpus: cullproof::args::CorpusFlag,
+    corpus: crate::cli::args::CorpusFlag,
     /// Re-judge every file's case against this method instead of the one the file
     /// was written for (e.g. a fixed bound): one line per file, "fixed" (proven,
     /// the stored witness no longer culled), "still violated" or "unproven"; exit 1
@@ -24,7 +24,7 @@ pub struct ReplayArgs {
     /// Flags given here judge the files under another sample set, snap or viewport
     /// than the one each file records.
     #[command(flatten)]
-    sample: cullproof::args::SampleFlags,
+    sample: crate::cli::args::SampleFlags,
 }
 
 /// Run `cullproof replay`.
@@ -33,7 +33,7 @@ pub fn run(args: ReplayArgs) -> Result<()> {
     let over = sample.parse()?;
     check_json(&json)?;
     let paths = if paths.is_empty() {
-        let cases = corpus.dir(cullproof::locate::in_checkout())?.join("cases");
+        let cases = corpus.dir(crate::gate::locate::in_checkout())?.join("cases");
         anyhow::ensure!(
             cases.is_dir(),
             "{}: no such directory, so no case files to replay (`search` writes them there; pass case \
@@ -44,16 +44,16 @@ pub fn run(args: ReplayArgs) -> Result<()> {
     } else {
         paths
     };
-    let files = cullproof::corpus::case_files(&paths)?;
-    let cfg = cullproof::check::CheckConfig::default_with(cullproof::bounds::registry());
+    let files = crate::search::case_files(&paths)?;
+    let cfg = crate::gate::CheckConfig::default_with(crate::bounds::registry());
     if let Some(id) = method {
         anyhow::ensure!(
-            cullproof::corpus::method_of(&id).is_some(),
+            crate::search::method_of(&id).is_some(),
             "--method {id}: no such method (see `cullproof methods`)"
         );
         let mut out = Vec::new();
         for f in &files {
-            out.push(cullproof::corpus::rejudge(f, &cfg, &over, &id)?);
+            out.push(crate::search::rejudge(f, &cfg, &over, &id)?);
         }
         for r in &out {
             let w = match &r.witness {
@@ -75,7 +75,7 @@ pub fn run(args: ReplayArgs) -> Result<()> {
     }
     let mut out = Vec::new();
     for f in &files {
-        out.push(cullproof::corpus::replay_with(f, &cfg, &over)?);
+        out.push(crate::search::replay_with(f, &cfg, &over)?);
     }
     let bad = out.iter().filter(|r| !r.ok).count();
     for r in &out {

@@ -2,7 +2,6 @@
 //! written as a case file (`--gate`: held against the method's expected signature).
 
 use super::common::{check_json, known, noted, parse_regimes, set_jobs, write_json};
-use crate::BUILT_IN;
 use anyhow::Result;
 use std::path::PathBuf;
 
@@ -38,7 +37,7 @@ pub struct SearchArgs {
     #[arg(long)]
     out: Option<PathBuf>,
     #[command(flatten)]
-    corpus: cullproof::args::CorpusFlag,
+    corpus: crate::cli::args::CorpusFlag,
     /// Do not write case files (report only).
     #[arg(long)]
     dry_run: bool,
@@ -49,7 +48,7 @@ pub struct SearchArgs {
     #[arg(long)]
     jobs: Option<usize>,
     #[command(flatten)]
-    sample: cullproof::args::SampleFlags,
+    sample: crate::cli::args::SampleFlags,
     /// Hold each violation against the method's expected signature and report only
     /// those beyond it; exit 1 when there is one.
     #[arg(long)]
@@ -80,9 +79,9 @@ pub fn run(args: SearchArgs) -> Result<()> {
         gate,
         expectations,
     } = args;
-    use cullproof::args;
+    use crate::cli::args;
     let m = args::method("--method", &method, true)?;
-    let mut cfg = cullproof::check::CheckConfig::default_with(vec![m]);
+    let mut cfg = crate::gate::CheckConfig::default_with(vec![m]);
     sample.parse()?.apply(&mut cfg);
     cfg.regimes = parse_regimes(&regime)?;
     if let Some(t) = tile {
@@ -92,22 +91,27 @@ pub fn run(args: SearchArgs) -> Result<()> {
     args::count("--max", max as u64, u64::MAX, "violation to stop at")?;
     args::margin("--min-margin", min_margin)?;
     check_json(&json)?;
-    let in_checkout = cullproof::locate::in_checkout();
+    let in_checkout = crate::gate::locate::in_checkout();
     let (out_flag, out) = match out {
         Some(o) => ("--out", o),
         None => ("--corpus", corpus.dir(in_checkout)?.join("cases")),
     };
     if !dry_run {
-        cullproof::output::dir(out_flag, &out)?;
+        crate::io::output::dir(out_flag, &out)?;
     }
     set_jobs(jobs)?;
     let why = "the expectations file is required with --gate";
-    let ex =
-        cullproof::locate::expectations(expectations.as_deref(), gate.then_some(why), in_checkout, &BUILT_IN, &known)?
-            .map(noted);
+    let ex = crate::gate::locate::expectations(
+        expectations.as_deref(),
+        gate.then_some(why),
+        in_checkout,
+        super::built_in(),
+        &known,
+    )?
+    .map(noted);
     cfg.seed = seed;
     cfg.tile = tile;
-    let opts = cullproof::corpus::SearchOptions {
+    let opts = crate::search::SearchOptions {
         seconds: time,
         max_found: max,
         min_margin,
@@ -116,8 +120,8 @@ pub fn run(args: SearchArgs) -> Result<()> {
         expectations: ex.as_ref().map(|e| (&e.value, e.name.as_str())),
         gate,
     };
-    let r = cullproof::corpus::search_with(&cfg, cullproof::bounds::shared(m), &opts)?;
-    print!("{}", cullproof::corpus::render_search(&r));
+    let r = crate::search::search_with(&cfg, crate::bounds::shared(m), &opts)?;
+    print!("{}", crate::search::render_search(&r));
     if let Some(p) = &json {
         write_json(p, &serde_json::to_string_pretty(&r)?)?;
     }

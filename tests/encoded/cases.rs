@@ -4,7 +4,7 @@
 //! touching 0) and the same with a NaN, an infinity or a signed zero planted in one
 //! number of the triangle or the tile.
 
-pub use cullproof::gen::bit_compare_case as case;
+pub use cullproof::cases::generate::bit_compare_case as case;
 
 /// The answer of a tile test bit for bit: every interval end's bits and every
 /// constraint's debug form (which prints each f32 so that it reads back to the same

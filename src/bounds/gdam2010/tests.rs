@@ -236,13 +236,13 @@ fn safe_spans_are_their_old_code_bit_for_bit() {
     let (mut n_all, mut partial, mut split, mut fixed) = (0, 0, 0, [0, 0]);
     let mut fp = super::super::testkit::Fingerprint::new();
     for n in 0..20_000 {
-        let (mut tri, tiles) = crate::gen::bit_compare_case(91, n);
+        let (mut tri, tiles) = crate::cases::generate::bit_compare_case(91, n);
         if n % 2 == 1 {
             // A triangle that does not move (the fast path of `spans_at`).
             (tri.r, tri.c1) = (tri.q, tri.c0);
         }
         let s = SafeTimeSpans::new(&tri);
-        let mut rng = crate::gen::rng_for(92, n as u64);
+        let mut rng = crate::cases::generate::rng_for(92, n as u64);
         for tile in &tiles {
             for k in 0..4 {
                 let (fx, fy): (f32, f32) = (rng.gen(), rng.gen());
@@ -458,7 +458,7 @@ fn safe_keeps_the_corpus_witnesses() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/cases/gdam2010");
     let mut n = 0;
     for f in std::fs::read_dir(dir).unwrap() {
-        let cf = crate::corpus::CaseFile::load(&f.unwrap().path()).unwrap();
+        let cf = crate::search::CaseFile::load(&f.unwrap().path()).unwrap();
         let tri = cf.case.triangle;
         let w = cf.witness.expect("a violation case has a witness").sample;
         let s = Sample::new(w[0] as f32, w[1] as f32, w[2] as f32, w[3] as f32, w[4] as f32);

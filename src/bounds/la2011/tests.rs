@@ -150,11 +150,11 @@ fn safe_admits_every_corpus_witness_of_la2011() {
         if path.extension().is_none_or(|e| e != "json") {
             continue;
         }
-        let cf = crate::corpus::CaseFile::load(&path).unwrap();
+        let cf = crate::search::CaseFile::load(&path).unwrap();
         let Some(w) = &cf.witness else { continue };
-        let holds = crate::corpus::witness_holds(METHOD, &cf.case, &cf.tile, w.sample);
+        let holds = crate::search::witness_holds(METHOD, &cf.case, &cf.tile, w.sample);
         assert!(holds.is_ok(), "{}: la2011 no longer violates: {holds:?}", path.display());
-        let safe_holds = crate::corpus::witness_holds(METHOD_SAFE, &cf.case, &cf.tile, w.sample);
+        let safe_holds = crate::search::witness_holds(METHOD_SAFE, &cf.case, &cf.tile, w.sample);
         assert_eq!(safe_holds, Err("the method admits the witness".into()), "{}", path.display());
         let p = METHOD_SAFE.setup(&cf.case.triangle);
         assert_keeps_covered(p.as_ref(), &cf.case.triangle, &cf.tile, (2000, 300), 500 + n, "la2011-safe");
@@ -163,7 +163,7 @@ fn safe_admits_every_corpus_witness_of_la2011() {
     assert!(n >= 8, "only {n} witnesses");
     // The far-from-origin case (static, in focus, ~1e6 px): la2011 culls the tile.
     let far = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/cases/la2011/a07b6967125ee645.json");
-    let cf = crate::corpus::CaseFile::load(&far).unwrap();
+    let cf = crate::search::CaseFile::load(&far).unwrap();
     assert!(bounds(&cf.case.triangle, &cf.tile).is_none());
     assert!(safe(&cf.case.triangle, &cf.tile).is_some());
 }

@@ -6,7 +6,7 @@
 
 use super::*;
 use crate::bounds::grid_tests::boundaries;
-use crate::gen::{bit_compare_case, rng_for};
+use crate::cases::generate::{bit_compare_case, rng_for};
 use rand::Rng;
 
 /// How often each path was taken: `[x axis Empty, x without corners and y Empty, x

@@ -434,10 +434,10 @@ fn safe_keeps_covered_samples_of_the_stored_lb2011_cases() {
         if path.extension().and_then(|e| e.to_str()) != Some("json") {
             continue;
         }
-        let cf = crate::corpus::CaseFile::load(&path).unwrap();
+        let cf = crate::search::CaseFile::load(&path).unwrap();
         let w = cf.witness.as_ref().expect("a violation case has a witness");
-        assert!(crate::corpus::witness_holds(METHOD, &cf.case, &cf.tile, w.sample).is_ok(), "{path:?}");
-        let r = crate::corpus::witness_holds(METHOD_SAFE, &cf.case, &cf.tile, w.sample);
+        assert!(crate::search::witness_holds(METHOD, &cf.case, &cf.tile, w.sample).is_ok(), "{path:?}");
+        let r = crate::search::witness_holds(METHOD_SAFE, &cf.case, &cf.tile, w.sample);
         assert!(r.is_err(), "{path:?}: lb2011-safe still culls the witness: {r:?}");
         let tri = &cf.case.triangle;
         assert_spot(METHOD_SAFE, tri, &cf.tile, 4000, 77);

@@ -345,11 +345,11 @@ fn near_w0() -> (Triangle, Tile) {
 
 /// The gate's judge on one case: (original, safe) verdicts.
 fn judge_both(case: &crate::model::Case, tile: &Tile) -> (Verdict, Verdict) {
-    let cfg = crate::check::CheckConfig::default_with(vec![]);
-    let (js, _) = crate::check::judge(&cfg, &crate::bounds::shared_all([METHOD, METHOD_SAFE]), case, tile, 1);
+    let cfg = crate::gate::CheckConfig::default_with(vec![]);
+    let (js, _) = crate::gate::judge(&cfg, &crate::bounds::shared_all([METHOD, METHOD_SAFE]), case, tile, 1);
     (js[0].verdict(), js[1].verdict())
 }
-use crate::check::Verdict;
+use crate::judge::Verdict;
 
 /// Every stored counterexample of mam2012 (f32 rounding at tile corners, far from
 /// the origin) is certified conservative for mam2012-safe by the gate's judge.
@@ -359,7 +359,7 @@ fn safe_is_proven_on_the_stored_counterexamples() {
     let mut n = 0;
     for e in std::fs::read_dir(dir).unwrap() {
         let path = e.unwrap().path();
-        let cf = crate::corpus::CaseFile::load(&path).unwrap();
+        let cf = crate::search::CaseFile::load(&path).unwrap();
         let (orig, safe) = judge_both(&cf.case, &cf.tile);
         assert_eq!(orig, Verdict::Violated, "{}", path.display());
         assert_eq!(safe, Verdict::Proven, "{}", path.display());
@@ -614,7 +614,7 @@ fn safe_tile_is_its_old_code_bit_for_bit() {
     let (mut culled, mut kept, mut lines) = (0, 0, 0);
     let mut fp = super::super::testkit::Fingerprint::new();
     for n in 0..20_000usize {
-        let (tri, tiles) = crate::gen::bit_compare_case(0x03a3_2012, n);
+        let (tri, tiles) = crate::cases::generate::bit_compare_case(0x03a3_2012, n);
         let p = METHOD_SAFE.setup(&tri);
         for tile in &tiles {
             let new = p.tile(tile);

@@ -8,7 +8,7 @@
 use super::safe::*;
 use super::*;
 use crate::bounds::grid_tests::boundaries;
-use crate::gen::{bit_compare_case, rng_for};
+use crate::cases::generate::{bit_compare_case, rng_for};
 
 /// How often each path was taken: `[an edge without a finite plane on this tile while
 /// another edge has one, Empty, the full domain for a tile that is not a finite ordered

@@ -248,7 +248,7 @@ fn degenerate_and_huge_input_is_answered_in_the_domain() {
 /// it).
 #[test]
 fn safe_keeps_the_stored_witnesses() {
-    use crate::corpus::{witness_holds, CaseFile};
+    use crate::search::{witness_holds, CaseFile};
     let mut n = 0;
     for (dir, orig, safe) in
         [("mam2012-hyperplane", METHOD, METHOD_SAFE), ("mam2012-hyperplane-ps", METHOD_PS, METHOD_PS_SAFE)]
@@ -416,7 +416,7 @@ fn safe_tile_is_its_old_code_bit_for_bit() {
     let (mut n, mut kept, mut empty) = (0, 0, 0);
     let mut fp = super::super::testkit::Fingerprint::new();
     for c in 0..20_000 {
-        let (tri, tiles) = crate::gen::bit_compare_case(61, c);
+        let (tri, tiles) = crate::cases::generate::bit_compare_case(61, c);
         for per_sample in [false, true] {
             let Ok(s) = setup_safe(&tri) else { continue };
             let p = SafePrep { s: Ok(s), k: tri.k, per_sample };

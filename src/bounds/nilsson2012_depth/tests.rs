@@ -235,7 +235,7 @@ fn safe_keeps_the_corpus_witnesses() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/cases/nilsson2012-depth");
     let mut n = 0;
     for f in std::fs::read_dir(dir).unwrap() {
-        let cf = crate::corpus::CaseFile::load(&f.unwrap().path()).unwrap();
+        let cf = crate::search::CaseFile::load(&f.unwrap().path()).unwrap();
         let (tri, tile) = (cf.case.triangle, cf.tile);
         let w = cf.witness.expect("a violation case has a witness").sample;
         let o = tri.to_oracle();

@@ -12,17 +12,14 @@
 //! - `wu2013_safe.g`: Gappa, `wu2013-safe`'s line pad against the error of the line's
 //!   per-sample evaluation.
 //!
-//! - [`crate::proofs::composition`] (with the command, built on the symbolic search):
+//! - [`crate::tools::proofs::composition`] (with the command, built on the symbolic search):
 //!   for `la2011-safe`, the composition over the method's own f32 code, as SMT queries
 //!   on a template's ranges.
 //!
 //! [`VARIANTS`] declares, per variant, the input ranges, the scripts, and the code
-//! facts the scripts assume; [`check`] compares the scripts' constants and formulas with
-//! the code, [`run`] runs a script with its tool. `cullproof proofs`
-//! ([`crate::proofs::cli`]) and `tests/proofs.rs` run them all.
-
-pub mod check;
-pub mod run;
+//! facts the scripts assume; [`crate::tools::proofs::check`] compares the scripts' constants and formulas with
+//! the code, [`crate::tools::proofs::run`] runs a script with its tool. `cullproof proofs`
+//! ([`crate::cli::proofs`]) and `tests/proofs.rs` run them all.
 
 use serde::Serialize;
 
@@ -152,7 +149,7 @@ pub struct Range {
 }
 
 /// How much of a proof for all inputs a machine checks (see
-/// [`crate::check::strength`]).
+/// [`crate::gate::strength`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Level {

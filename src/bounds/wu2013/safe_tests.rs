@@ -18,7 +18,7 @@ fn safe_bounds(tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
 /// variant: the original's violations are gone.
 #[test]
 fn safe_admits_the_corpus_witnesses() {
-    use crate::corpus::{witness_holds, CaseFile};
+    use crate::search::{witness_holds, CaseFile};
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/cases/wu2013");
     let mut n = 0;
     for e in std::fs::read_dir(&dir).unwrap() {
@@ -284,7 +284,7 @@ fn safe_is_its_old_code_bit_for_bit() {
     let (mut tiles, mut culled, mut lines, mut narrowed) = (0usize, 0usize, 0usize, 0usize);
     let mut fp = super::super::testkit::Fingerprint::new();
     for n in 0..30_000usize {
-        let (tri, ts) = crate::gen::bit_compare_case(0x05af_e01d, n);
+        let (tri, ts) = crate::cases::generate::bit_compare_case(0x05af_e01d, n);
         let p = METHOD_SAFE.setup(&tri);
         for tile in &ts {
             let new = answer_bits(&p.tile(tile));

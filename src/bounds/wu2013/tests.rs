@@ -436,7 +436,7 @@ fn degenerate_and_huge_input_is_answered_in_the_domain() {
 /// at once.
 #[test]
 fn stage1_keeps_covered_samples_at_the_lens_edge() {
-    use crate::gen::{physical_case, rng_for, Regime};
+    use crate::cases::generate::{physical_case, rng_for, Regime};
     let mut rng = ChaCha8Rng::seed_from_u64(0x1e25_ed9e);
     let mut tris = Vec::new();
     // Static, defocused (stage 2 off), one CoC sign.

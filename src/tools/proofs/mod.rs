@@ -1,0 +1,13 @@
+//! `cullproof proofs`: the tool that re-runs the proofs for all inputs. What is proven,
+//! by which scripts, and the checks that tie the scripts to the code are declared with
+//! the bounds ([`crate::bounds::proofs`]); this module runs them and adds the one
+//! obligation that needs the symbolic search.
+//!
+//! - [`check`], [`run`]: the checks that tie the scripts to the code, and a script run
+//!   with its tool (the command: [`crate::cli::proofs`]).
+//! - [`composition`]: for `la2011-safe`, the composition over the method's own f32
+//!   code, as SMT queries on a template's ranges.
+
+pub mod check;
+pub mod composition;
+pub mod run;
