@@ -1,4 +1,4 @@
-//! The proofs for all inputs (`src/bounds/proofs/`, run by `src/proofs/`): every z3 and
+//! The proofs for all inputs (`src/bounds/proofs/`, run by `src/tools/proofs/`): every z3 and
 //! gappa script is re-run and must be proven, the scripts must match the code
 //! (constants, bbox-safe's formula, the step primitives), and a changed constant or a
 //! false lemma must fail, so that a passing run means something. Needs `z3` and `gappa`

@@ -122,7 +122,7 @@ enum Cmd {
     /// and a time limit each (by default many small ones: a triangle drawn for the seed,
     /// the tile left to the solver), for f32 inputs in stated ranges where the method
     /// culls a tile that the exact footprint reaches (the method's own f32 code, encoded bit for bit; see
-    /// src/symbolic/). Every model becomes a case judged exactly: a confirmed violation
+    /// src/tools/symbolic/). Every model becomes a case judged exactly: a confirmed violation
     /// is shrunk and written to DIR/cases/<method>/<hash>.json of the corpus (--corpus;
     /// never overwriting);
     /// a model the judge does not confirm is reported as such. Methods with an

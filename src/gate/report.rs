@@ -39,7 +39,7 @@ pub struct CheckReport {
     pub samples: Option<super::settings::SetNote>,
     /// Per plugged method (`--plugin`) whose answers broke the contract of
     /// include/cullproof.h during the run: how many answers, of which kinds (each judged
-    /// as given, as `src/plugin/mod.rs` says; the verdicts are unchanged).
+    /// as given, as `src/external/plugin/mod.rs` says; the verdicts are unchanged).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub contract_breaches: Vec<crate::external::plugin::ContractBreaches>,
     /// The build that wrote the report and the expectations and baseline it used

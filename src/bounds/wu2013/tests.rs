@@ -417,7 +417,7 @@ fn degenerate_and_huge_input_is_answered_in_the_domain() {
 /// used (no vertex on or across the focal plane, stage 1 on). As the check is the whole
 /// tile answer (u, v, t intervals and the stage-2 line constraints, via `admits`),
 /// stage 2's assumption must hold too (all D_i of one sign): the triangles either do
-/// not move (stage 2 off; `gen::physical_case` of regime Defocus, filtered by the CoC
+/// not move (stage 2 off; `cases::generate::physical_case` of regime Defocus, filtered by the CoC
 /// sign) or are moved rigidly in camera space (every vertex has the same D).
 ///
 /// Tiles (0.5 .. 4 px) are placed at the vertex image that is extreme in x (u = -1

@@ -27,7 +27,7 @@
 //!   that), so the plain first failure often sits at the benign end; the gross one is
 //!   where a family's parameter breaks a method.
 //!
-//! Case `c` of step `s` draws everything from `gen::rng_for(seed ^ family salt,
+//! Case `c` of step `s` draws everything from `cases::generate::rng_for(seed ^ family salt,
 //! s * 1_000_000 + c)` (the judge's uniform samples from the same index, the STE
 //! samples from a stream of their own), and results are merged in case order: a run
 //! is identical at any thread count.

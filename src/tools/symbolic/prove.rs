@@ -299,7 +299,7 @@ fn run_one(
                         ("symbolic", qi as u64, format!("symbolic {side} {text}")),
                         steps,
                         format!(
-                            "{} model {inputs} of the {side} template (src/symbolic/), confirmed by the exact judge",
+                            "{} model {inputs} of the {side} template (src/tools/symbolic/), confirmed by the exact judge",
                             run.solver.name()
                         ),
                     ));
