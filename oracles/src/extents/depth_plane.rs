@@ -247,7 +247,18 @@ fn widest_slopes(tri: &Tri, xy: &[(f64, f64)], [u, v, t]: [f64; 3], z: f64, lowe
                     r
                 };
                 let (bi, bj, bk) = (rows[i].1, rows[j].1, rows[k].1);
-                let x: [f64; 3] = std::array::from_fn(|m| det(col(m, a, bi), col(m, b, bj), col(m, c, bk)) / d);
+                // The objective first: a vertex no higher than the best so far cannot
+                // replace it, so its feasibility need not be checked (the same vertex
+                // wins as with every check made).
+                let m = det(col(2, a, bi), col(2, b, bj), col(2, c, bk)) / d;
+                if !m.is_finite() || best.is_some_and(|(_, _, bm)| m <= bm) {
+                    continue;
+                }
+                let x: [f64; 3] = [
+                    det(col(0, a, bi), col(0, b, bj), col(0, c, bk)) / d,
+                    det(col(1, a, bi), col(1, b, bj), col(1, c, bk)) / d,
+                    m,
+                ];
                 if !x.iter().all(|v| v.is_finite()) {
                     continue;
                 }
@@ -255,7 +266,7 @@ fn widest_slopes(tri: &Tri, xy: &[(f64, f64)], [u, v, t]: [f64; 3], z: f64, lowe
                     let lhs = a[0] * x[0] + a[1] * x[1] + a[2] * x[2];
                     lhs >= b - 1e-9 * (b.abs() + (a[0] * x[0]).abs() + (a[1] * x[1]).abs() + x[2].abs())
                 });
-                if feasible && best.is_none_or(|(_, _, m)| x[2] > m) {
+                if feasible {
                     best = Some((x[0], x[1], x[2]));
                 }
             }
