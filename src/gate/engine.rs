@@ -1,4 +1,5 @@
-//! `check`: the conservativeness gate.
+//! The gate's run (what `cullproof check` does): cases x methods, judged, and each
+//! method x regime row held to its expectations.
 //!
 //! Every case is a physical (thin-lens) triangle of one regime. Every method is judged
 //! on a tile on the boundary of the footprint ([`crate::cases::make_case`]), and in turn each method
