@@ -39,29 +39,41 @@
 //!   ([`counterexamples::Search`]), re-judge a case file after a fix
 //!   ([`counterexamples::replay`]) and explain one ([`counterexamples::explain`]).
 //!
-//! The other modules serve the `cullproof` command line (the gate's judge, search,
-//! corpus, tightness, stability, plugins and the process protocol); they are public for
-//! the command and the tests, and not part of the library's stable surface.
+//! The other modules are the rest of the pipeline the `cullproof` command runs, one
+//! folder per layer in the order data flows (`io`, `model`, `bounds`, `external`,
+//! `cases`, `judge`, `gate`, `search`, `tools`, `cli`; `docs/layout.md`); they are public
+//! for the command and the tests, and not part of the library's stable surface.
 
 // The layers, each a folder, in the order data flows through them: a layer imports
-// only the layers above it in this list (`tests/layers.rs` checks it).
-pub mod bounds;
-#[doc(hidden)]
-pub mod cases;
-#[doc(hidden)]
-pub mod cli;
-#[doc(hidden)]
-pub mod external;
-pub mod gate;
+// only the layers before it (`tests/layers.rs` checks it; `docs/layout.md` says what each
+// holds).
+// 0: reading and writing.
 #[doc(hidden)]
 pub mod io;
+// 1: the model.
+pub mod model;
+// 2: the contract and the published methods.
+pub mod bounds;
+// 3: bounds from outside the crate (C plugins, other processes).
+#[doc(hidden)]
+pub mod external;
+// 4: where a case is made.
+#[doc(hidden)]
+pub mod cases;
+// 5: certified verdicts on one answer for one tile.
 #[doc(hidden)]
 pub mod judge;
-pub mod model;
+// 6: cases x methods, expectations, baseline, reports.
+pub mod gate;
+// 7: search, shrink, replay, explain.
 #[doc(hidden)]
 pub mod search;
+// 8: tightness, stability, symbolic search, proofs.
 #[doc(hidden)]
 pub mod tools;
+// 9: the command line.
+#[doc(hidden)]
+pub mod cli;
 
 pub use search::counterexamples;
 
