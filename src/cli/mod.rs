@@ -33,9 +33,10 @@ use std::sync::OnceLock;
 /// outside the checkout. Set once by [`main`].
 static BUILT_IN: OnceLock<BuiltIn> = OnceLock::new();
 
-/// The built-in expectations and baseline (empty before [`main`] sets them).
+/// The built-in expectations and baseline, as [`main`] set them. The commands run only
+/// under [`main`]; an empty default would silently stand for "no expectations".
 pub fn built_in() -> &'static BuiltIn {
-    BUILT_IN.get_or_init(|| BuiltIn { expectations: "", baseline: "" })
+    BUILT_IN.get().expect("cli::main sets the built-in expectations before any command runs")
 }
 
 #[derive(Parser)]
