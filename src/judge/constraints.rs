@@ -13,7 +13,10 @@
 //! samples are proposed inside the covered polygon. Boxes are taken most-culled first
 //! (the lowest constraint lower bound), so a violation surfaces early; in each, a few
 //! f32 samples are judged exactly (coverage by the exact oracle, the constraint by the
-//! method's own f32 evaluation). The search ends with a witness, with every box
+//! method's own f32 evaluation). An open box is split in the coordinate that blocks its
+//! cuts when one can be found (the widest whose collapse to its middle lets every cut
+//! be certified; each such trial counts against the budget), else in the widest that
+//! matters, favouring those that move the open coverage values. The search ends with a witness, with every box
 //! decided, with the rest at the smallest box size (counted as within the resolution),
 //! or at the budget (undecided, and said so).
 
@@ -75,6 +78,14 @@ struct ConstraintProblem<'a> {
     /// Coordinates coverage depends on.
     cover_dims: [bool; 5],
     boxes: u64,
+    /// Boxes that made trials to choose their split (see `visit`), and those whose
+    /// trials found the coordinate.
+    rounds: usize,
+    /// Whether trials have a budget of their own (`trials` of at most `budget`) instead
+    /// of counting as boxes: a claim's search (`search_with` splitting the pixels).
+    free_trials: bool,
+    trials: usize,
+    found: usize,
     small: bool,
     seed: u64,
     /// How the search ended early (a violation or the budget), if it did.
@@ -137,6 +148,16 @@ impl Problem for ConstraintProblem<'_> {
         if classify_values(&bv) == BoxClass::Empty || (all_cut && ok.iter().all(|&o| o)) {
             return Flow::Continue;
         }
+        // The sets of cuts that may decide the box (the first family of every culling
+        // constraint; for one constraint culling alone, each of its families), kept for
+        // choosing the split below. A search where those trials keep failing (a
+        // constraint that truly culls covered samples, say) stops making them: after 8
+        // failures, at least one box in four must have found its coordinate.
+        let trying = self.rounds < 8 + 4 * self.found;
+        let mut sets: Vec<Vec<Cut>> = Vec::new();
+        if all_cut && !cuts.is_empty() && trying {
+            sets.push(cuts.clone());
+        }
         // One constraint culling alone: its other families of cuts, each on its own.
         if let (1, Some(c)) = (culling, alone) {
             for family in 1..c.cut_families() {
@@ -146,6 +167,9 @@ impl Problem for ConstraintProblem<'_> {
                     box_values_cutting(tri, &b, &cuts, &mut ok);
                     if ok.iter().all(|&o| o) {
                         return Flow::Continue;
+                    }
+                    if trying {
+                        sets.push(cuts.clone());
                     }
                 }
             }
@@ -205,7 +229,43 @@ impl Problem for ConstraintProblem<'_> {
         let sm = bv.open_smear();
         let smax = sm.iter().cloned().fold(0.0, f64::max);
         let score: [f64; 5] = std::array::from_fn(|k| if smax > 0.0 { rel[k] * (0.01 + sm[k] / smax) } else { rel[k] });
-        let dim = (0..5).max_by(|&a, &c| score[a].partial_cmp(&score[c]).unwrap_or(Ordering::Equal)).unwrap();
+        let mut dim = (0..5).max_by(|&a, &c| score[a].partial_cmp(&score[c]).unwrap_or(Ordering::Equal)).unwrap();
+        // Where every culling constraint offers cuts, split the coordinate that blocks
+        // them: the widest one (relative to the tile and intervals) whose collapse to
+        // its middle lets every cut be certified. The coverage values' smear says where
+        // the covered set's boundary is, not which width the certificate cannot afford:
+        // near a contact between a cut and the covered set the certificate often
+        // depends on one or two coordinates only (a vertex's CoC weighted out of the
+        // lens coordinate, say), and splitting the others never decides the box. The
+        // choice only orders the work; the certificates decide.
+        if !sets.is_empty() {
+            let mut order: Vec<usize> = (0..5).filter(|&k| rel[k] > 0.0).collect();
+            order.sort_by(|&a, &c| rel[c].partial_cmp(&rel[a]).unwrap_or(Ordering::Equal));
+            let (boxes, trials, free) = (&mut self.boxes, &mut self.trials, self.free_trials);
+            if let Some(&k) = order.iter().find(|&&k| {
+                let mut c = b;
+                c[k] = Interval::point(b[k].mid());
+                sets.iter().any(|cuts| {
+                    // Each trial is a box's work: it counts as one against the budget,
+                    // or (a claim's search) against as many trials beside it.
+                    if free {
+                        if *trials >= self.budget {
+                            return false;
+                        }
+                        *trials += 1;
+                    } else {
+                        *boxes += 1;
+                    }
+                    let mut ok = vec![false; cuts.len()];
+                    box_values_cutting(tri, &c, cuts, &mut ok);
+                    ok.iter().all(|&o| o)
+                })
+            }) {
+                dim = k;
+                self.found += 1;
+            }
+            self.rounds += 1;
+        }
         if rel[dim] == 0.0 {
             self.small = true;
             return Flow::Continue;
@@ -273,6 +333,10 @@ pub fn search_with(
         min_width,
         cover_dims: [!xy_free, !xy_free, lens, lens, time],
         boxes: 0,
+        rounds: 0,
+        found: 0,
+        free_trials: split_pixels,
+        trials: 0,
         small: false,
         seed: 0x2545_F491_4F6C_DD1D,
         ended: None,

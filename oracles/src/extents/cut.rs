@@ -52,6 +52,14 @@
 //! pad around the contact. The multipliers are chosen from the corners at three
 //! times; only the range check certifies.
 //!
+//! The multiplier of a vertex may also carry a weight linear in time on the cut:
+//! `mu(t) a_3 - lambda_k F_k <= 0` with `mu > 0` on the box is as good (divide by
+//! `mu`). With `mu` proportional to the vertex's CoC `c_k(t)` (or its `w_k(t)`), the
+//! combination cancels the lens coordinate (or the pixel) at every time of the box, not
+//! at one time only: a line in (u, t) that bounds a vertex's lens position, for a vertex
+//! whose CoC changes tenfold over the shutter, is then certified without splitting u,
+//! and what is left is the line's distance to `u_k(x, t)` itself.
+//!
 //! Where the cull lies close to one edge (a plane that bounds an edge's value, a line
 //! that bounds a vertex's lens position), the combination `c - lambda E_k` cancels the
 //! first-order part that both share, so a box is decided when it is about the square
@@ -228,47 +236,98 @@ pub(super) fn cut_certified(
 fn fact_certified(a3: &LPoly<3, 16>, shifted: &[[LPoly<2, 16>; 3]; 2], h: f64) -> bool {
     let zero = lconst(&[0.0; 16]).0[0];
     let lift = |p: &LPoly<2, 16>| LPoly::<3, 16>([p.0[0], p.0[1], zero]);
-    // The values of a_3 at the corners and three times (for choosing multipliers only).
-    let at = |p: &LPoly<3, 16>, n: usize, s: f64| p.0[0].v[n] + s * (p.0[1].v[n] + s * p.0[2].v[n]);
     shifted.iter().any(|coord| {
         [1.0f64, -1.0].iter().any(|&sg| {
             coord.iter().all(|tk| {
                 let tk = lift(tk);
-                // Need a - lambda b <= 0 at every row, b = sg T_k: lambda >= a / b where
-                // b > 0, lambda <= a / b where b < 0, a <= 0 where b = 0.
-                let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
-                for s in [-h, 0.0, h] {
-                    for n in 0..16 {
-                        let (a, b) = (at(a3, n, s), sg * at(&tk, n, s));
-                        if !(a.is_finite() && b.is_finite()) {
-                            return false;
-                        }
-                        if b > 0.0 {
-                            lo = lo.max(a / b);
-                        } else if b < 0.0 {
-                            hi = hi.min(a / b);
-                        } else if a > 0.0 {
-                            return false;
-                        }
-                    }
-                }
-                if lo > hi {
-                    return false;
-                }
-                // The least multiplier raised a little (rounding of the rows), or the
-                // middle of the range; only the rigorous range decides.
-                let tries =
-                    [lo * (1.0 + 1e-9) + f64::MIN_POSITIVE, if hi.is_finite() { 0.5 * (lo + hi) } else { 2.0 * lo }];
-                tries.iter().any(|&lam| {
-                    if !(lam >= 0.0 && lam.is_finite()) {
-                        return false;
-                    }
-                    let g = a3.sub(&lconst(&[sg * lam; 16]).mul::<3, 3>(&tk));
-                    let (_, top) = g.range(h);
-                    top.iter().all(|&v| v <= 0.0)
-                })
+                weighted(a3, &tk, sg, h, 0.0)
+                    || time_weights(&tk, h).iter().any(|&m| {
+                        let ok = weighted(a3, &tk, sg, h, m);
+                        #[cfg(test)]
+                        WEIGHTED.with(|c| c.set(c.get() + ok as usize));
+                        ok
+                    })
             })
         })
+    })
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Boxes whose fact certificate needed a time weight (`m != 0`), for the tests.
+    static WEIGHTED: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// The weights `m` worth trying for vertex k's fact (see [`weighted`]): the relative
+/// rates of change in time of `T_k`'s coefficient of u (its CoC `c_k(t)`) and of x
+/// (its `w_k(t)`), where they keep the weight positive over the box. With such a
+/// weight the combination cancels that coordinate at every time of the box, where a
+/// constant multiplier cancels it at one time only: a vertex whose CoC or depth
+/// changes a lot over the box (strong perspective) then needs no split in it.
+fn time_weights(tk: &LPoly<3, 16>, h: f64) -> Vec<f64> {
+    // Lane 8 differs from lane 0 in u only, lane 2 in x only.
+    [8usize, 2]
+        .iter()
+        .map(|&other| {
+            let q0 = tk.0[0].v[other] - tk.0[0].v[0];
+            let q1 = tk.0[1].v[other] - tk.0[1].v[0];
+            q1 / q0
+        })
+        .filter(|m| m.is_finite() && *m != 0.0 && (m.abs() * h).next_up() < 1.0)
+        .collect()
+}
+
+/// The fact certificate for one vertex: a multiplier `lambda >= 0` with
+/// `mu(s) a_3 - sg lambda T_k <= 0` on the whole box, where `mu(s) = 1 + m s` (`m = 0`:
+/// a constant multiplier). The caller keeps `mu > 0` on `[-h, h]` (`|m| h < 1`, the
+/// product rounded up); then at an interior sample whose `sg T_k` is negative (the
+/// fact's vertex) `a_3 <= sg lambda T_k / mu <= 0`.
+fn weighted(a3: &LPoly<3, 16>, tk: &LPoly<3, 16>, sg: f64, h: f64, m: f64) -> bool {
+    // The values at the corners and three times (for choosing the multiplier only).
+    let at = |p: &LPoly<3, 16>, n: usize, s: f64| p.0[0].v[n] + s * (p.0[1].v[n] + s * p.0[2].v[n]);
+    // Need a - lambda b <= 0 at every row, b = sg T_k: lambda >= a / b where b > 0,
+    // lambda <= a / b where b < 0, a <= 0 where b = 0.
+    let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
+    for s in [-h, 0.0, h] {
+        for n in 0..16 {
+            let (a, b) = (at(a3, n, s) * (1.0 + m * s), sg * at(tk, n, s));
+            if !(a.is_finite() && b.is_finite()) {
+                return false;
+            }
+            if b > 0.0 {
+                lo = lo.max(a / b);
+            } else if b < 0.0 {
+                hi = hi.min(a / b);
+            } else if a > 0.0 {
+                return false;
+            }
+        }
+    }
+    if lo > hi {
+        return false;
+    }
+    // The weighted cut: `a_3` itself, or times `1 + m s` (degree 3 in s).
+    let zero = lconst(&[0.0; 16]).0[0];
+    let wa: LPoly<4, 16> = if m == 0.0 {
+        LPoly([a3.0[0], a3.0[1], a3.0[2], zero])
+    } else {
+        a3.mul::<2, 4>(&LPoly([lconst(&[1.0; 16]).0[0], lconst(&[m; 16]).0[0]]))
+    };
+    // The least multiplier raised a little (rounding of the rows), or the middle of the
+    // range; only the rigorous range decides.
+    let tries = [lo * (1.0 + 1e-9) + f64::MIN_POSITIVE, if hi.is_finite() { 0.5 * (lo + hi) } else { 2.0 * lo }];
+    tries.iter().any(|&lam| {
+        if !(lam >= 0.0 && lam.is_finite()) {
+            return false;
+        }
+        let top = if m == 0.0 {
+            // Degree 2: the range of the cubic would be the same with a zero top term.
+            a3.sub(&lconst(&[sg * lam; 16]).mul::<3, 3>(tk)).range(h).1
+        } else {
+            let lt = lconst(&[sg * lam; 16]).mul::<3, 3>(tk);
+            wa.sub(&LPoly([lt.0[0], lt.0[1], lt.0[2], zero])).range(h).1
+        };
+        top.iter().all(|&v| v <= 0.0)
     })
 }
 
@@ -676,5 +735,137 @@ mod tests {
         }
         eprintln!("{certified} certified vertex cuts ({by_fact} culling some attacked sample), {judged} exact samples");
         assert!(certified > 300 && by_fact > 100, "{certified} certified, {by_fact} culling");
+    }
+
+    /// The time-weighted vertex facts: per-sample lines in (u, t) or (v, t) that bound a
+    /// vertex's lens coordinate at a column of the box from below or above (as the
+    /// ut / vt lines of the lens-and-time bounds do: the tangent or the chord of
+    /// `u_k(X, t) = (X w_k(t) - x_k(t)) / c_k(t)`, moved by a pad that is sometimes
+    /// negative), for vertices whose CoC changes up to tenfold over the shutter. Every
+    /// certified cut is attacked with dense exact samples and with samples pushed just
+    /// beyond the line, along the lens coordinate, at the vertices' lens positions.
+    #[test]
+    fn no_time_weighted_fact_culls_an_interior_sample() {
+        let mut next = unit_stream(0x71e3_a417);
+        let (mut certified, mut by_weight, mut judged, mut culled_pts) = (0usize, 0usize, 0usize, 0usize);
+        for case in 0..12_000 {
+            let mut tri = if case % 4 == 3 { random_sliver(&mut next, case % 8 == 7) } else { random_tri(&mut next) };
+            // Strong perspective: every CoC of one sign, changing up to tenfold, and in
+            // most cases every vertex in front of the lens.
+            if next() < 0.7 {
+                for j in 0..3 {
+                    tri.q[j][3] = 0.5 + 2.0 * next();
+                    tri.r[j][3] = 0.5 + 2.0 * next();
+                }
+            }
+            let sign = if next() < 0.5 { 1.0 } else { -1.0 };
+            for j in 0..3 {
+                let c0 = 0.2 + 3.0 * next();
+                tri.c0[j] = sign * c0;
+                tri.c1[j] = sign * c0 * [0.3, 3.0, 0.1, 10.0][(next() * 4.0) as usize % 4];
+            }
+            let mut b = random_box(&mut next, 1e-3);
+            // Wide in time: where a constant multiplier cannot follow the CoC.
+            if next() < 0.5 {
+                let a = 0.75 * next();
+                b[4] = crate::interval::Interval::new(a, a + 0.25);
+            }
+            let axis = (next() * 2.0) as usize % 2;
+            let k = (next() * 3.0) as usize % 3;
+            let kk = if axis == 0 { 1.0 } else { tri.k };
+            let lens_at = |j: usize, col: f64, t: f64| {
+                let l = |a: f64, c: f64| (1.0 - t) * a + t * c;
+                let (qp, rp, qw, rw) = (tri.q[j][axis], tri.r[j][axis], tri.q[j][3], tri.r[j][3]);
+                (col * l(qw, rw) - l(qp, rp)) / (kk * l(tri.c0[j], tri.c1[j]))
+            };
+            let lower = next() < 0.5;
+            let sgn = if lower { 1.0 } else { -1.0 };
+            // The vertices' lens coordinates at the box's columns, least (lower line) or
+            // greatest (upper), on a grid of times; the line: the slope there at a time
+            // of the grid, lowered (raised) until it touches the grid values.
+            let (ta, tb) = (b[4].lo, b[4].hi);
+            let grid: Vec<(f64, f64)> = (0..=64)
+                .map(|i| {
+                    let t = ta + (tb - ta) * i as f64 / 64.0;
+                    let vals = (0..3).flat_map(|j| [b[axis].lo, b[axis].hi].map(|c| lens_at(j, c, t)));
+                    (t, vals.fold(sgn * f64::INFINITY, |a, v| if sgn * v < sgn * a { v } else { a }))
+                })
+                .collect();
+            let i0 = (next() * 63.0) as usize;
+            let slope = (grid[i0 + 1].1 - grid[i0].1) / (grid[i0 + 1].0 - grid[i0].0);
+            // Lowered (raised) once more by the grid's largest second difference, so that
+            // the line stays clear of the values between the grid's times too.
+            let bend = (1..64).map(|i| (grid[i + 1].1 - 2.0 * grid[i].1 + grid[i - 1].1).abs()).fold(0.0, f64::max);
+            let off = (grid.iter().map(|&(t, f)| sgn * (f - slope * t)).fold(f64::INFINITY, f64::min) - bend) * sgn;
+            let at0 = grid[i0].1;
+            if !(slope.is_finite() && off.is_finite() && at0.abs() < 1e3) {
+                continue;
+            }
+            // The lens range: around the line, so the contact lies in the box.
+            let lens = 2 + axis;
+            let wl = [2.0, 0.1, 1e-3][(next() * 3.0) as usize % 3];
+            let a = at0 - wl * next();
+            b[lens] = crate::interval::Interval::new(a, a + wl);
+            let pad = [-1e-3, -1e-6, 0.0, 1e-7, 1e-5, 1e-3, 1e-2][(next() * 7.0) as usize % 7];
+            // lower: lens >= line (P = lens - line, culls below); upper: the reverse.
+            let mut cut = Cut::zero();
+            let base = off - sgn * pad;
+            cut.coef[0] = -sgn * base;
+            cut.coef[Cut::T] = -sgn * slope;
+            cut.coef[if axis == 0 { Cut::U } else { Cut::V }] = sgn;
+            let before = WEIGHTED.with(|c| c.get());
+            let mut ok = [false];
+            box_values_cutting(&tri, &b, &[cut], &mut ok);
+            if !ok[0] {
+                continue;
+            }
+            certified += 1;
+            let weighted = WEIGHTED.with(|c| c.get()) > before;
+            by_weight += weighted as usize;
+            // The boxes a time weight decided are attacked densely, the others lightly
+            // (the constant multipliers have their own attack above).
+            let dense = if weighted { 1 } else { 10 };
+            let mut pts = Vec::new();
+            for n in 0..32usize {
+                pts.push(std::array::from_fn(|i| if n >> i & 1 == 1 { b[i].hi } else { b[i].lo }));
+            }
+            for _ in 0..300 / dense {
+                pts.push(std::array::from_fn(|i| b[i].lo + b[i].width() * next()));
+            }
+            // Just beyond the line along the lens coordinate (culled by 1e-12 to 1e-6),
+            // at random pixels and at vertex k's own screen point.
+            for n in 0..300 / dense {
+                let mut p: [f64; 5] = std::array::from_fn(|i| b[i].lo + b[i].width() * next());
+                let line = base + slope * p[4];
+                p[lens] = (line - sgn * [1e-12, 1e-9, 1e-6][n % 3]).clamp(b[lens].lo, b[lens].hi);
+                if n % 2 == 0 {
+                    let t = p[4];
+                    let l = |a: f64, c: f64| (1.0 - t) * a + t * c;
+                    for (i, j) in [(0usize, 0usize), (1, 1)] {
+                        let cj = l(tri.c0[k], tri.c1[k]) * if i == 0 { 1.0 } else { tri.k };
+                        let s = (l(tri.q[k][j], tri.r[k][j]) + p[2 + i] * cj) / l(tri.q[k][3], tri.r[k][3]);
+                        if s.is_finite() {
+                            p[i] = s.clamp(b[i].lo, b[i].hi);
+                        }
+                    }
+                }
+                pts.push(p);
+            }
+            for p in pts {
+                judged += 1;
+                let culled = culls_exactly(&cut, p);
+                culled_pts += culled as usize;
+                let interior = class_of_signs(exact_signs(&tri, p)) == Coverage::Interior;
+                assert!(
+                    !(culled && interior),
+                    "case {case}: certified cut culls the interior sample {p:?}\n{tri:?}\n{b:?}\n{cut:?}"
+                );
+            }
+        }
+        eprintln!("{certified} certified lens-line cuts ({by_weight} by a time weight), {judged} exact samples, {culled_pts} culled");
+        assert!(
+            by_weight > 100 && culled_pts > 100_000,
+            "{certified} certified, {by_weight} weighted, {culled_pts} culled"
+        );
     }
 }
