@@ -15,10 +15,10 @@
 //! f32 samples are judged exactly (coverage by the exact oracle, the constraint by the
 //! method's own f32 evaluation). An open box is split in the coordinate that blocks its
 //! cuts when one can be found (the widest whose collapse to its middle lets every cut
-//! be certified; each such trial counts against the budget), else in the widest that
-//! matters, favouring those that move the open coverage values. The search ends with a witness, with every box
-//! decided, with the rest at the smallest box size (counted as within the resolution),
-//! or at the budget (undecided, and said so).
+//! be certified; such trials are paid for, see `ConstraintProblem::visit`), else in the
+//! widest that matters, favouring those that move the open coverage values. The search
+//! ends with a witness, with every box decided, with the rest at the smallest box size
+//! (counted as within the resolution), or at the budget (undecided, and said so).
 
 use crate::bounds::{SampleBox, TileBounds};
 use crate::model::{Sample, Tile};
@@ -85,13 +85,14 @@ struct ConstraintProblem<'a> {
     /// Boxes that made trials to choose their split (see `visit`), and those whose
     /// trials found the coordinate.
     rounds: usize,
-    /// Whether trials have a budget of their own (`trials` of at most `budget`) instead
-    /// of counting as boxes: a claim's search (`search_with` splitting the pixels).
+    found: usize,
+    /// Whether trials have a budget of their own (`trials` of at most
+    /// [`TRIALS_PER_BOX`] times `budget`) instead of counting as boxes: a claim's
+    /// search (`search_with` splitting the pixels).
     free_trials: bool,
     trials: usize,
     /// The coordinate and set of cuts of the last trial that succeeded.
     last_trial: Option<(usize, usize)>,
-    found: usize,
     small: bool,
     seed: u64,
     /// How the search ended early (a violation or the budget), if it did.
