@@ -67,6 +67,7 @@
 
 use super::lanes::{lconst, LPoly};
 use crate::interval::Interval;
+use crate::tri::Tri;
 
 /// What a polynomial vouches for a per-sample cull value over a box: at every sample
 /// `s = (x, y, u, v, t)` of the box with `P(s) >= err`, the value is `>= 0` or NaN (the
@@ -170,7 +171,10 @@ fn cut_lanes(cut: &Cut, lane: &[[f64; 16]; 4], tm: f64) -> LPoly<3, 16> {
 /// below by `cut` (see the module doc). `ev` are the edge values in the lanes of the
 /// box's corners, `h` the half-width of its times around `tm`, `d` D's enclosure,
 /// `lane` the corner values of x, y, u, v per lane.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn cut_certified(
+    tri: &Tri,
+    times: Interval,
     ev: &[LPoly<3, 16>; 3],
     lane: &[[f64; 16]; 4],
     tm: f64,
@@ -225,7 +229,7 @@ pub(super) fn cut_certified(
             })
             .collect();
         minimax_multipliers(&vals).is_some_and(|lam| holds(&lam))
-    }) || fact_certified(&a3, shifted, h)
+    }) || fact_certified(&a3, shifted, h, &Exact { tri, cut, lane, tm, times })
 }
 
 /// The second certificate (see the module doc, "The vertex facts"): for one of the four
@@ -233,16 +237,17 @@ pub(super) fn cut_certified(
 /// `a_3 - s lambda_k T_k <= 0` on the whole box (`s = 1` for the fact "some `T_k < 0`",
 /// `-1` for "some `T_k > 0`"). `shifted` holds the vertices' `(P_k.x, P_k.y)` in the
 /// lanes of the box's corners.
-fn fact_certified(a3: &LPoly<3, 16>, shifted: &[[LPoly<2, 16>; 3]; 2], h: f64) -> bool {
+fn fact_certified(a3: &LPoly<3, 16>, shifted: &[[LPoly<2, 16>; 3]; 2], h: f64, exact: &Exact) -> bool {
     let zero = lconst(&[0.0; 16]).0[0];
     let lift = |p: &LPoly<2, 16>| LPoly::<3, 16>([p.0[0], p.0[1], zero]);
-    shifted.iter().any(|coord| {
+    shifted.iter().enumerate().any(|(axis, coord)| {
         [1.0f64, -1.0].iter().any(|&sg| {
-            coord.iter().all(|tk| {
+            coord.iter().enumerate().all(|(k, tk)| {
                 let tk = lift(tk);
-                weighted(a3, &tk, sg, h, 0.0)
+                let fact = Fact { axis, k, sg };
+                weighted(a3, &tk, sg, h, 0.0, exact, fact)
                     || time_weights(&tk, h).iter().any(|&m| {
-                        let ok = weighted(a3, &tk, sg, h, m);
+                        let ok = weighted(a3, &tk, sg, h, m, exact, fact);
                         #[cfg(test)]
                         WEIGHTED.with(|c| c.set(c.get() + ok as usize));
                         ok
@@ -252,10 +257,31 @@ fn fact_certified(a3: &LPoly<3, 16>, shifted: &[[LPoly<2, 16>; 3]; 2], h: f64) -
     })
 }
 
+/// What the exact check of a fact certificate needs beside the lanes: the triangle, the
+/// cut, the box's corner values and its times (see [`exact_fact`]).
+pub(super) struct Exact<'a> {
+    tri: &'a Tri,
+    cut: &'a Cut,
+    lane: &'a [[f64; 16]; 4],
+    tm: f64,
+    times: Interval,
+}
+
+/// One vertex's part of a fact: its axis (0: `T_k`, pixel x and lens u; 1: `S_k`, y
+/// and v), the vertex, and the side (`sg T_k < 0` at the fact's vertex).
+#[derive(Clone, Copy)]
+struct Fact {
+    axis: usize,
+    k: usize,
+    sg: f64,
+}
+
 #[cfg(test)]
 thread_local! {
     /// Boxes whose fact certificate needed a time weight (`m != 0`), for the tests.
     static WEIGHTED: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+    /// Vertex certificates that only the exact check gave, for the tests.
+    static EXACTLY: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
 }
 
 /// The weights `m` worth trying for vertex k's fact (see [`weighted`]): the relative
@@ -282,7 +308,7 @@ fn time_weights(tk: &LPoly<3, 16>, h: f64) -> Vec<f64> {
 /// a constant multiplier). The caller keeps `mu > 0` on `[-h, h]` (`|m| h < 1`, the
 /// product rounded up); then at an interior sample whose `sg T_k` is negative (the
 /// fact's vertex) `a_3 <= sg lambda T_k / mu <= 0`.
-fn weighted(a3: &LPoly<3, 16>, tk: &LPoly<3, 16>, sg: f64, h: f64, m: f64) -> bool {
+fn weighted(a3: &LPoly<3, 16>, tk: &LPoly<3, 16>, sg: f64, h: f64, m: f64, exact: &Exact, fact: Fact) -> bool {
     // The values at the corners and three times (for choosing the multiplier only).
     let at = |p: &LPoly<3, 16>, n: usize, s: f64| p.0[0].v[n] + s * (p.0[1].v[n] + s * p.0[2].v[n]);
     // Need a - lambda b <= 0 at every row, b = sg T_k: lambda >= a / b where b > 0,
@@ -320,14 +346,132 @@ fn weighted(a3: &LPoly<3, 16>, tk: &LPoly<3, 16>, sg: f64, h: f64, m: f64) -> bo
         if !(lam >= 0.0 && lam.is_finite()) {
             return false;
         }
-        let top = if m == 0.0 {
+        let g = if m == 0.0 {
             // Degree 2: the range of the cubic would be the same with a zero top term.
-            a3.sub(&lconst(&[sg * lam; 16]).mul::<3, 3>(tk)).range(h).1
+            let g = a3.sub(&lconst(&[sg * lam; 16]).mul::<3, 3>(tk));
+            LPoly([g.0[0], g.0[1], g.0[2], zero])
         } else {
             let lt = lconst(&[sg * lam; 16]).mul::<3, 3>(tk);
-            wa.sub(&LPoly([lt.0[0], lt.0[1], lt.0[2], zero])).range(h).1
+            wa.sub(&LPoly([lt.0[0], lt.0[1], lt.0[2], zero]))
         };
-        top.iter().all(|&v| v <= 0.0)
+        let top = g.range(h).1;
+        if top.iter().all(|&v| v <= 0.0) {
+            return true;
+        }
+        // Within the rounding of the lanes (their error bounds and the range's pad,
+        // about 2^-48 of the terms): the same combination checked exactly. A contact
+        // that is exact (a vertex on a side of the box at an end of its times) leaves
+        // the combination at exactly 0 there, which no enclosure can show.
+        let scale = (0..16)
+            .map(|n| (0..4).map(|j| g.0[j].v[n].abs() * h.max(1.0).powi(j as i32)).sum::<f64>())
+            .fold(0.0, f64::max);
+        // Only for a side's claim (a cut in one coordinate, `P = a + b s_i`): the exact
+        // check costs big-number arithmetic at 16 corners, and the depth ends' moving
+        // planes, whose combinations often come that close, would run it at every box.
+        let side = exact.cut.t2.iter().all(|&c| c == 0.0)
+            && exact.cut.coef.iter().enumerate().all(|(mm, &c)| c == 0.0 || mm.count_ones() <= 1)
+            && exact.cut.coef.iter().filter(|&&c| c != 0.0).count() <= 2;
+        let ok = side && top.iter().all(|&v| v <= 1e-12 * scale) && exact_fact(exact, fact, lam, m);
+        #[cfg(test)]
+        EXACTLY.with(|c| c.set(c.get() + ok as usize));
+        ok
+    })
+}
+
+/// The fact certificate checked in exact dyadic arithmetic: for every corner of the
+/// box, `G(s) = (1 + m s)(err - P) - sg lambda T_k` as a polynomial in `s = t - tm`
+/// (degree at most 3, every coefficient exact: the triangle's, the cut's and the
+/// corners' values are f64 numbers), and its upper bound
+/// `g0 + |g1| h + max(g2, 0) h^2 + |g3| h^3 <= 0` over `|s| <= h`, with h the exact
+/// larger distance from `tm` to the ends of the box's times. `G` is affine in each of
+/// x, y, u, v, so the corners bound it; the weight is checked positive (`|m| h < 1`).
+fn exact_fact(e: &Exact, f: Fact, lam: f64, m: f64) -> bool {
+    use crate::dyadic::Dyadic as D;
+    type P = [D; 4];
+    let d = D::from_f64;
+    let zero = || [D::zero(), D::zero(), D::zero(), D::zero()];
+    let add = |a: &P, b: &P| -> P { std::array::from_fn(|j| &a[j] + &b[j]) };
+    let scale = |a: &P, c: &D| -> P { std::array::from_fn(|j| &a[j] * c) };
+    // Products of degree above 3 do not occur (checked by the caller's shapes: a cut of
+    // degree 2 times a linear weight, a vertex term of degree 1).
+    let mul = |a: &P, b: &P| -> P {
+        let mut r = zero();
+        for i in 0..4 {
+            for j in 0..4 - i {
+                r[i + j] = &r[i + j] + &(&a[i] * &b[j]);
+            }
+        }
+        r
+    };
+    let finite = [e.tm, e.times.lo, e.times.hi, lam, m, e.cut.err].iter().all(|v| v.is_finite());
+    if !finite || e.cut.t2.iter().chain(e.cut.coef.iter()).any(|c| !c.is_finite()) {
+        return false;
+    }
+    let tm = d(e.tm);
+    let h = {
+        let (a, b) = (&d(e.times.hi) - &tm, &tm - &d(e.times.lo));
+        if a.cmp_exact(&b) == std::cmp::Ordering::Less {
+            b
+        } else {
+            a
+        }
+    };
+    let abs = |x: &D| if x.signum() < 0 { -x } else { x.clone() };
+    // The weight 1 + m s stays positive over |s| <= h.
+    if (&abs(&d(m)) * &h).cmp_exact(&D::one()) != std::cmp::Ordering::Less {
+        return false;
+    }
+    let t: P = [tm.clone(), D::one(), D::zero(), D::zero()];
+    let lerp = |a: f64, b: f64| -> P { add(&[d(a), D::zero(), D::zero(), D::zero()], &scale(&t, &(&d(b) - &d(a)))) };
+    let tri = e.tri;
+    let (pos, cc, w) = (
+        lerp(tri.q[f.k][f.axis], tri.r[f.k][f.axis]),
+        lerp(tri.c0[f.k], tri.c1[f.k]),
+        lerp(tri.q[f.k][3], tri.r[f.k][3]),
+    );
+    let aspect = if f.axis == 0 { D::one() } else { d(tri.k) };
+    let weight: P = [D::one(), d(m), D::zero(), D::zero()];
+    let sl = &d(f.sg) * &d(lam);
+    (0..16).all(|n| {
+        let corner: [D; 4] = std::array::from_fn(|i| d(e.lane[i][n]));
+        // err - P at this corner.
+        let mut p = zero();
+        for mm in 0..32 {
+            let c = e.cut.coef[mm];
+            if c == 0.0 {
+                continue;
+            }
+            let mut term = d(c);
+            for (i, ci) in corner.iter().enumerate() {
+                if mm >> i & 1 == 1 {
+                    term = &term * ci;
+                }
+            }
+            let tp: P = if mm & Cut::T != 0 { scale(&t, &term) } else { [term, D::zero(), D::zero(), D::zero()] };
+            p = add(&p, &tp);
+        }
+        for mm in 0..16 {
+            let c = e.cut.t2[mm];
+            if c == 0.0 {
+                continue;
+            }
+            let mut term = d(c);
+            for (i, ci) in corner.iter().enumerate() {
+                if mm >> i & 1 == 1 {
+                    term = &term * ci;
+                }
+            }
+            p = add(&p, &scale(&mul(&t, &t), &term));
+        }
+        let a3 = add(&[d(e.cut.err), D::zero(), D::zero(), D::zero()], &scale(&p, &-D::one()));
+        // The vertex term at this corner's pixel and lens coordinate.
+        let (pix, lens) = (&corner[f.axis], &corner[2 + f.axis]);
+        let tk = add(&add(&pos, &scale(&cc, &(lens * &aspect))), &scale(&w, &-pix.clone()));
+        let g = add(&mul(&weight, &a3), &scale(&tk, &-sl.clone()));
+        let h2 = &h * &h;
+        let pos2 = if g[2].signum() > 0 { g[2].clone() } else { D::zero() };
+        let ub = &(&(&g[0] + &(&abs(&g[1]) * &h)) + &(&pos2 * &h2)) + &(&abs(&g[3]) * &(&h2 * &h));
+        ub.signum() <= 0
     })
 }
 
@@ -867,5 +1011,111 @@ mod tests {
             by_weight > 100 && culled_pts > 100_000,
             "{certified} certified, {by_weight} weighted, {culled_pts} culled"
         );
+    }
+
+    /// Exact contacts: a vertex exactly on the low x side of the box at t = 0, moving
+    /// away (or, in some cases, other vertices reaching into the box), and a cut that
+    /// culls the times after a bound that is 0, 2^-149, tiny or negative: the claim of a
+    /// tile at a method's reject limit. The enclosures cannot close such a box (the
+    /// combination is exactly 0 at the contact); the exact check can. Every certified
+    /// box is attacked with dense exact samples and with samples at the contact, just
+    /// after the bound and just inside the side.
+    #[test]
+    fn no_exactly_checked_fact_culls_an_interior_sample() {
+        let mut next = unit_stream(0xe7ac_7c0d);
+        let (mut certified, mut exactly, mut judged, mut culled_pts) = (0usize, 0usize, 0usize, 0usize);
+        for case in 0..1500 {
+            let w = [0.5, 1.0, 2.0, 0.375][(next() * 4.0) as usize % 4];
+            let x0 = ((next() - 0.5) * 400.0) as f32 as f64;
+            let y0 = ((next() - 0.5) * 400.0) as f32 as f64;
+            let width = [1.0, 2.0, 8.0][(next() * 3.0) as usize % 3];
+            let speed = [1e-3, 0.5, 30.0][(next() * 3.0) as usize % 3];
+            let mut q = [[0.0; 4]; 3];
+            let mut r = [[0.0; 4]; 3];
+            // Vertex 0 on the side x = x0 at t = 0, moving left.
+            q[0] = [x0 * w, y0 * w, 0.3, w];
+            r[0] = [(x0 - speed) * w, (y0 + (next() - 0.5) * 4.0) * w, 0.3, w];
+            let reach = next() < 0.25;
+            for j in 1..3 {
+                let dx = if reach { (next() - 0.3) * 2.0 * width } else { -(1.0 + 20.0 * next()) };
+                let dy = (next() - 0.5) * 40.0;
+                q[j] = [(x0 + dx) * w, (y0 + dy) * w, 0.3, w];
+                r[j] = [(x0 + dx - speed * next()) * w, (y0 + dy) * w, 0.3, w];
+            }
+            let tri = Tri { q, r, c0: [0.0; 3], c1: [0.0; 3], k: 1.0 };
+            let t_hi = [1.0, 0.25, 1e-3][(next() * 3.0) as usize % 3];
+            let bound = [0.0, f64::from(f32::from_bits(1)), 1e-9, -1e-9, 1e-3][(next() * 5.0) as usize % 5];
+            let b: Box5 = [
+                crate::interval::Interval::new(x0, x0 + width),
+                crate::interval::Interval::new(y0 - 20.0, y0 + 20.0),
+                crate::interval::Interval::new(-1.0, 1.0),
+                crate::interval::Interval::new(-1.0, 1.0),
+                crate::interval::Interval::new(0.0, t_hi),
+            ];
+            // Culls t > bound: P = bound - t.
+            let mut cut = Cut::zero();
+            cut.coef[0] = bound;
+            cut.coef[Cut::T] = -1.0;
+            let before = EXACTLY.with(|c| c.get());
+            let mut ok = [false];
+            box_values_cutting(&tri, &b, &[cut], &mut ok);
+            // The exact check on its own too (without the enclosures' filter), with
+            // multipliers from a grid: certified when every vertex passes one fact.
+            let lane: [[f64; 16]; 4] = std::array::from_fn(|i| {
+                std::array::from_fn(|n| {
+                    let bit = [(n >> 1) & 1, n & 1, (n >> 3) & 1, (n >> 2) & 1][i];
+                    if bit == 1 {
+                        b[i].hi
+                    } else {
+                        b[i].lo
+                    }
+                })
+            });
+            let e = Exact { tri: &tri, cut: &cut, lane: &lane, tm: b[4].mid(), times: b[4] };
+            let grid = [1e-3, 1e-2, 0.1, 1.0, 10.0, 1.0 / (speed * w)];
+            let direct = (0..2).any(|axis| {
+                [1.0, -1.0]
+                    .iter()
+                    .any(|&sg| (0..3).all(|k| grid.iter().any(|&lam| exact_fact(&e, Fact { axis, k, sg }, lam, 0.0))))
+            });
+            if !(ok[0] || direct) {
+                continue;
+            }
+            certified += 1;
+            let by_exact = EXACTLY.with(|c| c.get()) > before || (direct && !ok[0]);
+            exactly += by_exact as usize;
+            let mut pts: Vec<[f64; 5]> = Vec::new();
+            for _ in 0..if by_exact { 400 } else { 40 } {
+                pts.push(std::array::from_fn(|i| b[i].lo + b[i].width() * next()));
+            }
+            // At the contact: just after the bound, just inside the side, near vertex 0.
+            for n in 0..if by_exact { 400 } else { 40 } {
+                let t = (bound.max(0.0) + [1e-300, 1e-45, 1e-15, 1e-9, 1e-4][n % 5]).min(t_hi);
+                let l = |a: f64, c: f64| (1.0 - t) * a + t * c;
+                let (sx, sy) = (l(q[0][0], r[0][0]) / w, l(q[0][1], r[0][1]) / w);
+                let d = [0.0, 1e-300, 1e-12, 1e-6, 1e-2][(n / 5) % 5];
+                let p = [
+                    (x0 + d * next()).clamp(b[0].lo, b[0].hi),
+                    (sy + (next() - 0.5) * d).clamp(b[1].lo, b[1].hi),
+                    next() * 2.0 - 1.0,
+                    next() * 2.0 - 1.0,
+                    t,
+                ];
+                let _ = sx;
+                pts.push(p);
+            }
+            for p in pts {
+                judged += 1;
+                let culled = culls_exactly(&cut, p);
+                culled_pts += culled as usize;
+                let interior = class_of_signs(exact_signs(&tri, p)) == Coverage::Interior;
+                assert!(
+                    !(culled && interior),
+                    "case {case}: certified cut culls the interior sample {p:?}\n{tri:?}\n{b:?}\n{cut:?}"
+                );
+            }
+        }
+        eprintln!("{certified} certified time claims ({exactly} by the exact check), {judged} exact samples, {culled_pts} culled");
+        assert!(exactly > 100 && culled_pts > 50_000, "{certified} certified, {exactly} exactly, {culled_pts} culled");
     }
 }

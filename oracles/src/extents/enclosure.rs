@@ -397,7 +397,7 @@ fn values_ends(
     }
     let empty = classify_values(&bv) == BoxClass::Empty;
     for (cut, ok) in cuts.iter().zip(cut_ok.iter_mut()) {
-        *ok = empty || cut_certified(&ev, &[lane_x, lane_y, lane_u, lane_v], tm, h, d, &[px, py], cut);
+        *ok = empty || cut_certified(tri, b[4], &ev, &[lane_x, lane_y, lane_u, lane_v], tm, h, d, &[px, py], cut);
     }
     if let Some((n, dl)) = depth_lanes.filter(|_| !bv.eliminated && (d.lo > 0.0 || d.hi < 0.0)) {
         let cd = covered_depth(&ev, &n, &dl, h, depth_ends);
