@@ -434,34 +434,19 @@ fn exact_fact(e: &Exact, f: Fact, lam: f64, m: f64) -> bool {
     let sl = &d(f.sg) * &d(lam);
     (0..16).all(|n| {
         let corner: [D; 4] = std::array::from_fn(|i| d(e.lane[i][n]));
-        // err - P at this corner.
+        // A coefficient times the corner's values of the monomial's coordinates.
+        let monomial = |c: f64, mm: usize| {
+            corner.iter().enumerate().filter(|(i, _)| mm >> i & 1 == 1).fold(d(c), |a, (_, ci)| &a * ci)
+        };
+        // err - P at this corner: the monomials without t, times t, times t^2.
         let mut p = zero();
-        for mm in 0..32 {
-            let c = e.cut.coef[mm];
-            if c == 0.0 {
-                continue;
-            }
-            let mut term = d(c);
-            for (i, ci) in corner.iter().enumerate() {
-                if mm >> i & 1 == 1 {
-                    term = &term * ci;
-                }
-            }
+        for mm in (0..32).filter(|&mm| e.cut.coef[mm] != 0.0) {
+            let term = monomial(e.cut.coef[mm], mm);
             let tp: P = if mm & Cut::T != 0 { scale(&t, &term) } else { [term, D::zero(), D::zero(), D::zero()] };
             p = add(&p, &tp);
         }
-        for mm in 0..16 {
-            let c = e.cut.t2[mm];
-            if c == 0.0 {
-                continue;
-            }
-            let mut term = d(c);
-            for (i, ci) in corner.iter().enumerate() {
-                if mm >> i & 1 == 1 {
-                    term = &term * ci;
-                }
-            }
-            p = add(&p, &scale(&mul(&t, &t), &term));
+        for mm in (0..16).filter(|&mm| e.cut.t2[mm] != 0.0) {
+            p = add(&p, &scale(&mul(&t, &t), &monomial(e.cut.t2[mm], mm)));
         }
         let a3 = add(&[d(e.cut.err), D::zero(), D::zero(), D::zero()], &scale(&p, &-D::one()));
         // The vertex term at this corner's pixel and lens coordinate.
@@ -881,6 +866,22 @@ mod tests {
         assert!(certified > 300 && by_fact > 100, "{certified} certified, {by_fact} culling");
     }
 
+    /// Judges each of `pts` exactly: none may be interior and culled by `cut` (the box
+    /// was certified). Returns how many the cut culls.
+    fn attack(tri: &Tri, b: &Box5, cut: &Cut, pts: &[[f64; 5]], case: usize) -> usize {
+        let mut culled_pts = 0;
+        for &p in pts {
+            let culled = culls_exactly(cut, p);
+            culled_pts += culled as usize;
+            let interior = class_of_signs(exact_signs(tri, p)) == Coverage::Interior;
+            assert!(
+                !(culled && interior),
+                "case {case}: certified cut culls the interior sample {p:?}\n{tri:?}\n{b:?}\n{cut:?}"
+            );
+        }
+        culled_pts
+    }
+
     /// The time-weighted vertex facts: per-sample lines in (u, t) or (v, t) that bound a
     /// vertex's lens coordinate at a column of the box from below or above (as the
     /// ut / vt lines of the lens-and-time bounds do: the tangent or the chord of
@@ -995,16 +996,8 @@ mod tests {
                 }
                 pts.push(p);
             }
-            for p in pts {
-                judged += 1;
-                let culled = culls_exactly(&cut, p);
-                culled_pts += culled as usize;
-                let interior = class_of_signs(exact_signs(&tri, p)) == Coverage::Interior;
-                assert!(
-                    !(culled && interior),
-                    "case {case}: certified cut culls the interior sample {p:?}\n{tri:?}\n{b:?}\n{cut:?}"
-                );
-            }
+            judged += pts.len();
+            culled_pts += attack(&tri, &b, &cut, &pts, case);
         }
         eprintln!("{certified} certified lens-line cuts ({by_weight} by a time weight), {judged} exact samples, {culled_pts} culled");
         assert!(
@@ -1092,7 +1085,7 @@ mod tests {
             for n in 0..if by_exact { 400 } else { 40 } {
                 let t = (bound.max(0.0) + [1e-300, 1e-45, 1e-15, 1e-9, 1e-4][n % 5]).min(t_hi);
                 let l = |a: f64, c: f64| (1.0 - t) * a + t * c;
-                let (sx, sy) = (l(q[0][0], r[0][0]) / w, l(q[0][1], r[0][1]) / w);
+                let sy = l(q[0][1], r[0][1]) / w;
                 let d = [0.0, 1e-300, 1e-12, 1e-6, 1e-2][(n / 5) % 5];
                 let p = [
                     (x0 + d * next()).clamp(b[0].lo, b[0].hi),
@@ -1101,19 +1094,10 @@ mod tests {
                     next() * 2.0 - 1.0,
                     t,
                 ];
-                let _ = sx;
                 pts.push(p);
             }
-            for p in pts {
-                judged += 1;
-                let culled = culls_exactly(&cut, p);
-                culled_pts += culled as usize;
-                let interior = class_of_signs(exact_signs(&tri, p)) == Coverage::Interior;
-                assert!(
-                    !(culled && interior),
-                    "case {case}: certified cut culls the interior sample {p:?}\n{tri:?}\n{b:?}\n{cut:?}"
-                );
-            }
+            judged += pts.len();
+            culled_pts += attack(&tri, &b, &cut, &pts, case);
         }
         eprintln!("{certified} certified time claims ({exactly} by the exact check), {judged} exact samples, {culled_pts} culled");
         assert!(exactly > 100 && culled_pts > 50_000, "{certified} certified, {exactly} exactly, {culled_pts} culled");
