@@ -229,7 +229,7 @@ pub(super) fn cut_certified(
             })
             .collect();
         minimax_multipliers(&vals).is_some_and(|lam| holds(&lam))
-    }) || fact_certified(&a3, shifted, h, &Exact { tri, cut, lane, tm, times })
+    }) || fact_certified(&a3, shifted, h, &Exact { side: is_side(cut), tri, cut, lane, tm, times })
 }
 
 /// The second certificate (see the module doc, "The vertex facts"): for one of the four
@@ -260,11 +260,23 @@ fn fact_certified(a3: &LPoly<3, 16>, shifted: &[[LPoly<2, 16>; 3]; 2], h: f64, e
 /// What the exact check of a fact certificate needs beside the lanes: the triangle, the
 /// cut, the box's corner values and its times (see [`exact_fact`]).
 pub(super) struct Exact<'a> {
+    /// Whether the cut is a side's claim (one coordinate, `P = a + b s_i`): the only
+    /// cuts checked exactly. The check costs big-number arithmetic at 16 corners, and
+    /// the depth ends' moving planes, whose combinations often come that close, would
+    /// run it at every box.
+    side: bool,
     tri: &'a Tri,
     cut: &'a Cut,
     lane: &'a [[f64; 16]; 4],
     tm: f64,
     times: Interval,
+}
+
+/// A cut in one coordinate: `P = a + b s_i`, no square in t.
+fn is_side(cut: &Cut) -> bool {
+    cut.t2.iter().all(|&c| c == 0.0)
+        && cut.coef.iter().enumerate().all(|(mm, &c)| c == 0.0 || mm.count_ones() <= 1)
+        && cut.coef.iter().filter(|&&c| c != 0.0).count() <= 2
 }
 
 /// One vertex's part of a fact: its axis (0: `T_k`, pixel x and lens u; 1: `S_k`, y
@@ -362,16 +374,12 @@ fn weighted(a3: &LPoly<3, 16>, tk: &LPoly<3, 16>, sg: f64, h: f64, m: f64, exact
         // about 2^-48 of the terms): the same combination checked exactly. A contact
         // that is exact (a vertex on a side of the box at an end of its times) leaves
         // the combination at exactly 0 there, which no enclosure can show.
-        let scale = (0..16)
-            .map(|n| (0..4).map(|j| g.0[j].v[n].abs() * h.max(1.0).powi(j as i32)).sum::<f64>())
-            .fold(0.0, f64::max);
-        // Only for a side's claim (a cut in one coordinate, `P = a + b s_i`): the exact
-        // check costs big-number arithmetic at 16 corners, and the depth ends' moving
-        // planes, whose combinations often come that close, would run it at every box.
-        let side = exact.cut.t2.iter().all(|&c| c == 0.0)
-            && exact.cut.coef.iter().enumerate().all(|(mm, &c)| c == 0.0 || mm.count_ones() <= 1)
-            && exact.cut.coef.iter().filter(|&&c| c != 0.0).count() <= 2;
-        let ok = side && top.iter().all(|&v| v <= 1e-12 * scale) && exact_fact(exact, fact, lam, m);
+        let scale = || {
+            (0..16)
+                .map(|n| (0..4).map(|j| g.0[j].v[n].abs() * h.max(1.0).powi(j as i32)).sum::<f64>())
+                .fold(0.0, f64::max)
+        };
+        let ok = exact.side && top.iter().all(|&v| v <= 1e-12 * scale()) && exact_fact(exact, fact, lam, m);
         #[cfg(test)]
         EXACTLY.with(|c| c.set(c.get() + ok as usize));
         ok
@@ -1064,7 +1072,7 @@ mod tests {
                     }
                 })
             });
-            let e = Exact { tri: &tri, cut: &cut, lane: &lane, tm: b[4].mid(), times: b[4] };
+            let e = Exact { side: true, tri: &tri, cut: &cut, lane: &lane, tm: b[4].mid(), times: b[4] };
             let grid = [1e-3, 1e-2, 0.1, 1.0, 10.0, 1.0 / (speed * w)];
             let direct = (0..2).any(|axis| {
                 [1.0, -1.0]
