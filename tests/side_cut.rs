@@ -149,3 +149,22 @@ fn tight_sides_are_decided_and_pulled_in_sides_are_never_proved() {
     // (the rest stay open, never proved).
     assert!(inward >= 40 && caught * 2 >= inward, "pulled-in claims should mostly be caught: {caught} of {inward}");
 }
+
+/// A side the trials once starved: wu2013-safe's `v max` on seed 16, case 9269 (a vertex
+/// behind the lens). Collapsing x to its middle certified the side at that one pixel
+/// column but never over an interval of x, so the trials chose x for every split until
+/// the budget ran out (x halved ten times, nothing else split). A claim's trials now
+/// consider only coordinates within 64x of the widest, and the case is proven in the
+/// gate's budget.
+#[test]
+fn a_side_the_trials_once_starved_is_proven() {
+    use cullproof::gate::engine::judge;
+    use cullproof::judge::Verdict;
+    let m = cullproof::bounds::by_id("wu2013-safe").unwrap();
+    let mut cfg = CheckConfig::default_with(vec![m]);
+    cfg.seed = 16;
+    let (regime, case, tile) = make_case(&cfg.draw(), 9269);
+    assert_eq!(regime, Regime::BehindLens);
+    let (js, _) = judge(&cfg, &cfg.methods, &case, &tile, 9269);
+    assert_eq!(js[0].verdict(), Verdict::Proven, "{:?}", js[0].unproven());
+}

@@ -303,6 +303,24 @@ pub fn depth_enclosure(tri: &Tri, s: [f64; 5]) -> Option<Interval> {
     interval_div(ev.nz, ev.d)
 }
 
+/// How far the hit depth of a sample lies from `z` (`|N / D - z|`), from the exact
+/// values of `N` and `D` (the quotient itself rounded to f64); None when `D` is 0 or an
+/// input is not finite. The size of a violation, not a decision: [`classify_depth`]
+/// decides.
+pub fn depth_distance(tri: &Tri, s: [f64; 5], z: f64) -> Option<f64> {
+    if !z.is_finite() || s.iter().any(|v| !v.is_finite()) || tri.check_finite().is_err() {
+        return None;
+    }
+    let c = Dyadic::from_f64;
+    let ev = edge_values(tri, &c(s[0]), &c(s[1]), &c(s[2]), &c(s[3]), &c(s[4]));
+    if ev.d.is_zero() {
+        return None;
+    }
+    let q = (&ev.nz - &(&c(z) * &ev.d)).to_rational() / ev.d.to_rational();
+    use num_traits::{Signed, ToPrimitive};
+    q.abs().to_f64()
+}
+
 /// Outward-rounded `a / b`, None if b's enclosure touches 0.
 pub fn interval_div(a: Interval, b: Interval) -> Option<Interval> {
     if !(b.lo > 0.0 || b.hi < 0.0) {

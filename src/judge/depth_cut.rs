@@ -14,24 +14,27 @@
 //! claim at an interior sample. Each cut is certified with the edge values' multipliers
 //! (no interior sample of the box with `s F_k < 0`), so the pixels the triangle does not
 //! cover no longer count, and near the extreme the combination cancels the first-order
-//! part the plane and the edges share. Only `Proved` is used: a box the search cannot
-//! close, or a sample where some `s F_k < 0` (the plane heuristic failing, which is no
-//! violation), leaves the end unproven.
+//! part the plane and the edges share. A box the search cannot close, or a sample where
+//! some `s F_k < 0` (the plane heuristic failing, which is no violation), leaves the end
+//! unproven. A sample the search finds interior and beyond
+//! the end (both decided exactly) is a violation of the end.
 
 use crate::bounds::{SampleBox, SampleConstraint, TileBounds};
 use crate::judge::constraints::ConstraintVerdict;
 use crate::model::{Sample, Tile};
 use crate::Interval;
-use oracles::extents::{Cut, Slopes};
+use oracles::extents::{Cut, DepthNumerator, Slopes};
 use oracles::{DepthCheck, Tri};
 
 /// A depth end as a constraint: interior samples with a hit depth below `z` (a lower
 /// end) or above it are culled.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct DepthClaim {
     tri: Tri,
     z: f64,
     lower: bool,
+    /// `N - z D` as a polynomial, for the direct cuts (None when it cannot be built).
+    numerator: Option<DepthNumerator>,
 }
 
 impl SampleConstraint for DepthClaim {
@@ -80,15 +83,27 @@ impl SampleConstraint for DepthClaim {
     }
     /// Family 0: the plane's slopes; family 1: the balanced slopes, which a vertex behind
     /// the lens does not defeat; family 2: the widest slopes, which stay finite where the
-    /// triangle turns edge-on ([`Slopes`]). All certify the same way.
+    /// triangle turns edge-on ([`Slopes`]). All certify the same way. Family 3: the
+    /// depth's numerator itself, one cut per side of D ([`DepthNumerator`]), which no
+    /// facing flip defeats.
     fn cut_families(&self) -> usize {
-        3
+        4
     }
     fn lower_cuts_of(&self, b: &SampleBox, family: usize, out: &mut Vec<Cut>) -> bool {
         let slopes = match family {
-            0 => Slopes::Plane,
-            1 => Slopes::Balanced,
-            2 => Slopes::Widest,
+            1 => Slopes::Plane,
+            2 => Slopes::Balanced,
+            3 => Slopes::Widest,
+            0 => {
+                let cuts = self.numerator.as_ref().and_then(|n| n.cuts(&[b.x, b.y, b.u, b.v, b.t], self.lower));
+                return match cuts {
+                    Some(cuts) => {
+                        out.extend(cuts);
+                        true
+                    }
+                    None => false,
+                };
+            }
             _ => return false,
         };
         match oracles::extents::depth_cuts(&self.tri, [b.x, b.y, b.u, b.v, b.t], self.z, self.lower, slopes) {
@@ -101,15 +116,24 @@ impl SampleConstraint for DepthClaim {
     }
 }
 
-/// True when no interior sample of the tile, at any lens position and time, has a hit
-/// depth beyond `z` (below it for a `lower` end), certified by the constraint search
-/// with the vertex terms and the two families of cuts within `budget` boxes; false
-/// when that is not shown.
-pub fn proves(tri: &Tri, tile: &Tile, z: f64, lower: bool, budget: usize, min_width: f64) -> bool {
+/// The verdict of the constraint search on a depth end: `Proved` when no interior sample
+/// of the tile, at any lens position and time, has a hit depth beyond `z` (below it for
+/// a `lower` end), certified with the vertex terms and the families of cuts within
+/// `budget` boxes; `Violation(s)` with an f32 sample of the tile that the search found
+/// interior and beyond the end (both decided exactly: [`DepthClaim::eval`] is
+/// [`oracles::classify_depth`], the coverage is [`oracles::classify`]); anything else
+/// when neither is shown. A `z` that is not finite is `Undecided`.
+pub fn decide(tri: &Tri, tile: &Tile, z: f64, lower: bool, budget: usize, min_width: f64) -> ConstraintVerdict {
     if !z.is_finite() {
-        return false;
+        return ConstraintVerdict::Undecided;
     }
     let mut b = TileBounds::full();
-    b.constraints.push(Box::new(DepthClaim { tri: *tri, z, lower }));
-    crate::judge::constraints::search_with(tri, tile, &b, budget, min_width, true).verdict == ConstraintVerdict::Proved
+    let numerator = DepthNumerator::new(tri, z);
+    b.constraints.push(Box::new(DepthClaim { tri: *tri, z, lower, numerator }));
+    crate::judge::constraints::search_with(tri, tile, &b, budget, min_width, true).verdict
+}
+
+/// True when [`decide`] proves the end.
+pub fn proves(tri: &Tri, tile: &Tile, z: f64, lower: bool, budget: usize, min_width: f64) -> bool {
+    decide(tri, tile, z, lower, budget, min_width) == ConstraintVerdict::Proved
 }

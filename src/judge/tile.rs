@@ -511,26 +511,50 @@ impl<'a> TileJudge<'a> {
                         // Then the same planes certified against the covered samples only,
                         // with the edge values' multipliers ([`super::depth_cut`]).
                         let t = [tile.x0 as f64, tile.x1 as f64, tile.y0 as f64, tile.y1 as f64];
-                        if coord.is_none()
-                            && (oracles::extents::depth_end_by_planes(self.tri, t, bound, !is_max, cfg.side_budget)
-                                || super::depth_cut::proves(
-                                    self.tri,
-                                    &tile,
-                                    bound,
-                                    !is_max,
-                                    SIDE_CUT_BUDGET_FACTOR * cfg.side_budget,
-                                    cfg.constraint_min_width,
-                                ))
-                        {
-                            continue;
-                        }
-                        match coord.map(|c| self.decide_side(c, bound as f32, is_max)) {
-                            Some(ConstraintVerdict::Proved) => self.probe_tight(j, ext, bound, &name),
-                            Some(ConstraintVerdict::Violation(s)) if in_domain(&tile, s.to_oracle()) => {
+                        let verdict = match coord {
+                            Some(c) => self.decide_side(c, bound as f32, is_max),
+                            None if oracles::extents::depth_end_by_planes(
+                                self.tri,
+                                t,
+                                bound,
+                                !is_max,
+                                cfg.side_budget,
+                            ) =>
+                            {
+                                continue
+                            }
+                            None => super::depth_cut::decide(
+                                self.tri,
+                                &tile,
+                                bound,
+                                !is_max,
+                                SIDE_CUT_BUDGET_FACTOR * cfg.side_budget,
+                                cfg.constraint_min_width,
+                            ),
+                        };
+                        match (verdict, coord) {
+                            (ConstraintVerdict::Proved, Some(_)) => self.probe_tight(j, ext, bound, &name),
+                            (ConstraintVerdict::Proved, None) => {}
+                            (ConstraintVerdict::Violation(s), _) if in_domain(&tile, s.to_oracle()) => {
                                 let w = s.to_oracle();
-                                j.tally_end(&name, true);
-                                j.consider(self.witness(w, name, (w[coord.unwrap_or(4)] - bound).abs()));
-                                found.push(s);
+                                // The margin: how far the sample lies beyond the end (for
+                                // a depth, from its exact hit depth).
+                                let margin = match coord {
+                                    Some(c) => (w[c] - bound).abs(),
+                                    None => {
+                                        oracles::coverage::depth_distance(self.tri, w, bound).unwrap_or(f64::INFINITY)
+                                    }
+                                };
+                                if coord.is_some() {
+                                    j.tally_end(&name, true);
+                                }
+                                j.consider(self.witness(w, name, margin));
+                                if coord.is_some() {
+                                    found.push(s);
+                                } else {
+                                    // A depth witness is an f32 sample, confirmed exactly.
+                                    j.f32_witness = true;
+                                }
                             }
                             _ => j.add_unproven(Unproven::SideGap),
                         }

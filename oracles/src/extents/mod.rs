@@ -77,6 +77,7 @@
 pub mod bnb;
 mod cut;
 mod depth;
+mod depth_direct;
 mod depth_plane;
 mod elimination;
 pub mod enclosure;
@@ -91,6 +92,7 @@ mod testgen;
 pub mod tpoly;
 
 pub use cut::Cut;
+pub use depth_direct::DepthNumerator;
 pub use depth_plane::{depth_cuts, depth_end_by_planes, depth_plane_cuts, Slopes};
 
 pub use elimination::clipped_point as covered_point;
