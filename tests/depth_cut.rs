@@ -110,8 +110,8 @@ fn beyond(tri: &Tri, s: [f64; 5], z: f64, lower: bool) -> bool {
 #[test]
 fn no_depth_end_the_cuts_prove_is_beaten_by_an_exact_attack() {
     let mut g = ChaCha8Rng::seed_from_u64(0xde9_7c07);
-    let (mut proved, mut near, mut refused_inside, mut tried, mut violations) =
-        (0usize, 0usize, 0usize, 0usize, 0usize);
+    let (mut proved, mut near, mut refused_inside, mut tried, mut violations, mut real_points) =
+        (0usize, 0usize, 0usize, 0usize, 0usize, 0usize);
     // Tiles tried (CULLPROOF_DEPTH_ATTACK=N for a longer attack).
     let tiles = std::env::var("CULLPROOF_DEPTH_ATTACK").ok().and_then(|v| v.parse().ok()).unwrap_or(160);
     while tried < tiles {
@@ -149,18 +149,26 @@ fn no_depth_end_the_cuts_prove_is_beaten_by_an_exact_attack() {
                     }
                     // A violation the search reports must be one: an f32 sample of the
                     // tile and the domain, interior, with its hit depth beyond the end.
-                    ConstraintVerdict::Violation(s) => {
-                        let p = s.to_oracle();
+                    v @ (ConstraintVerdict::Violation(_) | ConstraintVerdict::ViolationAt(_)) => {
+                        let p = match v {
+                            ConstraintVerdict::Violation(s) => s.to_oracle(),
+                            ConstraintVerdict::ViolationAt(p) => {
+                                real_points += 1;
+                                p
+                            }
+                            _ => unreachable!(),
+                        };
+                        let (lo, hi) = (
+                            [tile.x0 as f64, tile.y0 as f64, -1.0, -1.0, 0.0],
+                            [tile.x1 as f64, tile.y1 as f64, 1.0, 1.0, 1.0],
+                        );
                         assert!(
-                            tile.contains(s.x, s.y)
-                                && (-1.0..=1.0).contains(&s.u)
-                                && (-1.0..=1.0).contains(&s.v)
-                                && (0.0..=1.0).contains(&s.t),
-                            "violation {s:?} outside the tile {tile:?} or the domain"
+                            (0..5).all(|i| lo[i] <= p[i] && p[i] <= hi[i]),
+                            "violation {p:?} outside the tile {tile:?} or the domain"
                         );
                         assert!(
                             beyond(&tri, p, inward as f64, lower),
-                            "violation {s:?} of end {inward} (lower: {lower}) is no violation\n{tri:?}"
+                            "violation {p:?} of end {inward} (lower: {lower}) is no violation\n{tri:?}"
                         );
                         violations += 1;
                     }
@@ -184,7 +192,7 @@ fn no_depth_end_the_cuts_prove_is_beaten_by_an_exact_attack() {
             }
         }
     }
-    eprintln!("{proved} depth ends proved and attacked ({near} within an ulp of the estimate); {refused_inside} ends inside a reached depth refused, {violations} of them with a violation found and confirmed");
+    eprintln!("{proved} depth ends proved and attacked ({near} within an ulp of the estimate); {refused_inside} ends inside a reached depth refused, {violations} of them with a violation found and confirmed ({real_points} at a real point, not an f32 sample)");
     assert!(
         proved > 100 && near > 30 && refused_inside > 100 && violations > 20,
         "{proved} {near} {refused_inside} {violations}"

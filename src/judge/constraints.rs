@@ -37,6 +37,10 @@ const TRIALS_PER_BOX: usize = 4;
 pub enum ConstraintVerdict {
     /// An interior sample (f32, confirmed exactly) that the bounds cull.
     Violation(Sample),
+    /// A point of the tile and the domain, not an f32 sample, confirmed exactly interior
+    /// and beyond a claim that speaks of every real sample (a depth end, see
+    /// [`search_claim`]).
+    ViolationAt([f64; 5]),
     /// Every box decided: no interior sample passing the intervals is culled.
     Proved,
     /// Only boxes at the smallest size remain open (their samples tried).
@@ -97,6 +101,9 @@ struct ConstraintProblem<'a> {
     seed: u64,
     /// How the search ended early (a violation or the budget), if it did.
     ended: Option<ConstraintVerdict>,
+    /// A claim's exact test at a real point (true: beyond the claim), for claims that
+    /// speak of every real sample.
+    beyond_at: Option<&'a dyn Fn(&[f64; 5]) -> bool>,
 }
 
 impl ConstraintProblem<'_> {
@@ -207,6 +214,14 @@ impl Problem for ConstraintProblem<'_> {
             if self.culls(&s) && classify(tri, s.to_oracle()) == Coverage::Interior {
                 self.ended = Some(ConstraintVerdict::Violation(s));
                 return Flow::Stop;
+            }
+            // A claim about every real sample: the point itself, where the box is finer
+            // than the f32 samples around it.
+            if let Some(beyond) = self.beyond_at {
+                if beyond(&p) && classify(tri, p) == Coverage::Interior {
+                    self.ended = Some(ConstraintVerdict::ViolationAt(p));
+                    return Flow::Stop;
+                }
             }
         }
         // Split the widest coordinate relative to the tile / the intervals, among those
@@ -319,6 +334,22 @@ pub fn search(tri: &Tri, tile: &Tile, bounds: &TileBounds, budget: usize, min_wi
     search_with(tri, tile, bounds, budget, min_width, false)
 }
 
+/// [`search_with`] splitting the pixels, for one claim that speaks of every real sample
+/// of the tile and the domain: `beyond(p)` is its exact test at a point (true: the claim
+/// drops `p`). Besides f32 samples, the points the search tries are tested themselves,
+/// so a violation confined to less than an f32 step is found
+/// ([`ConstraintVerdict::ViolationAt`]).
+pub fn search_claim(
+    tri: &Tri,
+    tile: &Tile,
+    bounds: &TileBounds,
+    budget: usize,
+    min_width: f64,
+    beyond: &dyn Fn(&[f64; 5]) -> bool,
+) -> ConstraintSearch {
+    search_in(tri, tile, bounds, budget, min_width, true, Some(beyond))
+}
+
 /// [`search`], and with `split_pixels` the pixels are split like the other coordinates
 /// even when no constraint depends on x or y: a cut whose first-order part must cancel
 /// the edges' in u, v or t needs the (x, y) rectangle small too near the covered set's
@@ -330,6 +361,18 @@ pub fn search_with(
     budget: usize,
     min_width: f64,
     split_pixels: bool,
+) -> ConstraintSearch {
+    search_in(tri, tile, bounds, budget, min_width, split_pixels, None)
+}
+
+fn search_in<'a>(
+    tri: &'a Tri,
+    tile: &Tile,
+    bounds: &'a TileBounds,
+    budget: usize,
+    min_width: f64,
+    split_pixels: bool,
+    beyond_at: Option<&'a dyn Fn(&[f64; 5]) -> bool>,
 ) -> ConstraintSearch {
     let iv = |a: f32, b: f32| Interval::new(a as f64, b as f64);
     let init: Box5 = [
@@ -369,6 +412,7 @@ pub fn search_with(
         small: false,
         seed: 0x2545_F491_4F6C_DD1D,
         ended: None,
+        beyond_at,
     };
     let k0 = p.key_of(&init);
     if k0 >= 0.0 || bounds.constraints.is_empty() {

@@ -37,15 +37,22 @@ struct DepthClaim {
     numerator: Option<DepthNumerator>,
 }
 
+impl DepthClaim {
+    /// True at an interior point whose hit depth lies beyond the end (exact).
+    fn beyond(&self, p: &[f64; 5]) -> bool {
+        let (z0, z1) = if self.lower { (self.z, f64::INFINITY) } else { (f64::NEG_INFINITY, self.z) };
+        let beyond = if self.lower { DepthCheck::Below } else { DepthCheck::Above };
+        oracles::classify_depth(&self.tri, *p, z0, z1) == beyond
+    }
+}
+
 impl SampleConstraint for DepthClaim {
     fn name(&self) -> String {
         (if self.lower { "z min" } else { "z max" }).into()
     }
     /// -1 at an interior sample beyond the end, 1 elsewhere (exact).
     fn eval(&self, s: &Sample) -> f32 {
-        let (z0, z1) = if self.lower { (self.z, f64::INFINITY) } else { (f64::NEG_INFINITY, self.z) };
-        let beyond = if self.lower { DepthCheck::Below } else { DepthCheck::Above };
-        if oracles::classify_depth(&self.tri, s.to_oracle(), z0, z1) == beyond {
+        if self.beyond(&s.to_oracle()) {
             -1.0
         } else {
             1.0
@@ -129,8 +136,10 @@ pub fn decide(tri: &Tri, tile: &Tile, z: f64, lower: bool, budget: usize, min_wi
     }
     let mut b = TileBounds::full();
     let numerator = DepthNumerator::new(tri, z);
-    b.constraints.push(Box::new(DepthClaim { tri: *tri, z, lower, numerator }));
-    crate::judge::constraints::search_with(tri, tile, &b, budget, min_width, true).verdict
+    let claim = DepthClaim { tri: *tri, z, lower, numerator };
+    let beyond = |p: &[f64; 5]| claim.beyond(p);
+    b.constraints.push(Box::new(claim.clone()));
+    crate::judge::constraints::search_claim(tri, tile, &b, budget, min_width, &beyond).verdict
 }
 
 /// True when [`decide`] proves the end.

@@ -535,8 +535,18 @@ impl<'a> TileJudge<'a> {
                         match (verdict, coord) {
                             (ConstraintVerdict::Proved, Some(_)) => self.probe_tight(j, ext, bound, &name),
                             (ConstraintVerdict::Proved, None) => {}
-                            (ConstraintVerdict::Violation(s), _) if in_domain(&tile, s.to_oracle()) => {
-                                let w = s.to_oracle();
+                            (ConstraintVerdict::Violation(_) | ConstraintVerdict::ViolationAt(_), _) => {
+                                // An f32 sample, or (a depth end) a real point finer than
+                                // the f32 samples around it; both confirmed exactly.
+                                let (w, sample) = match verdict {
+                                    ConstraintVerdict::Violation(s) => (s.to_oracle(), Some(s)),
+                                    ConstraintVerdict::ViolationAt(p) => (p, None),
+                                    _ => unreachable!(),
+                                };
+                                if !in_domain(&tile, w) {
+                                    j.add_unproven(Unproven::SideGap);
+                                    continue;
+                                }
                                 // The margin: how far the sample lies beyond the end (for
                                 // a depth, from its exact hit depth).
                                 let margin = match coord {
@@ -549,11 +559,18 @@ impl<'a> TileJudge<'a> {
                                     j.tally_end(&name, true);
                                 }
                                 j.consider(self.witness(w, name, margin));
-                                if coord.is_some() {
-                                    found.push(s);
-                                } else {
-                                    // A depth witness is an f32 sample, confirmed exactly.
-                                    j.f32_witness = true;
+                                match (coord, sample) {
+                                    (Some(_), Some(s)) => found.push(s),
+                                    (Some(_), None) => {}
+                                    (None, Some(_)) => j.f32_witness = true,
+                                    (None, None) => {
+                                        let (z0, z1) =
+                                            if is_max { (f64::NEG_INFINITY, bound) } else { (bound, f64::INFINITY) };
+                                        let want = if is_max { DepthCheck::Above } else { DepthCheck::Below };
+                                        j.f32_witness |= f32_candidates(w, 5, bound as f32, is_max, &tile)
+                                            .iter()
+                                            .any(|s| oracles::classify_depth(self.tri, s.to_oracle(), z0, z1) == want);
+                                    }
                                 }
                             }
                             _ => j.add_unproven(Unproven::SideGap),
@@ -571,6 +588,8 @@ impl<'a> TileJudge<'a> {
                 .verdict
             {
                 ConstraintVerdict::Violation(s) => found.push(s),
+                // Not given by a per-sample search (no claim about real points).
+                ConstraintVerdict::ViolationAt(_) => j.add_unproven(Unproven::ConstraintBudget),
                 ConstraintVerdict::Undecided => j.add_unproven(Unproven::ConstraintBudget),
                 ConstraintVerdict::WithinResolution => j.add_unproven(Unproven::ConstraintResolution),
                 ConstraintVerdict::Proved => {}
