@@ -32,6 +32,9 @@ use std::cmp::Ordering;
 /// box of its budget to choose its splits (see `ConstraintProblem::visit`).
 const TRIALS_PER_BOX: usize = 4;
 
+/// A claim's exact test at a real point (true: the claim drops it).
+type BeyondAt<'a> = &'a dyn Fn(&[f64; 5]) -> bool;
+
 /// How a constraint search ended.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ConstraintVerdict {
@@ -103,7 +106,7 @@ struct ConstraintProblem<'a> {
     ended: Option<ConstraintVerdict>,
     /// A claim's exact test at a real point (true: beyond the claim), for claims that
     /// speak of every real sample.
-    beyond_at: Option<&'a dyn Fn(&[f64; 5]) -> bool>,
+    beyond_at: Option<BeyondAt<'a>>,
 }
 
 impl ConstraintProblem<'_> {
@@ -372,7 +375,7 @@ fn search_in<'a>(
     budget: usize,
     min_width: f64,
     split_pixels: bool,
-    beyond_at: Option<&'a dyn Fn(&[f64; 5]) -> bool>,
+    beyond_at: Option<BeyondAt<'a>>,
 ) -> ConstraintSearch {
     let iv = |a: f32, b: f32| Interval::new(a as f64, b as f64);
     let init: Box5 = [
