@@ -79,11 +79,16 @@
 //! ulps of 0 can be culled: that is where f32 rounding can make the test
 //! non-conservative; no epsilon is added. `eval_box` evaluates `P + Q l + t (R + S l)`
 //! in outward-rounded f64 intervals over the box (P..S are the stored f32 values, exact
-//! in f64) and widens by `2^-20 * (|P| + |Q| L + max(1, T) (|R| + |S| L)) + 2^-126 (1 +
+//! in f64) and widens by `2^-20 * (|P| + |Q| L + max(1, T) (|R| + |S| L)) + 2^-146 (1 +
 //! L)(1 + T)` (L, T the largest |l|, |t| in the box): the f32 evaluation has at most 4
 //! roundings on any path, relative error `<= 4 * 2^-24 < 2^-20` of that magnitude sum,
-//! plus at most `2^-149` absolute per operation for subnormal results, scaled by at
-//! most `(1 + L)(1 + T)`. When that magnitude reaches `2^126` an f32 intermediate may
+//! plus at most `2^-150` absolute for each rounding whose result underflows (a sum that
+//! underflows is exact), scaled by at most `(1 + L)(1 + T)`: `2^-148 (1 + L)(1 + T)` in
+//! all, within the `2^-146` term. (Until 2026-12-07 that term was `2^-126 (1 + L)(1 +
+//! T)`, 2^20 times more than the argument needs: with clip coordinates near 1e-36 it
+//! swallowed the patches, and lb2011-safe and lc-safe were left unproven on a third of
+//! such cases. `tests.rs` checks the bound against the exact patch where the evaluation
+//! underflows.) When that magnitude reaches `2^126` an f32 intermediate may
 //! overflow and the enclosure is the whole real line. A NaN corner value (degenerate
 //! input) drops that axis's patches and ranges; a patch whose coefficients are not
 //! finite or sum in magnitude to `2^125` or more is dropped (its f32 `eval` could
@@ -312,7 +317,7 @@ impl Patch {
         let tm = t.lo.abs().max(t.hi.abs());
         let a = |x: f32| (x as f64).abs();
         let mag = a(self.p) + a(self.q) * lm + tm.max(1.0) * (a(self.r) + a(self.s) * lm);
-        (mag, mag * 2f64.powi(-20) + 2f64.powi(-126) * (1.0 + lm) * (1.0 + tm))
+        (mag, mag * 2f64.powi(-20) + 2f64.powi(-146) * (1.0 + lm) * (1.0 + tm))
     }
     fn lens_of(&self, smp: &Sample) -> f32 {
         match self.lens {

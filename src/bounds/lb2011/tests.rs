@@ -556,3 +556,55 @@ fn safe_chord_and_patch_enclose() {
         }
     }
 }
+
+/// The patches' error bound (`error_over`) against the exact value of the patch, where
+/// the f32 evaluation underflows: coefficients from 2^-149 to 2^-100 (and some normal
+/// ones beside them), lens and time values of every size. Each rounding of the f32
+/// evaluation errs by at most 2^-24 of its result or, for a result that underflows, by
+/// 2^-150 absolute; the bound allows 4 * 2^-24 of the magnitudes plus 2^-146 (1 + L)(1 +
+/// T). Every evaluation must be within it; and the absolute errors seen must exceed what
+/// a bound of 2^-152 (1 + L)(1 + T) would allow, or this test could not catch one that
+/// is too small.
+#[test]
+fn the_patch_error_bound_holds_where_the_evaluation_underflows() {
+    use oracles::dyadic::Dyadic;
+    let mut g = ChaCha8Rng::seed_from_u64(0x5b_7e1);
+    let (mut beyond_small, mut n) = (0usize, 0usize);
+    let coef = |g: &mut ChaCha8Rng| {
+        let e = g.gen_range(-149..-100);
+        let m: f32 =
+            if g.gen_bool(0.1) { g.gen_range(-1e-3..1e-3) } else { g.gen_range(-2.0f32..2.0) * 2f32.powi(e.max(-126)) };
+        let v = if e < -126 { m * 2f32.powi(e + 126) } else { m };
+        if g.gen_bool(0.5) {
+            v
+        } else {
+            // A subnormal of any size.
+            f32::from_bits(g.gen_range(1u32..0x0080_0000)) * if g.gen_bool(0.5) { 1.0 } else { -1.0 }
+        }
+    };
+    for _ in 0..20_000 {
+        let patch =
+            Patch { name: "attack", lens: Lens::U, p: coef(&mut g), q: coef(&mut g), r: coef(&mut g), s: coef(&mut g) };
+        for _ in 0..10 {
+            let l: f32 = if g.gen_bool(0.2) { [-1.0, 1.0, 0.0][g.gen_range(0..3)] } else { g.gen_range(-1.0f32..=1.0) };
+            let t: f32 = if g.gen_bool(0.2) { [0.0, 1.0][g.gen_range(0..2)] } else { g.gen_range(0.0f32..=1.0) };
+            let s = Sample::new(0.0, 0.0, l, 0.0, t);
+            let got = patch.eval(&s);
+            let d = |x: f32| Dyadic::from_f64(x as f64);
+            let exact = &(&d(patch.p) + &(&d(patch.q) * &d(l))) + &(&d(t) * &(&d(patch.r) + &(&d(patch.s) * &d(l))));
+            let diff = (&d(got) - &exact).to_f64().abs();
+            let (_, err) = patch.error_over(Interval::point(l as f64), Interval::point(t as f64));
+            assert!(
+                diff <= err,
+                "{patch:?} at l = {l:e}, t = {t:e}: f32 {got:e}, exact {:e}, error {diff:e} above the bound {err:e}",
+                exact.to_f64()
+            );
+            let (mag, _) = patch.error_over(Interval::point(l as f64), Interval::point(t as f64));
+            let small = mag * 2f64.powi(-20) + 2f64.powi(-152) * (1.0 + l.abs() as f64) * (1.0 + t as f64);
+            beyond_small += (diff > small) as usize;
+            n += 1;
+        }
+    }
+    eprintln!("{n} evaluations within the bound; {beyond_small} beyond a bound of 2^-152 (1 + L)(1 + T)");
+    assert!(beyond_small > 100, "{beyond_small}");
+}
