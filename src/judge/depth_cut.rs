@@ -126,10 +126,10 @@ impl SampleConstraint for DepthClaim {
 /// The verdict of the constraint search on a depth end: `Proved` when no interior sample
 /// of the tile, at any lens position and time, has a hit depth beyond `z` (below it for
 /// a `lower` end), certified with the vertex terms and the families of cuts within
-/// `budget` boxes; `Violation(s)` with an f32 sample of the tile that the search found
-/// interior and beyond the end (both decided exactly: [`DepthClaim::eval`] is
-/// [`oracles::classify_depth`], the coverage is [`oracles::classify`]); anything else
-/// when neither is shown. A `z` that is not finite is `Undecided`.
+/// `budget` boxes; `Violation(s)` with an f32 sample of the tile, or `ViolationAt(p)`
+/// with a real point of it, that the search found interior and beyond the end (both
+/// decided exactly, by [`oracles::classify_depth`] and [`oracles::classify`]); anything
+/// else when neither is shown. A `z` that is not finite is `Undecided`.
 pub fn decide(tri: &Tri, tile: &Tile, z: f64, lower: bool, budget: usize, min_width: f64) -> ConstraintVerdict {
     if !z.is_finite() {
         return ConstraintVerdict::Undecided;
