@@ -269,12 +269,12 @@ impl Problem for ConstraintProblem<'_> {
             // coordinate and set that succeeded last go first: the boxes along a
             // contact tend to need the same, and a failing trial of every pair costs
             // up to 15 boxes' work. (In the per-sample searches the widest first
-            // decides more: mam2012-safe's lines need the widest split.)
-            // In a claim's search, only coordinates within 64x of the widest: a collapse
-            // to a point can certify where no interval around it does, and a claim's
-            // search would then halve that coordinate alone until its budget ran out.
-            // (The per-sample searches need their narrow coordinates: gdam2010-safe
-            // seed 4 case 3278 stays undecided with the guard.)
+            // decides more: mam2012-safe's lines need the widest split.) A claim's
+            // search also tries only coordinates within 64x of the widest: a collapse to
+            // a point can certify where no interval around it does, and that coordinate
+            // alone would be halved until the budget ran out. (The per-sample searches
+            // need their narrow coordinates: gdam2010-safe seed 4 case 3278 stays
+            // undecided with the guard.)
             let widest = rel.iter().cloned().fold(0.0, f64::max);
             let near = |k: usize| !self.free_trials || rel[k] * 64.0 >= widest;
             let mut order: Vec<usize> = (0..5).filter(|&k| rel[k] > 0.0 && near(k)).collect();
@@ -348,7 +348,7 @@ pub fn search_claim(
     bounds: &TileBounds,
     budget: usize,
     min_width: f64,
-    beyond: &dyn Fn(&[f64; 5]) -> bool,
+    beyond: BeyondAt<'_>,
 ) -> ConstraintSearch {
     search_in(tri, tile, bounds, budget, min_width, true, Some(beyond))
 }

@@ -96,6 +96,35 @@ impl Cut {
     pub fn zero() -> Self {
         Cut { coef: [0.0; 32], t2: [0.0; 16], err: 0.0, d_sign: 0 }
     }
+
+    /// The cut of a polynomial known only by enclosures of its coefficients over the
+    /// box `b`: `lin[m]` of the multilinear monomial m, `sq[m]` of `t^2` times the
+    /// monomial m of x, y, u, v. Each coefficient's midpoint goes into the cut and its
+    /// width times its monomial's largest size over the box into the error, with
+    /// `extra` (another bound on what the cut leaves out); the sum is padded by far more
+    /// than its own rounding. None when a coefficient or the error is not finite.
+    pub(super) fn enclosing(lin: &[Interval; 32], sq: &[Interval; 16], b: &[Interval; 5], extra: f64) -> Option<Cut> {
+        let mag: [f64; 5] = std::array::from_fn(|i| b[i].lo.abs().max(b[i].hi.abs()));
+        let size = |m: usize| (0..5).filter(|i| m >> i & 1 == 1).fold(1.0f64, |acc, i| acc * mag[i]);
+        let mut cut = Cut::zero();
+        let mut err = extra;
+        for (m, iv) in lin.iter().enumerate() {
+            if !(iv.lo.is_finite() && iv.hi.is_finite()) {
+                return None;
+            }
+            cut.coef[m] = iv.mid();
+            err += (iv.hi - iv.lo) * size(m);
+        }
+        for (m, iv) in sq.iter().enumerate() {
+            if !(iv.lo.is_finite() && iv.hi.is_finite()) {
+                return None;
+            }
+            cut.t2[m] = iv.mid();
+            err += (iv.hi - iv.lo) * (size(m) * (mag[4] * mag[4]));
+        }
+        cut.err = err * (1.0 + 1e-10) + f64::MIN_POSITIVE;
+        cut.err.is_finite().then_some(cut)
+    }
     /// Bit masks of the coordinates: x, y, u, v, t.
     pub const X: usize = 1;
     pub const Y: usize = 2;

@@ -142,39 +142,27 @@ impl DepthNumerator {
         }
         let pt = Interval::point;
         let mag: [f64; 5] = std::array::from_fn(|i| b[i].lo.abs().max(b[i].hi.abs()));
-        // The largest size of the monomial m of x, y, u, v over the box (rounded up by
-        // the pad below).
-        let size = |m: usize| (0..4).filter(|i| m >> i & 1 == 1).fold(1.0f64, |acc, i| acc * mag[i]);
         let tm = b[4].mid();
         let h = (b[4].hi - tm).max(tm - b[4].lo).max(0.0);
         let (tmi, tm2) = (pt(tm), pt(tm) * pt(tm));
         let tm3 = tm2 * tmi;
-        let mut base = Cut::zero();
-        let mut err = 0.0f64;
+        let mut lin = [pt(0.0); 32];
+        let mut sq = [pt(0.0); 16];
+        // What the cut leaves out: the cube's remainder.
+        let mut rest = 0.0f64;
         for m in 0..MONOMIALS {
             let [a0, a1, a2, a3] = self.h.c[m];
             // a3 t^3 = a3 (tm^3 - 3 tm^2 t + 3 tm t^2) + a3 (t - tm)^3.
-            let parts =
-                [(a0 + a3 * tm3, m, 0usize), (a1 - pt(3.0) * a3 * tm2, m | Cut::T, 1), (a2 + pt(3.0) * a3 * tmi, m, 2)];
-            for (iv, slot, tpow) in parts {
-                if !(iv.lo.is_finite() && iv.hi.is_finite()) {
-                    return None;
-                }
-                let tsize = [1.0, mag[4], mag[4] * mag[4]][tpow];
-                *(if tpow == 2 { &mut base.t2[slot] } else { &mut base.coef[slot] }) = iv.mid();
-                err += (iv.hi - iv.lo) * size(m) * tsize;
-            }
-            err += a3.lo.abs().max(a3.hi.abs()) * size(m) * h * h * h;
+            lin[m] = a0 + a3 * tm3;
+            lin[m | Cut::T] = a1 - pt(3.0) * a3 * tm2;
+            sq[m] = a2 + pt(3.0) * a3 * tmi;
+            let size = (0..4).filter(|i| m >> i & 1 == 1).fold(1.0f64, |acc, i| acc * mag[i]);
+            rest += a3.lo.abs().max(a3.hi.abs()) * size * h * h * h;
         }
-        // The sum above is rounded: pad it by far more than its own rounding.
-        let err = err * (1.0 + 1e-10) + f64::MIN_POSITIVE;
-        if !err.is_finite() {
-            return None;
-        }
+        let base = Cut::enclosing(&lin, &sq, b, rest)?;
         let signed = |s: f64, d_sign: i8| {
             let mut c = base;
             c.coef.iter_mut().chain(c.t2.iter_mut()).for_each(|v| *v *= s);
-            c.err = err;
             c.d_sign = d_sign;
             c
         };

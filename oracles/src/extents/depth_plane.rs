@@ -331,15 +331,6 @@ pub fn depth_cuts(tri: &Tri, b: [Interval; 5], z: f64, lower: bool, slopes: Slop
     }
     let pt = Interval::point;
     let sign = if lower { 1.0 } else { -1.0 };
-    // The largest magnitude of each coordinate over the box.
-    let mag: [f64; 5] = std::array::from_fn(|i| b[i].lo.abs().max(b[i].hi.abs()));
-    let monomial_max = |m: usize, t2: bool| {
-        let mut p = (0..5).filter(|i| m >> i & 1 == 1).fold(1.0f64, |acc, i| acc * mag[i]);
-        if t2 {
-            p *= mag[4] * mag[4];
-        }
-        p
-    };
     let cut_k = |k: usize| -> Option<Cut> {
         let aff = |p: f64, q: f64| [pt(p), pt(q) - pt(p)];
         let (x, y) = (aff(tri.q[k][0], tri.r[k][0]), aff(tri.q[k][1], tri.r[k][1]));
@@ -366,26 +357,7 @@ pub fn depth_cuts(tri: &Tri, b: [Interval; 5], z: f64, lower: bool, slopes: Slop
         add(g, y, 0);
         add(g, kc, Cut::V);
         add(g, [-w[0], -w[1]], Cut::Y);
-        let mut cut = Cut::zero();
-        let mut err = 0.0f64;
-        // Each coefficient's midpoint into the cut, its width times its monomial's
-        // largest magnitude into the error.
-        let terms = lin
-            .iter()
-            .enumerate()
-            .map(|(m, iv)| (m, false, iv))
-            .chain(sq.iter().enumerate().map(|(m, iv)| (m, true, iv)));
-        for (m, squared, iv) in terms {
-            let iv = pt(sign) * *iv;
-            if !(iv.lo.is_finite() && iv.hi.is_finite()) {
-                return None;
-            }
-            *(if squared { &mut cut.t2[m] } else { &mut cut.coef[m] }) = iv.mid();
-            err += (iv.hi - iv.lo) * monomial_max(m, squared);
-        }
-        // The sum above is rounded: pad it by far more than its own rounding.
-        cut.err = err * (1.0 + 1e-10) + f64::MIN_POSITIVE;
-        cut.err.is_finite().then_some(cut)
+        Cut::enclosing(&lin.map(|iv| pt(sign) * iv), &sq.map(|iv| pt(sign) * iv), &b, 0.0)
     };
     Some([cut_k(0)?, cut_k(1)?, cut_k(2)?])
 }
