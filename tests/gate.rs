@@ -154,6 +154,50 @@ fn slips_in_known_bad_methods_leave_their_signature() {
     }
 }
 
+/// The tail in `check`: a kind above its regime's cap but within another regime's is
+/// counted per row and held to the method's tail rate over all its rows; without a
+/// tail rate it is beyond the signature. `broken/shrink/la2011-safe` pulls every end in
+/// by 1e-3, above `motion`'s caps (1e-9) and within `static`'s (10).
+#[test]
+fn a_kind_above_its_regime_cap_counts_against_the_tail_rate() {
+    use cullproof::cases::generate::Regime;
+    let kinds = ["u min", "u max", "v min", "v max", "t min", "t max"];
+    let caps = |c: &str| kinds.iter().map(|k| format!(r#""{k}": {c}"#)).collect::<Vec<_>>().join(", ");
+    let gate = |tail: Option<&str>| {
+        let rate = tail.map_or(String::new(), |t| format!(r#", "max_tail_rate": {t}"#));
+        let row = |c: &str| {
+            format!(
+                r#"{{"expect": "violation", "why": "tail", "bounds": {{{}, "tile culled": "inf"}}, "max_rate": 1{rate}}}"#,
+                caps(c)
+            )
+        };
+        let text = format!(r#"{{"la2011-safe": {{"motion": {}, "static": {}}}}}"#, row("1e-9"), row("10"));
+        let ex = Expectations::parse_with(&text, "tail test", &|m| cullproof::bounds::by_id(m).is_some()).unwrap();
+        let m = cullproof::bounds::broken::parse("broken/shrink/la2011-safe").unwrap();
+        let mut cfg = CheckConfig::default_with(vec![m]);
+        cfg.regimes = vec![Regime::Motion, Regime::Static];
+        cfg.cases = 64;
+        run(&cfg, &ex, false)
+    };
+    let row = |r: &CheckReport, regime: &str| r.rows.iter().find(|x| x.regime == regime).unwrap().clone();
+    // every case allowed in the tail: the rows pass, the tail is counted
+    let r = gate(Some("1"));
+    let motion = row(&r, "motion");
+    assert!(!r.failed() && motion.tail > 0 && motion.tail <= motion.violations, "{}", render(&r));
+    assert_eq!(row(&r, "static").tail, 0, "within its own caps");
+    // a tail rate the slip passes: the rows with a tail case fail, naming the count
+    let r = gate(Some("0.0001"));
+    let motion = row(&r, "motion");
+    assert!(r.failed() && motion.status == Status::BeyondSignature, "{}", render(&r));
+    assert!(motion.problems.iter().any(|p| p.starts_with("tail: ")), "{:?}", motion.problems);
+    assert_eq!(row(&r, "static").status, Status::KnownViolation);
+    // no tail rate: beyond the signature, each kind named
+    let r = gate(None);
+    let motion = row(&r, "motion");
+    assert!(r.failed() && motion.tail == 0 && motion.status == Status::BeyondSignature, "{}", render(&r));
+    assert!(motion.problems.iter().any(|p| p.contains("above the cap")), "{:?}", motion.problems);
+}
+
 #[test]
 fn a_dropped_lens_padding_term_is_caught_within_a_few_cases() {
     let m = cullproof::bounds::broken::parse("broken/no-coc-pad/bbox").unwrap();

@@ -168,6 +168,10 @@ fn impossible_counts_are_refused() {
         v["rows"][i]["f32_witnessed"] = json!(v["rows"][i]["violations"].as_u64().unwrap() + 1);
     });
     refused(&p, &[&format!("rows[{i}].f32_witnessed")]);
+    let p = tampered("tail-too-many.json", |v| {
+        v["rows"][i]["tail"] = json!(v["rows"][i]["violations"].as_u64().unwrap() + 1);
+    });
+    refused(&p, &[&format!("rows[{i}].tail"), "exceeds violations"]);
 }
 
 #[test]

@@ -191,3 +191,65 @@ fn the_measured_parts_catch_slips_inside_the_signature() {
         assert!(!r.stdout.contains(line), "{}", r.stdout);
     }
 }
+
+/// The tail: a kind above the regime's cap but within the largest cap another regime
+/// of the method gives it is counted, written as "in the tail", and fails the search
+/// only when the tail passes its rate; without a tail rate it is beyond the signature.
+/// `broken/shrink/la2011-safe` pulls every end in by 1e-3: in `motion` each violation
+/// is above the cap 1e-9 there and within the cap 10 of `static`.
+#[test]
+fn a_kind_above_its_regime_cap_is_in_the_tail_and_held_to_its_rate() {
+    let kinds = ["u min", "u max", "v min", "v max", "t min", "t max"];
+    let caps = |c: &str| kinds.iter().map(|k| format!(r#""{k}": {c}"#)).collect::<Vec<_>>().join(", ");
+    let run = |tail: Option<&str>, tag: &str| {
+        let dir = scratch(tag);
+        let ex = dir.join("expectations.json");
+        let rate = tail.map_or(String::new(), |t| format!(r#", "max_tail_rate": {t}"#));
+        let row = |c: &str| {
+            format!(
+                r#"{{"expect": "violation", "why": "tail test", "bounds": {{{}, "tile culled": "inf"}}, "max_rate": 1{rate}}}"#,
+                caps(c)
+            )
+        };
+        let text = format!(r#"{{"la2011-safe": {{"motion": {}, "static": {}}}}}"#, row("1e-9"), row("10"));
+        std::fs::write(&ex, text).unwrap();
+        let report = dir.join("report.json");
+        let args = [
+            "--expectations",
+            ex.to_str().unwrap(),
+            "--regime",
+            "motion",
+            "--dry-run",
+            "--json",
+            report.to_str().unwrap(),
+        ];
+        let r = gated_search("broken/shrink/la2011-safe", "6", "3", &args);
+        let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        std::fs::remove_dir_all(&dir).ok();
+        (r, j)
+    };
+    // a tail rate that allows every case: counted and written, never failing
+    let (r, j) = run(Some("1"), "tail-all");
+    assert_eq!(r.code, Some(0), "stdout:\n{}\nstderr:\n{}", r.stdout, r.stderr);
+    let tail = j["tail_cases"].as_u64().unwrap();
+    assert!(tail > 0 && j["beyond_cases"] == serde_json::json!(0), "{j}");
+    let found = j["found"].as_array().unwrap();
+    assert!(!found.is_empty() && found.iter().all(|f| f["tail"] == serde_json::json!(true)), "{j}");
+    assert!(found.iter().all(|f| f["beyond_signature"] == serde_json::json!(false)), "{j}");
+    let line = r.stdout.lines().find(|l| l.starts_with("in the tail: broken/shrink/la2011-safe, regime motion"));
+    assert!(
+        line.is_some_and(|l| l.contains("above this regime's cap 1e-9") && l.contains("largest cap 1e1")),
+        "{}",
+        r.stdout
+    );
+    // a tail rate the slip passes: the search fails with a tail breach
+    let (r, j) = run(Some("0.0001"), "tail-few");
+    assert_eq!(r.code, Some(1), "stdout:\n{}", r.stdout);
+    let b = j["breaches"].as_array().unwrap();
+    assert!(b.iter().any(|b| b.as_str().unwrap().starts_with("tail: ")), "{j}");
+    // no tail rate: beyond the signature
+    let (r, j) = run(None, "tail-none");
+    assert_eq!(r.code, Some(1), "stdout:\n{}", r.stdout);
+    assert_eq!(j["tail_cases"], serde_json::json!(0), "{j}");
+    assert!(j["found"].as_array().unwrap().iter().any(|f| f["beyond_signature"] == serde_json::json!(true)), "{j}");
+}

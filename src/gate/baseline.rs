@@ -244,6 +244,7 @@ mod tests {
             not_judged: 0,
             unproven_by: BTreeMap::new(),
             bounds: bounds.iter().map(|(k, m)| (k.to_string(), BoundStat { cases: 1, max_margin: *m })).collect(),
+            tail: 0,
             boundary_only: 0,
             f32_witnessed: 0,
             limit_tiles: 0,

@@ -21,6 +21,13 @@
 //! margins reach the whole lens or shutter and no finite cap holds under a longer
 //! search. Such a kind is still gated by its presence (a kind not listed fails), by
 //! the rate and by the tightness signature.
+//!
+//! A regime with a `max_tail_rate` also has a **tail**: a kind above its cap (or not
+//! listed there) but within the largest cap the method's other regimes expected violated
+//! give it is counted, not failed, and the method's cases in the tail are held to that
+//! rate over all its regimes ([`Place`], [`pooled_tail_breach`]). Rare large margins of a
+//! kind the method already violates elsewhere have no stable largest value, but a stable
+//! rate.
 
 use crate::cases::generate::Regime;
 use crate::io::num_or_inf;
@@ -110,6 +117,20 @@ pub struct Entry {
     /// measured at ([`super::settings::Settings::measured`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_admit: Option<f64>,
+    /// For an expected violation: the **tail**, the largest share of the method's cases
+    /// (summed over its regimes that state one) that may violate a kind of bound beyond
+    /// this regime's cap but within the largest cap any of the method's regimes expected
+    /// violated gives that kind (see [`Place::Tail`]). Measured from long gated searches:
+    /// such findings are rare (about one case in 10^4) and their margins are unbounded,
+    /// so a cap on their count holds under longer searches where a cap on their margin
+    /// never did. None: no tail is allowed, and such a kind is beyond the signature.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_tail_rate: Option<f64>,
+    /// Derived when the entry is looked up ([`Expectations::entry`]), never read from a
+    /// file: per kind, the largest cap the method's regimes expected violated give it
+    /// (the reach of the tail). Empty without `max_tail_rate`.
+    #[serde(skip)]
+    pub tail_caps: BTreeMap<String, Cap>,
     /// Unproven cases allowed (for an expected-conservative row; none by default).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unproven: Option<Allowance>,
@@ -134,8 +155,9 @@ pub struct Searched {
     pub seconds: f64,
     /// Cases of this regime the search judged.
     pub cases: u64,
-    /// "widened" (the signature was widened from this search) or "held" (nothing
-    /// beyond it was found).
+    /// "widened" (the signature was widened from this search), "held" (nothing
+    /// beyond it was found) or "tail" (cases in the method's tail, counted against its
+    /// tail rate, nothing beyond).
     pub outcome: String,
 }
 
@@ -164,6 +186,8 @@ impl Entry {
             max_boundary_rate: None,
             max_limit_rate: None,
             max_admit: None,
+            max_tail_rate: None,
+            tail_caps: BTreeMap::new(),
             unproven: None,
             tight: BTreeMap::new(),
             searched: Vec::new(),
@@ -249,19 +273,46 @@ impl Entry {
     }
 
     /// Where one violated bound kind, with the margin it needs, stands against this
-    /// signature: None inside it (or a regime that is not gated), else why it is
-    /// beyond: "not in the signature", "above the cap 5e-5", or "in a regime expected
-    /// conservative" (where any violation is beyond).
-    pub fn beyond(&self, kind: &str, margin: f64) -> Option<String> {
+    /// signature: inside it (or a regime that is not gated), in the method's tail, or
+    /// beyond it, with why: "not in the signature", "above the cap 5e-5", or "in a
+    /// regime expected conservative" (where any violation is beyond).
+    pub fn place(&self, kind: &str, margin: f64) -> Place {
         match self.expect {
-            Expected::Unknown => None,
-            Expected::Conservative => Some("in a regime expected conservative".into()),
-            Expected::Violation => match self.bounds.get(kind) {
-                None => Some("not in the signature".into()),
-                Some(Cap(cap)) if margin > *cap => Some(format!("above the cap {cap:e}")),
-                Some(_) => None,
-            },
+            Expected::Unknown => Place::Inside,
+            Expected::Conservative => Place::Beyond("in a regime expected conservative".into()),
+            Expected::Violation => {
+                let cap = self.bounds.get(kind).map(|c| c.0);
+                if cap.is_some_and(|c| margin <= c) {
+                    return Place::Inside;
+                }
+                let tail = self.max_tail_rate.and(self.tail_caps.get(kind)).map(|c| c.0);
+                if tail.is_some_and(|t| margin <= t) {
+                    return Place::Tail;
+                }
+                let beyond_tail = match tail {
+                    Some(t) => format!(" (and the method's largest cap {t:e})"),
+                    None => String::new(),
+                };
+                Place::Beyond(match cap {
+                    None => format!("not in the signature{beyond_tail}"),
+                    Some(c) => format!("above the cap {c:e}{beyond_tail}"),
+                })
+            }
         }
+    }
+
+    /// [`Entry::place`] when it is beyond: why; None inside the signature or in its tail.
+    pub fn beyond(&self, kind: &str, margin: f64) -> Option<String> {
+        match self.place(kind, margin) {
+            Place::Beyond(why) => Some(why),
+            _ => None,
+        }
+    }
+
+    /// Whether a judgement's violated kinds put its case in the method's tail (some kind
+    /// lies there, whatever the others do).
+    pub fn in_tail<'k>(&self, violated: impl IntoIterator<Item = (&'k String, &'k f64)>) -> bool {
+        violated.into_iter().any(|(k, &m)| self.place(k, m) == Place::Tail)
     }
 
     /// The rate cap against `violations` of `cases`: a row of n cases may exceed
@@ -280,11 +331,13 @@ impl Entry {
     pub fn breaches(&self, violated: &BTreeMap<String, (u64, f64)>, violations: u64, cases: u64) -> Vec<String> {
         let mut out = Vec::new();
         for (kind, &(n, m)) in violated {
+            if self.beyond(kind, m).is_none() {
+                continue;
+            }
             match self.bounds.get(kind) {
                 None => out
                     .push(format!("violates `{kind}` ({n} cases, margin {m:.3e}), which the signature does not list")),
-                Some(Cap(cap)) if m > *cap => out.push(format!("`{kind}` margin {m:.3e} above the cap {cap:.3e}")),
-                Some(_) => {}
+                Some(Cap(cap)) => out.push(format!("`{kind}` margin {m:.3e} above the cap {cap:.3e}")),
             }
         }
         out.extend(self.rate_breach(violations, cases));
@@ -346,6 +399,57 @@ pub fn pooled_boundary_breach<'a>(rows: impl IntoIterator<Item = (&'a Entry, u64
         format!(
             "boundary tiles violated over all regimes with a cap: {violated} of {cases} cases, the caps allow about \
              {mean:.0} (at most {allowed:.0} with counting noise)"
+        )
+    })
+}
+
+/// Where a violated kind of bound stands against a regime's signature.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Place {
+    /// Within the regime's cap (or the regime is not gated).
+    Inside,
+    /// Above the regime's cap (or not listed there) but within the largest cap the
+    /// method's regimes expected violated give the kind, where the regime states a
+    /// `max_tail_rate`: counted, and held to that rate over all of the method's cases.
+    Tail,
+    /// Beyond the signature, with why.
+    Beyond(String),
+}
+
+/// The tail of one method over its regimes: the cases with a kind in the tail
+/// ([`Place::Tail`]) of every regime that states a `max_tail_rate`, the cases of those
+/// regimes, and how many the rates allow: the sum of the rates times the regimes' cases
+/// with the counting noise of [`Allowance::cases_allowed`] summed as for one row.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TailCount {
+    pub tail: u64,
+    pub cases: u64,
+    pub allowed: f64,
+}
+
+impl TailCount {
+    /// Rows `(entry, cases in the tail, cases judged)` of one method.
+    pub fn of<'a>(rows: impl IntoIterator<Item = (&'a Entry, u64, u64)>) -> TailCount {
+        let (mut mean, mut var, mut tail, mut cases) = (0.0f64, 0.0f64, 0u64, 0u64);
+        for (e, t, n) in rows {
+            let Some(r) = e.max_tail_rate.filter(|_| e.expect == Expected::Violation) else { continue };
+            mean += r * n as f64;
+            var += r * (1.0 - r) * n as f64;
+            tail += t;
+            cases += n;
+        }
+        TailCount { tail, cases, allowed: mean + 3.0 * var.sqrt() + 2.0 }
+    }
+}
+
+/// The tail over all regimes of one method ([`TailCount`]); a line when its cases pass
+/// what the rates allow, None within it.
+pub fn pooled_tail_breach<'a>(rows: impl IntoIterator<Item = (&'a Entry, u64, u64)>) -> Option<String> {
+    let TailCount { tail, cases, allowed } = TailCount::of(rows);
+    (cases > 0 && tail as f64 > allowed).then(|| {
+        format!(
+            "tail: {tail} of {cases} cases violate a kind above their regime's cap (within the method's largest), the \
+             tail rates allow at most {allowed:.1} with counting noise"
         )
     })
 }
@@ -429,6 +533,7 @@ impl Expectations {
             ("max_boundary_rate", e.max_boundary_rate),
             ("max_limit_rate", e.max_limit_rate),
             ("max_admit", e.max_admit),
+            ("max_tail_rate", e.max_tail_rate),
         ];
         for (field, v) in shares {
             if let Some(v) = v.filter(|v| !(0.0..=1.0).contains(v)) {
@@ -440,9 +545,11 @@ impl Expectations {
                 || e.max_rate.is_some()
                 || e.max_limit_rate.is_some()
                 || e.max_boundary_rate.is_some()
+                || e.max_tail_rate.is_some()
             {
                 return Err(
-                    "fields `bounds`, `max_rate`, `max_boundary_rate` and `max_limit_rate` belong to an expected violation"
+                    "fields `bounds`, `max_rate`, `max_boundary_rate`, `max_limit_rate` and `max_tail_rate` belong to an \
+                     expected violation"
                         .into(),
                 );
             }
@@ -471,13 +578,21 @@ impl Expectations {
 
     /// The entry for a method in a regime (expected conservative when not listed). A
     /// deliberately broken variant is held to the expectations of the method it breaks.
+    /// With a `max_tail_rate`, the entry's `tail_caps` are filled in: per kind, the
+    /// largest cap over the method's regimes expected violated.
     pub fn entry(&self, method: &str, regime: &str) -> Entry {
         let method = crate::bounds::broken::inner_id(method);
-        self.0
-            .get(method)
-            .and_then(|m| m.get(regime).or_else(|| m.get("*")))
-            .cloned()
-            .unwrap_or_else(Entry::conservative)
+        let Some(m) = self.0.get(method) else { return Entry::conservative() };
+        let Some(mut e) = m.get(regime).or_else(|| m.get("*")).cloned() else { return Entry::conservative() };
+        if e.expect == Expected::Violation && e.max_tail_rate.is_some() {
+            for other in m.values().filter(|o| o.expect == Expected::Violation) {
+                for (k, c) in &other.bounds {
+                    let t = e.tail_caps.entry(k.clone()).or_insert(*c);
+                    t.0 = t.0.max(c.0);
+                }
+            }
+        }
+        e
     }
 
     pub fn get(&self, method: &str, regime: &str) -> Expected {
@@ -615,7 +730,7 @@ mod tests {
         let err = load(r#"{"m": {"*": {"expect": "conservative", "max_admit": 1.5}}}"#).unwrap_err().to_string();
         assert!(err.contains("field `max_admit` = 1.5: a share in [0, 1]"), "{err}");
         let err = load(r#"{"m": {"*": {"expect": "conservative", "max_limit_rate": 0.1}}}"#).unwrap_err().to_string();
-        assert!(err.contains("`max_limit_rate` belong to an expected violation"), "{err}");
+        assert!(err.contains("`max_limit_rate`") && err.contains("belong to an expected violation"), "{err}");
         let ok = load(r#"{"m": {"*": {"expect": "conservative", "max_admit": 0.5}}}"#).unwrap();
         assert_eq!(ok.entry("m", "static").max_admit, Some(0.5));
     }
@@ -658,5 +773,66 @@ mod tests {
         assert!(c.beyond("u min", 1e-12).is_some_and(|w| w.contains("conservative")));
         assert_eq!(c.cap("u min"), None);
         assert_eq!(Entry { expect: Expected::Unknown, ..Entry::conservative() }.beyond("u min", 1.0), None);
+    }
+
+    #[test]
+    fn a_kind_above_its_regime_cap_is_in_the_tail_up_to_the_methods_largest_cap() {
+        let text = r#"{"m": {
+            "tiny": {"expect": "violation", "why": "w", "bounds": {"u min": 1e-4, "t max": "inf"}, "max_rate": 0.5,
+                     "max_tail_rate": 0.001},
+            "huge": {"expect": "violation", "why": "w", "bounds": {"u min": 0.3, "v max": 2e-3}, "max_rate": 0.5,
+                     "max_tail_rate": 0.001},
+            "sliver": {"expect": "violation", "why": "w", "bounds": {"u min": "inf"}, "max_rate": 0.5},
+            "static": "conservative"}}"#;
+        let ex = load(text).unwrap();
+        let tiny = ex.entry("m", "tiny");
+        assert_eq!(tiny.place("u min", 1e-4), Place::Inside);
+        // above tiny's cap, within sliver's inf and huge's 0.3
+        assert_eq!(tiny.place("u min", 1.5), Place::Tail);
+        // not listed in tiny, listed in huge
+        assert_eq!(tiny.place("v max", 1e-3), Place::Tail);
+        let why = tiny.beyond("v max", 3e-3).unwrap();
+        assert!(why.contains("not in the signature") && why.contains("largest cap 2e-3"), "{why}");
+        // a kind no regime lists
+        assert_eq!(tiny.beyond("v min", 1e-9).as_deref(), Some("not in the signature"));
+        // no tail rate: no tail
+        let sliver = ex.entry("m", "sliver");
+        assert!(sliver.tail_caps.is_empty());
+        assert_eq!(sliver.beyond("t max", 1e-3).as_deref(), Some("not in the signature"));
+        // a regime expected conservative has none
+        assert!(ex.entry("m", "static").beyond("u min", 1e-9).unwrap().contains("conservative"));
+        // a row's breaches leave the tail out: the pooled count holds it
+        let stats: BTreeMap<String, (u64, f64)> = [("u min".to_string(), (3, 1.5))].into();
+        assert!(tiny.breaches(&stats, 3, 100).is_empty());
+        let stats: BTreeMap<String, (u64, f64)> = [("v max".to_string(), (3, 0.5))].into();
+        assert_eq!(tiny.breaches(&stats, 3, 100).len(), 1);
+        assert!(tiny.in_tail(&BTreeMap::from([("u min".to_string(), 1.0), ("t max".to_string(), 0.1)])));
+        assert!(!tiny.in_tail(&BTreeMap::from([("u min".to_string(), 1e-5)])));
+        // the derived caps are never read from a file
+        let e = load(
+            r#"{"m": {"*": {"expect": "violation", "why": "w", "bounds": {"u min": 1}, "max_rate": 0.1,
+                "tail_caps": {"u min": 2}}}}"#,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("tail_caps"), "{e}");
+        let e = load(r#"{"m": {"*": {"expect": "conservative", "max_tail_rate": 0.1}}}"#).unwrap_err().to_string();
+        assert!(e.contains("`max_tail_rate` belong to an expected violation"), "{e}");
+    }
+
+    #[test]
+    fn the_tail_is_held_over_all_regimes_with_counting_noise() {
+        let e = Entry { expect: Expected::Violation, max_tail_rate: Some(1e-4), ..Entry::conservative() };
+        let none = Entry { expect: Expected::Violation, ..Entry::conservative() };
+        // 16 regimes of 5,000 cases: 8 expected, 8 + 3 * 2.83 + 2 = 18.5 allowed
+        assert_eq!(pooled_tail_breach((0..16).map(|_| (&e, 1, 5_000))), None);
+        assert_eq!(pooled_tail_breach((0..16).map(|i| (&e, (i < 2) as u64 * 9, 5_000))), None);
+        let line = pooled_tail_breach((0..16).map(|i| (&e, (i < 1) as u64 * 19, 5_000))).unwrap();
+        assert!(line.contains("19 of 80000"), "{line}");
+        // a small run allows 2 and a little more (3.03 of 960 cases), not 4
+        assert_eq!(pooled_tail_breach([(&e, 3, 960)]), None);
+        assert!(pooled_tail_breach([(&e, 4, 960)]).is_some());
+        // rows without a tail rate count nothing
+        assert_eq!(pooled_tail_breach([(&none, 50, 960)]), None);
     }
 }

@@ -110,6 +110,7 @@ pub fn merge(
     });
     let mut rows: Vec<Row> = rows.into_values().collect();
     super::report::pooled_tightness(&mut rows);
+    super::report::pooled_tail(&mut rows);
     let mut rep = CheckReport {
         methods: super::strength::of_rows(&rows),
         samples,
@@ -158,6 +159,7 @@ fn add_row(acc: &mut Row, o: &Row) {
     acc.cases += o.cases;
     acc.proven += o.proven;
     acc.violations += o.violations;
+    acc.tail += o.tail;
     acc.unproven += o.unproven;
     acc.not_judged += o.not_judged;
     for (k, v) in &o.unproven_by {

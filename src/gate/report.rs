@@ -117,6 +117,7 @@ impl<'a> Accumulator<'a> {
                     not_judged: 0,
                     unproven_by: BTreeMap::new(),
                     bounds: BTreeMap::new(),
+                    tail: 0,
                     boundary_only: 0,
                     f32_witnessed: 0,
                     limit_tiles: 0,
@@ -170,6 +171,9 @@ impl<'a> Accumulator<'a> {
                 s.probed += n as u64;
                 s.tight += t as u64;
             }
+            if row.entry.as_ref().is_some_and(|e| e.in_tail(&j.violated)) {
+                row.tail += 1;
+            }
             for (k, m) in &j.violated {
                 let b = row.bounds.entry(k.clone()).or_default();
                 b.cases += 1;
@@ -192,6 +196,7 @@ impl<'a> Accumulator<'a> {
         let (k, n) = cfg.shard;
         let mut rows: Vec<Row> = self.rows.into_values().collect();
         pooled_tightness(&mut rows);
+        pooled_tail(&mut rows);
         CheckReport {
             methods: super::strength::of_rows(&rows),
             seed: cfg.seed,
@@ -233,6 +238,32 @@ pub(crate) fn pooled_tightness(rows: &mut [Row]) {
                 if !row.problems.contains(&line) {
                     row.problems.push(line.clone());
                 }
+            }
+        }
+    }
+}
+
+/// The tail over all of a method's rows at once ([`super::expect::pooled_tail_breach`]):
+/// when the method's cases in the tail pass what its tail rates allow, every row of the
+/// method with a case in the tail fails, naming the pooled count.
+pub(crate) fn pooled_tail(rows: &mut [Row]) {
+    let methods: std::collections::BTreeSet<String> = rows.iter().map(|r| r.method.clone()).collect();
+    for method in methods {
+        let line = super::expect::pooled_tail_breach(rows.iter().filter_map(|row| {
+            let entry = row.entry.as_ref()?;
+            (row.method == method && row.status != Status::NotGated).then_some((
+                entry,
+                row.tail,
+                row.cases - row.not_judged,
+            ))
+        }));
+        let Some(line) = line else { continue };
+        for row in rows.iter_mut().filter(|r| r.method == method && r.tail > 0) {
+            if !row.status.fails() {
+                row.status = Status::BeyondSignature;
+            }
+            if !row.problems.contains(&line) {
+                row.problems.push(line.clone());
             }
         }
     }
@@ -312,6 +343,27 @@ fn fmt_margin(row: &Row) -> String {
     }
 }
 
+/// One line per method with cases in its tail: how many, against what its tail rate
+/// allows (empty when no method has one).
+fn render_tail(r: &CheckReport) -> String {
+    let mut s = String::new();
+    let methods: std::collections::BTreeSet<&str> =
+        r.rows.iter().filter(|x| x.tail > 0).map(|x| x.method.as_str()).collect();
+    for m in methods {
+        let rows = r.rows.iter().filter(|x| x.method == m);
+        let tail: u64 = rows.clone().map(|x| x.tail).sum();
+        let c = super::expect::TailCount::of(
+            rows.filter_map(|x| Some((x.entry.as_ref()?, x.tail, x.cases - x.not_judged))),
+        );
+        s += &format!(
+            "tail of {m}: {tail} case(s) violate a kind above their regime's cap, within the method's largest; its tail \
+             rates allow {:.1} of {} cases\n",
+            c.allowed, c.cases
+        );
+    }
+    s
+}
+
 /// One line per method over all regimes: the verdict at a glance.
 fn render_summary(r: &CheckReport) -> String {
     let mut s = format!(
@@ -385,6 +437,7 @@ pub fn render(r: &CheckReport) -> String {
         );
     }
     s += &render_summary(r);
+    s += &render_tail(r);
     s += "\nproven: every claim certified (no gap left); violated: an interior sample, confirmed exactly, in the tile and\n\
           the lens/shutter domain, that the answer culls; unproven: neither (by reason in the JSON report).\n\
           margin: the padding of the violated bound that would admit every witness found (inf: a covered tile was culled).\n\

@@ -88,6 +88,11 @@ pub struct Row {
     pub unproven_by: BTreeMap<String, u64>,
     /// Violated bound kinds: cases and largest margin.
     pub bounds: BTreeMap<String, BoundStat>,
+    /// Violated cases with a kind in the method's tail (above this regime's cap, within
+    /// the method's largest: [`super::expect::Place::Tail`]); held to the tail rate
+    /// over all of the method's rows.
+    #[serde(default)]
+    pub tail: u64,
     pub boundary_only: u64,
     /// Violations witnessed by an f32 sample (the rest only between f32 values).
     pub f32_witnessed: u64,

@@ -5,7 +5,7 @@ use super::*;
 use crate::bounds::MethodRef;
 use crate::cases::generate::Regime;
 use crate::cases::try_make_case;
-use crate::gate::expect::{pooled_looser, Entry};
+use crate::gate::expect::{pooled_looser, Entry, Place};
 use crate::gate::{Cap, CheckConfig, Expectations};
 use crate::io::num_or_inf;
 use crate::judge::Judgement;
@@ -42,8 +42,12 @@ pub struct Found {
     /// regime is not an expected violation, or no expectations were given).
     pub cap: Option<Cap>,
     /// Why it is beyond ("not in the signature", "above the cap 5e-5", "the regime is
-    /// expected conservative"); empty inside the signature.
+    /// expected conservative"), or where it lies in the tail; empty inside the signature.
     pub signature: String,
+    /// In the method's tail ([`crate::gate::expect::Place::Tail`]): above the regime's
+    /// cap, within the method's largest; written for a look, failing only when the tail
+    /// as a whole passes its rate (one such finding per regime and kind).
+    pub tail: bool,
 }
 
 /// One kind of bound violated in one regime during a search, over every case (before
@@ -72,6 +76,10 @@ pub struct RegimeSeen {
     pub cases: u64,
     /// Cases whose boundary tile shows a violation (by at least the minimum margin).
     pub violated: u64,
+    /// Cases with a kind in the method's tail (over all their tiles).
+    pub tail: u64,
+    /// The signature's tail rate (null: none).
+    pub max_tail_rate: Option<f64>,
     /// The signature's rate cap (null: none).
     pub max_rate: Option<f64>,
     /// The signature's cap on the search's boundary-tile rate (null: none, or not at
@@ -107,6 +115,8 @@ pub struct SearchReport {
     /// with some kind of bound beyond the signature.
     pub violated_cases: u64,
     pub beyond_cases: u64,
+    /// Cases with a kind in the method's tail and none beyond the signature.
+    pub tail_cases: u64,
     /// Per regime and kind of bound violated (when expectations were given).
     pub kinds: Vec<KindSeen>,
     /// Per regime: cases, violated boundary tiles and tightness.
@@ -184,9 +194,25 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
         v.sort_by(|a, b| b.1.total_cmp(&a.1));
         v
     };
+    // The kinds in the method's tail, largest margin first.
+    let tail_kinds = |r: Regime, j: &Judgement| -> Vec<(String, f64, String)> {
+        let Some(e) = entry(r) else { return Vec::new() };
+        let mut v: Vec<_> = j
+            .violated
+            .iter()
+            .filter(|(k, &mm)| mm >= o.min_margin && e.place(k, mm) == Place::Tail)
+            .map(|(k, &mm)| {
+                let cap = e.cap(k).map_or("not listed here".to_string(), |c| format!("above this regime's cap {c:e}"));
+                let most = e.tail_caps.get(k).map_or(f64::NAN, |c| c.0);
+                (k.clone(), mm, format!("{cap}, within the method's largest cap {most:e}"))
+            })
+            .collect();
+        v.sort_by(|a, b| b.1.total_cmp(&a.1));
+        v
+    };
     let interesting = |r: Regime, j: &Judgement| {
         if o.gate {
-            !beyond_kinds(r, j).is_empty()
+            !beyond_kinds(r, j).is_empty() || !tail_kinds(r, j).is_empty()
         } else {
             j.violation.as_ref().is_some_and(|v| v.margin >= o.min_margin)
         }
@@ -197,10 +223,11 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
     let mut next = 0u64;
     let batch = 8 * rayon::current_num_threads() as u64;
     let mut seen = std::collections::BTreeSet::new();
-    let (mut violated_cases, mut beyond_cases) = (0u64, 0u64);
+    let (mut violated_cases, mut beyond_cases, mut tail_cases) = (0u64, 0u64, 0u64);
+    let beyond_found = |found: &Vec<Found>| found.iter().filter(|f| !f.tail).count();
     let mut kinds: std::collections::BTreeMap<(Regime, String), (u64, f64)> = Default::default();
     let mut per_regime: BTreeMap<Regime, RegimeSeen> = BTreeMap::new();
-    while start.elapsed().as_secs_f64() < o.seconds && found.len() < o.max_found {
+    while start.elapsed().as_secs_f64() < o.seconds && beyond_found(&found) < o.max_found {
         let ids: Vec<u64> = (next..next + batch).collect();
         next += batch;
         // Per case: the boundary tile's judgement, and the limit tiles' when the
@@ -247,7 +274,11 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
             }
             if all.violated.values().any(|&mm| mm >= o.min_margin) {
                 violated_cases += 1;
-                beyond_cases += !beyond_kinds(regime, &all).is_empty() as u64;
+                let beyond = !beyond_kinds(regime, &all).is_empty();
+                let tail = !tail_kinds(regime, &all).is_empty();
+                beyond_cases += beyond as u64;
+                tail_cases += (tail && !beyond) as u64;
+                rs.tail += tail as u64;
                 if o.expectations.is_some() {
                     for (k, &mm) in all.violated.iter().filter(|(_, &mm)| mm >= o.min_margin) {
                         let e = kinds.entry((regime, k.clone())).or_insert((0, 0.0));
@@ -266,11 +297,12 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
             let mut picks: Vec<(String, Option<(f64, String)>)> = Vec::new();
             if o.gate {
                 picks.extend(beyond_kinds(regime, &f).into_iter().map(|(k, mm, why)| (k, Some((mm, why)))));
+                picks.extend(tail_kinds(regime, &f).into_iter().map(|(k, mm, why)| (k, Some((mm, why)))));
             } else {
                 picks.push((crate::judge::bound_kind(&f.violation.as_ref().unwrap().bound), None));
             }
             for (kind, beyond) in picks {
-                if found.len() >= o.max_found {
+                if beyond_found(&found) >= o.max_found {
                     break;
                 }
                 let Some(w) = f.witness_of(&kind).cloned() else { continue };
@@ -293,8 +325,17 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
                 let (c, t, jj, steps) = match &beyond {
                     Some((mm, _)) => {
                         let (floor, e) = (0.5 * mm, entry(regime).expect("the gate has expectations"));
+                        // beyond stays beyond; a tail finding stays out of the regime's cap
+                        let was = e.place(&kind, *mm);
                         let keep = |j: &Judgement| {
-                            j.violated.get(&kind).is_some_and(|&x| x >= floor && e.beyond(&kind, x).is_some())
+                            j.violated.get(&kind).is_some_and(|&x| {
+                                x >= floor
+                                    && match e.place(&kind, x) {
+                                        Place::Inside => false,
+                                        Place::Tail => was == Place::Tail,
+                                        Place::Beyond(_) => true,
+                                    }
+                            })
                         };
                         shrink_while(cfg, &m, w.case, w.tile, f.clone(), i, &keep)
                     }
@@ -309,7 +350,13 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
                 let kind = if beyond.is_some() { kind } else { crate::judge::bound_kind(&w.bound) };
                 let margin = jj.violated.get(&kind).copied().unwrap_or(w.margin);
                 let e = entry(regime);
-                let why = e.as_ref().and_then(|e| e.beyond(&kind, margin)).unwrap_or_default();
+                let place = e.as_ref().map_or(Place::Inside, |e| e.place(&kind, margin));
+                let tail = o.gate && place == Place::Tail;
+                let why = match (&place, &beyond) {
+                    (Place::Beyond(why), _) => why.clone(),
+                    (Place::Tail, Some((_, why))) => why.clone(),
+                    _ => String::new(),
+                };
                 let cap = e.as_ref().and_then(|e| e.cap(&kind)).map(Cap);
                 let note = if why.is_empty() {
                     String::new()
@@ -319,8 +366,9 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
                     } else {
                         String::new()
                     };
+                    let stands = if tail { "in the tail of" } else { "beyond" };
                     format!(
-                        "search: `{kind}` margin {margin:.3e} beyond {id}'s signature in regime {} ({why}){other}",
+                        "search: `{kind}` margin {margin:.3e} {stands} {id}'s signature in regime {} ({why}){other}",
                         regime.name()
                     )
                 };
@@ -340,9 +388,10 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
                     kind,
                     shrink_steps: steps,
                     file,
-                    beyond_signature: !why.is_empty(),
+                    beyond_signature: !why.is_empty() && !tail,
                     cap,
                     signature: why,
+                    tail,
                 });
             }
         }
@@ -372,6 +421,7 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
                 seen.admit_fraction /= seen.cases as f64;
             }
             if let Some(e) = entry(regime) {
+                seen.max_tail_rate = e.max_tail_rate;
                 seen.max_rate = e.max_rate;
                 seen.max_boundary_rate = e.max_boundary_rate;
                 seen.max_limit_rate = e.max_limit_rate;
@@ -402,6 +452,8 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
         breaches.extend(crate::gate::expect::pooled_boundary_breach(
             rows.iter().map(|(e, seen)| (e, seen.violated, seen.cases)),
         ));
+        breaches
+            .extend(crate::gate::expect::pooled_tail_breach(rows.iter().map(|(e, seen)| (e, seen.tail, seen.cases))));
     }
     Ok(SearchReport {
         method: id.into(),
@@ -413,6 +465,7 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
         expectations: o.expectations.map(|(_, name)| name.to_string()),
         violated_cases,
         beyond_cases,
+        tail_cases,
         kinds,
         regimes,
         breaches,
@@ -427,10 +480,33 @@ fn fmt_cap(c: Option<Cap>) -> String {
     }
 }
 
-/// The line that names one finding beyond the signature.
+/// The tail of a gated search against its rates (None: no tail rate, or no tail case).
+fn tail_line(r: &SearchReport) -> Option<String> {
+    let rows: Vec<(Entry, u64, u64)> = r
+        .regimes
+        .iter()
+        .filter_map(|g| {
+            let rate = g.max_tail_rate?;
+            let e =
+                Entry { expect: crate::gate::Expected::Violation, max_tail_rate: Some(rate), ..Entry::conservative() };
+            Some((e, g.tail, g.cases))
+        })
+        .collect();
+    let c = crate::gate::expect::TailCount::of(rows.iter().map(|(e, t, n)| (e, *t, *n)));
+    (c.cases > 0 && c.tail > 0).then(|| {
+        format!(
+            "tail: {} of {} cases violate a kind above their regime's cap, within the method's largest (the tail \
+             rates allow {:.1})\n",
+            c.tail, c.cases, c.allowed
+        )
+    })
+}
+
+/// The line that names one finding beyond the signature (or in its tail).
 pub fn beyond_line(f: &Found) -> String {
     format!(
-        "beyond the signature: {}, regime {}: `{}` margin {:.3e} {}{}",
+        "{}: {}, regime {}: `{}` margin {:.3e} {}{}",
+        if f.tail { "in the tail" } else { "beyond the signature" },
         f.method,
         f.regime,
         f.kind,
@@ -445,16 +521,17 @@ pub fn beyond_line(f: &Found) -> String {
 pub fn render_search(r: &SearchReport) -> String {
     let mut s = if r.gate {
         format!(
-            "search {} --gate ({}): seed {}, {} cases in {:.1} s; {} case(s) violated, {} within the signature, {} beyond it; {} finding(s) beyond the signature\n",
+            "search {} --gate ({}): seed {}, {} cases in {:.1} s; {} case(s) violated, {} within the signature, {} in its tail, {} beyond it; {} finding(s) beyond the signature\n",
             r.method,
             r.expectations.as_deref().unwrap_or("-"),
             r.seed,
             r.cases,
             r.seconds,
             r.violated_cases,
-            r.violated_cases - r.beyond_cases,
+            r.violated_cases - r.beyond_cases - r.tail_cases,
+            r.tail_cases,
             r.beyond_cases,
-            r.found.len()
+            r.found.iter().filter(|f| !f.tail).count()
         )
     } else {
         format!(
@@ -537,6 +614,9 @@ pub fn render_search(r: &SearchReport) -> String {
         for f in &r.found {
             s += &beyond_line(f);
             s += "\n";
+        }
+        if let Some(line) = tail_line(r) {
+            s += &line;
         }
         for b in &r.breaches {
             s += &format!("beyond the signature: {}, {b}\n", r.method);

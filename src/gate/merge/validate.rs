@@ -293,6 +293,7 @@ fn row_counts(p: &Path, i: usize, row: &Row) -> Result<()> {
     }
     let at_most = [
         ("f32_witnessed", row.f32_witnessed, row.violations, "violations"),
+        ("tail", row.tail, row.violations, "violations"),
         ("boundary_only", row.boundary_only, cases, "cases"),
         ("limit_found", row.limit_found, cases, "cases"),
         ("limit_tiles", row.limit_tiles, cases.saturating_mul(2), "2 x cases"),
