@@ -11,7 +11,7 @@ use cullproof::bounds::bbox::{aabb_of, rejects};
 use cullproof::bounds::broken::planted::{BAND_HI, BAND_LO};
 use cullproof::bounds::{by_id, TileResult};
 use cullproof::tools::symbolic::prove::{
-    family, prove, queries, range_sets, Limits, ProveReport, QueryReport, Rule, Strategy, DEFAULT_FREE_SHARE,
+    family, prove, queries, range_sets, Limits, ProveReport, QueryReport, Rule, Strategy, Template, DEFAULT_FREE_SHARE,
     DEFAULT_RLIMIT,
 };
 use cullproof::tools::symbolic::smt::Smt;
@@ -184,11 +184,11 @@ fn the_emitted_method_evaluates_to_the_f32_bits() {
 /// at the first confirmed violation).
 fn search(id: &str, seed: u64, jobs: usize) -> ProveReport {
     let m = cullproof::cli::args::method("--method", id, true).unwrap();
-    let f = family(id).unwrap();
+    let f = family(id, Template::Static).unwrap();
     let sets = range_sets(f.as_ref(), None);
     let plan = queries(f.as_ref(), Strategy::Concolic, &sets, seed, 4000, DEFAULT_FREE_SHARE);
     let limits = Limits { timeout: 60.0, rlimit: Some(DEFAULT_RLIMIT), jobs, solvers: Solvers::Z3 };
-    prove(m, Strategy::Concolic, seed, &plan, limits, None, None, false).unwrap()
+    prove(m, Template::Static, Strategy::Concolic, seed, &plan, limits, None, None, false).unwrap()
 }
 
 /// The confirmed query of a report, and its case rebuilt from the model's inputs.
@@ -198,7 +198,7 @@ fn confirmed(r: &ProveReport, id: &str) -> (QueryReport, Triangle, Tile) {
     assert_eq!(q.answer, Answer::Sat);
     assert_eq!(Some(q.index), r.first_confirmed);
     assert_eq!(q.index + 1, r.queries.len(), "the run stops at the first confirmed query");
-    let f = family(id).unwrap();
+    let f = family(id, Template::Static).unwrap();
     let side = f.sides().iter().position(|s| *s == q.side).unwrap();
     let (tri, tile) = f.instance(side, q.inputs.as_ref().unwrap());
     (q, tri, tile)
@@ -239,13 +239,13 @@ fn the_symbolic_search_finds_bbox_f32_tile_cull() {
 #[ignore]
 fn a_whole_query_finds_bbox_f32_tile_cull_in_narrow_ranges() {
     let m = by_id("bbox").unwrap();
-    let f = family("bbox").unwrap();
+    let f = family("bbox", Template::Static).unwrap();
     let r =
         cullproof::tools::symbolic::family::parse_ranges(f.as_ref(), "--ranges", "a=128:256,c=1:2,w=1.875:2,t=96:128")
             .unwrap();
     let plan = vec![cullproof::tools::symbolic::family::Query::free(0, r)];
     let limits = Limits { timeout: 900.0, rlimit: None, jobs: 1, solvers: Solvers::Z3 };
-    let r = prove(m, Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
+    let r = prove(m, Template::Static, Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
     let (q, _, tile) = confirmed(&r, "bbox");
     assert!(edge_inside(q.side, q.inputs.as_ref().unwrap(), &tile));
 }
@@ -491,12 +491,15 @@ fn the_la2011_query_holds_a_known_violation() {
     let pin: Vec<[f32; 2]> = v.iter().map(|&x| [x, x.next_up()]).collect();
     let plan = vec![cullproof::tools::symbolic::family::Query::free(0, pin)];
     let limits = Limits { timeout: 300.0, rlimit: None, jobs: 1, solvers: Solvers::Z3 };
-    let r = prove(by_id("la2011").unwrap(), Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
+    let r = prove(by_id("la2011").unwrap(), Template::Static, Strategy::Whole, 0, &plan, limits, None, None, false)
+        .unwrap();
     let (q, tri, tile) = confirmed(&r, "la2011");
     assert_eq!(q.inputs.as_deref(), Some(&v[..]), "{}", r.render());
     assert!(edge_inside(q.side, q.inputs.as_ref().unwrap(), &tile), "{}", r.render());
     assert!(!matches!(by_id("la2011-safe").unwrap().setup(&tri).tile(&tile), TileResult::Empty));
-    let safe = prove(by_id("la2011-safe").unwrap(), Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
+    let safe =
+        prove(by_id("la2011-safe").unwrap(), Template::Static, Strategy::Whole, 0, &plan, limits, None, None, false)
+            .unwrap();
     assert_eq!(safe.queries[0].answer, Answer::Unsat, "{}", safe.render());
 }
 
@@ -518,7 +521,7 @@ fn the_symbolic_search_finds_la2011_f32_tile_cull() {
 #[test]
 fn the_scripts_are_standard_and_bitwuzla_agrees_with_z3() {
     for id in ["bbox", "bbox-safe", "la2011", "la2011-safe"] {
-        let f = family(id).unwrap();
+        let f = family(id, Template::Static).unwrap();
         for side in 0..f.sides().len() {
             for r in f.default_ranges(side) {
                 let (s, _) = cullproof::tools::symbolic::family::script(
@@ -534,11 +537,14 @@ fn the_scripts_are_standard_and_bitwuzla_agrees_with_z3() {
     let pin: Vec<[f32; 2]> = v.iter().map(|&x| [x, x.next_up()]).collect();
     let plan = vec![cullproof::tools::symbolic::family::Query::free(0, pin)];
     let limits = Limits { timeout: 300.0, rlimit: None, jobs: 1, solvers: Solvers::BITWUZLA };
-    let r = prove(by_id("la2011").unwrap(), Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
+    let r = prove(by_id("la2011").unwrap(), Template::Static, Strategy::Whole, 0, &plan, limits, None, None, false)
+        .unwrap();
     let (q, _, _) = confirmed(&r, "la2011");
     assert_eq!(q.solver, solver::Solver::Bitwuzla);
     assert_eq!(q.inputs.as_deref(), Some(&v[..]), "{}", r.render());
-    let safe = prove(by_id("la2011-safe").unwrap(), Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
+    let safe =
+        prove(by_id("la2011-safe").unwrap(), Template::Static, Strategy::Whole, 0, &plan, limits, None, None, false)
+            .unwrap();
     assert_eq!(safe.queries[0].answer, Answer::Unsat, "{}", safe.render());
     assert_eq!(safe.queries[0].hypotheses_sat, Some(true), "{}", safe.render());
 }
@@ -553,7 +559,18 @@ fn an_unsat_with_contradictory_hypotheses_is_not_counted() {
     let plan = vec![cullproof::tools::symbolic::family::Query::free(0, empty)];
     for solvers in [Solvers::Z3, Solvers::BITWUZLA] {
         let limits = Limits { timeout: 60.0, rlimit: None, jobs: 1, solvers };
-        let r = prove(by_id("la2011-safe").unwrap(), Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
+        let r = prove(
+            by_id("la2011-safe").unwrap(),
+            Template::Static,
+            Strategy::Whole,
+            0,
+            &plan,
+            limits,
+            None,
+            None,
+            false,
+        )
+        .unwrap();
         assert_eq!(r.queries[0].answer, Answer::Unknown, "{}", r.render());
         assert_eq!(r.queries[0].hypotheses_sat, Some(false), "{}", r.render());
         assert!(r.render().contains("unsat not counted"), "{}", r.render());
@@ -565,13 +582,13 @@ fn an_unsat_with_contradictory_hypotheses_is_not_counted() {
 #[test]
 fn the_portfolio_finds_bbox_f32_tile_cull_in_narrow_ranges() {
     let m = by_id("bbox").unwrap();
-    let f = family("bbox").unwrap();
+    let f = family("bbox", Template::Static).unwrap();
     let r =
         cullproof::tools::symbolic::family::parse_ranges(f.as_ref(), "--ranges", "a=128:256,c=1:2,w=1.875:2,t=96:128")
             .unwrap();
     let plan = vec![cullproof::tools::symbolic::family::Query::free(0, r)];
     let limits = Limits { timeout: 600.0, rlimit: None, jobs: 1, solvers: Solvers::BOTH };
-    let r = prove(m, Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
+    let r = prove(m, Template::Static, Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
     let (q, _, tile) = confirmed(&r, "bbox");
     assert!(edge_inside(q.side, q.inputs.as_ref().unwrap(), &tile), "{}", r.render());
     eprintln!("{}", r.render());
@@ -589,4 +606,119 @@ fn prove_runs_without_the_symbolic_flag() {
     std::fs::remove_file(&json).ok();
     assert_eq!(j["method"], "bbox");
     assert!(j["queries"].as_array().is_some_and(|q| !q.is_empty()), "{j}");
+}
+
+/// A bound that culls every tile: the judge's verdict on it says whether the tile holds
+/// a covered sample (violated: one confirmed exactly; proven: certified empty).
+struct CullAll;
+struct CullAllP;
+impl cullproof::bounds::Prepared for CullAllP {
+    fn tile(&self, _t: &Tile) -> TileResult {
+        TileResult::Empty
+    }
+}
+static CULL_ALL: cullproof::bounds::MethodInfo = cullproof::bounds::MethodInfo {
+    id: "cull-all",
+    source: "test: culls every tile",
+    reconstruction: false,
+    dims: &[],
+    outputs: cullproof::bounds::Outputs {
+        tile_reject: true,
+        lens: false,
+        time: false,
+        depth: false,
+        per_sample: false,
+    },
+};
+impl cullproof::bounds::Method for CullAll {
+    fn info(&self) -> &'static cullproof::bounds::MethodInfo {
+        &CULL_ALL
+    }
+    fn setup(&self, _t: &Triangle) -> Box<dyn cullproof::bounds::Prepared> {
+        Box::new(CullAllP)
+    }
+}
+
+/// The moving template's exact side, attacked with the exact judge: on random moving,
+/// defocused instances whose tile edge lies a little inside or outside the least (x-min;
+/// greatest, x-max) edge position over the shutter, the SMT assertion "the footprint
+/// reaches the tile" (all inputs pinned, z3) holds exactly when the judge finds a covered
+/// sample in the tile, and fails exactly when the judge certifies the tile empty.
+#[test]
+fn the_moving_templates_exact_side_agrees_with_the_judge() {
+    use cullproof::tools::symbolic::bbox_query::Side;
+    use cullproof::tools::symbolic::moving_query::{assert_reach, template};
+    let cfg = cullproof::gate::CheckConfig::default_with(vec![&CullAll]);
+    let m = cullproof::bounds::shared(&CullAll);
+    let mut r = rng(11);
+    let (mut reached, mut empty) = (0, 0);
+    for i in 0..24 {
+        let side = if i % 2 == 0 { Side::XMin } else { Side::XMax };
+        let sgn = if side == Side::XMin { 1.0 } else { -1.0 };
+        let u = |r: &mut dyn FnMut() -> f64, lo: f64, hi: f64| (lo + (hi - lo) * r()) as f32;
+        let (a0, a1) = (u(&mut r, -60.0, 60.0), u(&mut r, -60.0, 60.0));
+        let (c0, c1) = (u(&mut r, 0.5, 8.0), u(&mut r, 0.5, 8.0));
+        let (w0, w1) = (u(&mut r, 0.5, 4.0), u(&mut r, 0.5, 4.0));
+        // the least (x-min) edge position over the shutter, from the ends
+        let x = |a: f32, c: f32, w: f32| (a as f64 - sgn * c as f64) / w as f64;
+        let edge = if side == Side::XMin { x(a0, c0, w0).min(x(a1, c1, w1)) } else { x(a0, c0, w0).max(x(a1, c1, w1)) };
+        // the tile's near edge 0.3 px inside (reached) or 0.3 px outside (not)
+        let inside = i % 4 < 2;
+        let d = if inside { 0.3 } else { -0.3 };
+        // x-min: tile [t - 1, t] reaches when edge < t; x-max: tile [t, t + 1] when edge > t
+        let t = (edge + sgn * d) as f32;
+        let v = [a0, a1, c0, c1, w0, w1, t];
+        let (tri, tile) = template(&Plain, side, &v);
+        let (tri, tile) = (tri.triangle(), Tile { x0: tile[0], y0: tile[1], x1: tile[2], y1: tile[3] });
+        let case = cullproof::model::Case { triangle: tri, lens: None };
+        let (js, _) = cullproof::gate::judge(&cfg, std::slice::from_ref(&m), &case, &tile, i as u64);
+        let j = &js[0];
+        let smt = Smt::folding();
+        let lits: Vec<String> = v.iter().map(|&x| cullproof::tools::symbolic::smt::lit(x)).collect();
+        assert_reach(&smt, side, &std::array::from_fn(|k| lits[k].clone()));
+        let run = z3::run(&smt.script(&[]), 60.0).expect("z3 runs");
+        match (j.violation.is_some(), j.verdict() == cullproof::judge::Verdict::Proven) {
+            (true, _) => {
+                assert_eq!(run.answer, Answer::Sat, "instance {i} {v:?}: the judge finds a covered sample");
+                reached += 1;
+            }
+            (false, true) => {
+                assert_eq!(run.answer, Answer::Unsat, "instance {i} {v:?}: the judge certifies the tile empty");
+                empty += 1;
+            }
+            _ => {}
+        }
+        assert_eq!(j.violation.is_some(), inside, "instance {i} {v:?}: the edge is 0.3 px from the tile");
+    }
+    assert!(reached >= 10 && empty >= 10, "{reached} reached, {empty} empty");
+}
+
+/// z3 places a tile that bbox's f32 box culls on the moving template, and the judge
+/// confirms it: the exact least edge position over the shutter lies in the tile.
+#[test]
+fn the_moving_template_finds_bbox_f32_tile_cull() {
+    let m = by_id("bbox").unwrap();
+    let f = family("bbox", Template::Moving).unwrap();
+    let sets = range_sets(f.as_ref(), None);
+    let plan = queries(f.as_ref(), Strategy::Concolic, &sets, 1, 4000, DEFAULT_FREE_SHARE);
+    let limits = Limits { timeout: 60.0, rlimit: Some(DEFAULT_RLIMIT), jobs: 2, solvers: Solvers::Z3 };
+    let r = prove(m, Template::Moving, Strategy::Concolic, 1, &plan, limits, None, None, false).unwrap();
+    let q = r.queries.iter().find(|q| q.confirmed).unwrap_or_else(|| panic!("no confirmed case: {}", r.render()));
+    let v = q.inputs.clone().unwrap();
+    let side = f.sides().iter().position(|s| *s == q.side).unwrap();
+    let (tri, tile) = f.instance(side, &v);
+    assert!(matches!(m.setup(&tri).tile(&tile), TileResult::Empty));
+    assert!(!matches!(by_id("bbox-safe").unwrap().setup(&tri).tile(&tile), TileResult::Empty));
+    // the template moves: the two shutter ends differ
+    assert!(v[0] != v[1] || v[2] != v[3] || v[4] != v[5], "{v:?}");
+    use num_rational::BigRational;
+    let qv = |x: f32| BigRational::from_float(x as f64).unwrap();
+    // the least (x-min) or greatest (x-max) exact edge position over the shutter
+    let edge = if side == 0 {
+        std::cmp::min((qv(v[0]) - qv(v[2])) / qv(v[4]), (qv(v[1]) - qv(v[3])) / qv(v[5]))
+    } else {
+        std::cmp::max((qv(v[0]) + qv(v[2])) / qv(v[4]), (qv(v[1]) + qv(v[3])) / qv(v[5]))
+    };
+    assert!(qv(tile.x0) < edge && edge < qv(tile.x1), "{}", r.render());
+    assert!(r.render().contains("template moving"), "{}", r.render());
 }

@@ -20,6 +20,11 @@ pub struct ProveArgs {
     /// and range set, every input free).
     #[arg(long, value_enum, default_value_t = crate::tools::symbolic::prove::Strategy::Concolic)]
     strategy: crate::tools::symbolic::prove::Strategy,
+    /// The template the queries build around the method's cull: `static` (a static
+    /// triangle with a vertical edge; inputs a, c, w, t) or `moving` (the same triangle
+    /// moving and changing its CoC over the shutter; inputs a0, a1, c0, c1, w0, w1, t).
+    #[arg(long, value_enum, default_value_t = crate::tools::symbolic::prove::Template::Static)]
+    template: crate::tools::symbolic::prove::Template,
     /// Seed of the concolic plan (the report for a seed does not depend on --jobs).
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -48,8 +53,9 @@ pub struct ProveArgs {
     /// when the same solver finds the query's ranges alone satisfiable.
     #[arg(long)]
     solvers: Option<String>,
-    /// One range per input, a=LO:HI,c=LO:HI,w=LO:HI,t=LO:HI (half-open; c and w
-    /// positive), queried on both x sides; default: a middle and a wide set.
+    /// One range per input of the template, a=LO:HI,c=LO:HI,w=LO:HI,t=LO:HI (static;
+    /// moving: a0, a1, c0, c1, w0, w1, t), half-open, c and w positive, queried on both
+    /// x sides; default: a middle and a wide set.
     #[arg(long)]
     ranges: Option<String>,
     /// Where to write the confirmed cases (default: the corpus's cases/, see --corpus).
@@ -74,6 +80,7 @@ pub fn run(args: ProveArgs) -> Result<()> {
     let ProveArgs {
         method,
         symbolic,
+        template,
         strategy,
         seed,
         queries,
@@ -110,7 +117,7 @@ pub fn run(args: ProveArgs) -> Result<()> {
     }
     let m = crate::cli::args::method("--method", &method, true)?;
     use crate::tools::symbolic::{family, prove};
-    let fam = prove::family(m.info().id)?;
+    let fam = prove::family(m.info().id, template)?;
     let given = ranges.as_deref().map(|r| family::parse_ranges(fam.as_ref(), "--ranges", r)).transpose()?;
     let sets = prove::range_sets(fam.as_ref(), given);
     let plan = prove::queries(fam.as_ref(), strategy, &sets, seed, queries, free_share);
@@ -125,8 +132,17 @@ pub fn run(args: ProveArgs) -> Result<()> {
         (None, prove::Strategy::Whole) => crate::tools::symbolic::solver::Solvers::BOTH,
     };
     let limits = prove::Limits { timeout, rlimit, jobs, solvers };
-    let r =
-        prove::prove(m, strategy, seed, &plan, limits, (!dry_run).then_some(out.as_path()), emit_smt.as_deref(), true)?;
+    let r = prove::prove(
+        m,
+        template,
+        strategy,
+        seed,
+        &plan,
+        limits,
+        (!dry_run).then_some(out.as_path()),
+        emit_smt.as_deref(),
+        true,
+    )?;
     print!("{}", r.render());
     if let Some(p) = &json {
         write_json(p, &serde_json::to_string_pretty(&r)?)?;

@@ -19,7 +19,7 @@
 //! 600 s, about 190 s of CPU per solver, 2026-12-05), so it has no obligation here.
 
 use crate::tools::symbolic::family::parse_ranges;
-use crate::tools::symbolic::prove::{self, Limits, Strategy};
+use crate::tools::symbolic::prove::{self, Limits, Strategy, Template};
 use crate::tools::symbolic::solver::Solvers;
 use crate::tools::symbolic::z3::Answer;
 use serde::Serialize;
@@ -76,7 +76,7 @@ pub fn run(id: &str, limit: Duration) -> Vec<SideRun> {
     let Some(m) = crate::bounds::by_id(id).or_else(|| crate::bounds::broken::parse(id)) else {
         return fail(format!("`{id}` is not a method id"));
     };
-    let fam = match prove::family(id) {
+    let fam = match prove::family(id, Template::Static) {
         Ok(f) => f,
         Err(e) => return fail(format!("{e:#}")),
     };
@@ -87,7 +87,7 @@ pub fn run(id: &str, limit: Duration) -> Vec<SideRun> {
     let sets = prove::range_sets(fam.as_ref(), Some(ranges));
     let plan = prove::queries(fam.as_ref(), Strategy::Whole, &sets, 1, sets.len(), 0.0);
     let limits = Limits { timeout: limit.as_secs_f64().max(1.0), rlimit: None, jobs: 2, solvers: Solvers::BOTH };
-    let r = match prove::prove(m, Strategy::Whole, 1, &plan, limits, None, None, false) {
+    let r = match prove::prove(m, Template::Static, Strategy::Whole, 1, &plan, limits, None, None, false) {
         Ok(r) => r,
         Err(e) => return fail(format!("{e:#}")),
     };

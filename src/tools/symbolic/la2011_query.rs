@@ -17,7 +17,7 @@
 //! lens thresholds' divisions and the y axis stay out of the script. Asserting the
 //! whole answer's reject instead made a query z3 4.8.12 did not decide within 900 s.
 
-use super::bbox_query::{Side, TemplateCull, TemplateFamily};
+use super::bbox_query::{Side, TemplateCull};
 use super::smt::Smt;
 use crate::bounds::arith::TriOf;
 use crate::bounds::broken::planted::{NoDn, NoUp};
@@ -53,13 +53,13 @@ fn assert_time_reject<R: Round>(smt: &Smt, tri: &TriOf<String>, tile: &[String; 
     smt.assert(&format!("(not {time_ok})"));
 }
 
-/// The family of `id`, if it is la2011 or la2011-safe.
-pub fn family_of(id: &str) -> Option<TemplateFamily<La2011Cull>> {
+/// The cull of `id`, if it is la2011, la2011-safe or one of its planted slips.
+pub fn cull_of(id: &str) -> Option<La2011Cull> {
     match id {
-        "la2011" => Some(TemplateFamily(La2011Cull::Nearest)),
-        "la2011-safe" => Some(TemplateFamily(La2011Cull::Outward)),
-        "broken/planted-no-up/la2011-safe" => Some(TemplateFamily(La2011Cull::NoUp)),
-        "broken/planted-no-dn/la2011-safe" => Some(TemplateFamily(La2011Cull::NoDn)),
+        "la2011" => Some(La2011Cull::Nearest),
+        "la2011-safe" => Some(La2011Cull::Outward),
+        "broken/planted-no-up/la2011-safe" => Some(La2011Cull::NoUp),
+        "broken/planted-no-dn/la2011-safe" => Some(La2011Cull::NoDn),
         _ => None,
     }
 }

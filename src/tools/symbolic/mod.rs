@@ -38,6 +38,8 @@ pub mod bbox_query;
 pub mod concolic;
 pub mod family;
 pub mod la2011_query;
+pub mod mam2012_query;
+pub mod moving_query;
 pub mod prove;
 pub mod smt;
 pub mod solver;

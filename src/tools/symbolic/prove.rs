@@ -53,12 +53,13 @@ impl Corner for Rule {
 }
 
 /// The methods with a symbolic encoding (setup and tile reject, over
-/// [`crate::bounds::arith::F32Arith`]).
-pub const ENCODED: [&str; 8] = [
+/// [`crate::bounds::arith::F32Arith`]) and a query family.
+pub const ENCODED: [&str; 9] = [
     "bbox",
     "bbox-safe",
     "la2011",
     "la2011-safe",
+    "mam2012",
     "broken/planted-eq/bbox-safe",
     "broken/planted-band/bbox-safe",
     "broken/planted-no-up/la2011-safe",
@@ -76,12 +77,59 @@ pub fn rule(id: &str) -> Result<Rule> {
     })
 }
 
-/// The query family of a method (a new encoding adds its arm here).
-pub fn family(id: &str) -> Result<Box<dyn Family>> {
-    if let Some(f) = super::la2011_query::family_of(id) {
-        return Ok(Box::new(f));
+/// The triangle and tile a query family builds around a method's cull.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Template {
+    /// A static triangle with a vertical edge (four inputs; [`super::bbox_query`]).
+    Static,
+    /// The same triangle moving and changing its CoC over the shutter (seven inputs;
+    /// [`super::moving_query`]).
+    Moving,
+}
+
+/// The cull of an encoded method, on any template.
+#[derive(Clone, Copy, Debug)]
+pub enum Cull {
+    Bbox(Rule),
+    La2011(super::la2011_query::La2011Cull),
+    Mam2012(super::mam2012_query::Mam2012Cull),
+}
+
+impl super::bbox_query::TemplateCull for Cull {
+    fn assert_cull(
+        &self,
+        smt: &super::smt::Smt,
+        side: super::bbox_query::Side,
+        tri: &crate::bounds::arith::TriOf<String>,
+        tile: &[String; 4],
+    ) {
+        match self {
+            Cull::Bbox(r) => r.assert_cull(smt, side, tri, tile),
+            Cull::La2011(c) => c.assert_cull(smt, side, tri, tile),
+            Cull::Mam2012(c) => c.assert_cull(smt, side, tri, tile),
+        }
     }
-    Ok(Box::new(TemplateFamily(rule(id)?)))
+}
+
+/// The cull of a method with an encoding, or an error naming the ones there are.
+pub fn cull(id: &str) -> Result<Cull> {
+    if let Some(c) = super::la2011_query::cull_of(id) {
+        return Ok(Cull::La2011(c));
+    }
+    if id == "mam2012" {
+        return Ok(Cull::Mam2012(super::mam2012_query::Mam2012Cull));
+    }
+    Ok(Cull::Bbox(rule(id)?))
+}
+
+/// The query family of a method on a template (a new encoding adds its arm to [`cull`]).
+pub fn family(id: &str, template: Template) -> Result<Box<dyn Family>> {
+    let c = cull(id)?;
+    Ok(match template {
+        Template::Static => Box::new(TemplateFamily(c)),
+        Template::Moving => Box::new(super::moving_query::MovingFamily(c)),
+    })
 }
 
 /// How the queries are made.
@@ -189,6 +237,7 @@ pub struct QueryReport {
 #[derive(Clone, Debug, Serialize)]
 pub struct ProveReport {
     pub method: String,
+    pub template: Template,
     pub strategy: Strategy,
     pub seed: u64,
     pub limits: Limits,
@@ -317,6 +366,7 @@ fn run_one(
 #[allow(clippy::too_many_arguments)]
 pub fn prove(
     m: &'static dyn Method,
+    template: Template,
     strategy: Strategy,
     seed: u64,
     queries: &[Query],
@@ -325,7 +375,7 @@ pub fn prove(
     emit: Option<&Path>,
     progress: bool,
 ) -> Result<ProveReport> {
-    let f = family(m.info().id)?;
+    let f = family(m.info().id, template)?;
     let f: &dyn Family = f.as_ref();
     if let Some(dir) = emit {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
@@ -381,6 +431,7 @@ pub fn prove(
     let cpu_seconds = reports.iter().filter_map(|r| r.cpu_seconds).sum();
     Ok(ProveReport {
         method: m.info().id.into(),
+        template,
         strategy,
         seed,
         limits,
@@ -401,8 +452,12 @@ impl ProveReport {
             None => format!("{} s per query", self.limits.timeout),
         };
         let mut s = format!(
-            "prove --symbolic {} (strategy {:?}, seed {}, {lim}, {} jobs, solvers {})\n",
+            "prove --symbolic {} (template {}, strategy {:?}, seed {}, {lim}, {} jobs, solvers {})\n",
             self.method,
+            match self.template {
+                Template::Static => "static",
+                Template::Moving => "moving",
+            },
             self.strategy,
             self.seed,
             self.limits.jobs,
