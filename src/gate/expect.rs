@@ -428,11 +428,12 @@ pub struct TailCount {
 }
 
 impl TailCount {
-    /// Rows `(entry, cases in the tail, cases judged)` of one method.
-    pub fn of<'a>(rows: impl IntoIterator<Item = (&'a Entry, u64, u64)>) -> TailCount {
+    /// Rows `(tail rate, cases in the tail, cases judged)` of one method; a row without
+    /// a rate counts nothing.
+    pub fn of(rows: impl IntoIterator<Item = (Option<f64>, u64, u64)>) -> TailCount {
         let (mut mean, mut var, mut tail, mut cases) = (0.0f64, 0.0f64, 0u64, 0u64);
-        for (e, t, n) in rows {
-            let Some(r) = e.max_tail_rate.filter(|_| e.expect == Expected::Violation) else { continue };
+        for (rate, t, n) in rows {
+            let Some(r) = rate else { continue };
             mean += r * n as f64;
             var += r * (1.0 - r) * n as f64;
             tail += t;
@@ -445,7 +446,8 @@ impl TailCount {
 /// The tail over all regimes of one method ([`TailCount`]); a line when its cases pass
 /// what the rates allow, None within it.
 pub fn pooled_tail_breach<'a>(rows: impl IntoIterator<Item = (&'a Entry, u64, u64)>) -> Option<String> {
-    let TailCount { tail, cases, allowed } = TailCount::of(rows);
+    let rates = rows.into_iter().map(|(e, t, n)| (e.max_tail_rate.filter(|_| e.expect == Expected::Violation), t, n));
+    let TailCount { tail, cases, allowed } = TailCount::of(rates);
     (cases > 0 && tail as f64 > allowed).then(|| {
         format!(
             "tail: {tail} of {cases} cases violate a kind above their regime's cap (within the method's largest), the \

@@ -352,9 +352,10 @@ fn render_tail(r: &CheckReport) -> String {
     for m in methods {
         let rows = r.rows.iter().filter(|x| x.method == m);
         let tail: u64 = rows.clone().map(|x| x.tail).sum();
-        let c = super::expect::TailCount::of(
-            rows.filter_map(|x| Some((x.entry.as_ref()?, x.tail, x.cases - x.not_judged))),
-        );
+        let c = super::expect::TailCount::of(rows.map(|x| {
+            let rate = x.entry.as_ref().and_then(|e| e.max_tail_rate.filter(|_| e.expect == Expected::Violation));
+            (rate, x.tail, x.cases - x.not_judged)
+        }));
         s += &format!(
             "tail of {m}: {tail} case(s) violate a kind above their regime's cap, within the method's largest; its tail \
              rates allow {:.1} of {} cases\n",

@@ -482,17 +482,7 @@ fn fmt_cap(c: Option<Cap>) -> String {
 
 /// The tail of a gated search against its rates (None: no tail rate, or no tail case).
 fn tail_line(r: &SearchReport) -> Option<String> {
-    let rows: Vec<(Entry, u64, u64)> = r
-        .regimes
-        .iter()
-        .filter_map(|g| {
-            let rate = g.max_tail_rate?;
-            let e =
-                Entry { expect: crate::gate::Expected::Violation, max_tail_rate: Some(rate), ..Entry::conservative() };
-            Some((e, g.tail, g.cases))
-        })
-        .collect();
-    let c = crate::gate::expect::TailCount::of(rows.iter().map(|(e, t, n)| (e, *t, *n)));
+    let c = crate::gate::expect::TailCount::of(r.regimes.iter().map(|g| (g.max_tail_rate, g.tail, g.cases)));
     (c.cases > 0 && c.tail > 0).then(|| {
         format!(
             "tail: {} of {} cases violate a kind above their regime's cap, within the method's largest (the tail \
