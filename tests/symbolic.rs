@@ -722,3 +722,46 @@ fn the_moving_template_finds_bbox_f32_tile_cull() {
     assert!(qv(tile.x0) < edge && edge < qv(tile.x1), "{}", r.render());
     assert!(r.render().contains("template moving"), "{}", r.render());
 }
+
+/// mam2012's cull as a query family asserts exactly what the f32 method does: on
+/// moving template instances (all inputs pinned), the assertion "mam2012 culls the
+/// tile" is satisfiable exactly where the registered method answers Empty.
+#[test]
+fn the_mam2012_cull_asserts_what_the_method_culls() {
+    use cullproof::tools::symbolic::bbox_query::{Side, TemplateCull};
+    use cullproof::tools::symbolic::mam2012_query::Mam2012Cull;
+    use cullproof::tools::symbolic::moving_query::template;
+    let m = by_id("mam2012").unwrap();
+    let mut r = rng(5);
+    let (mut culled, mut kept) = (0, 0);
+    for i in 0..16 {
+        let side = if i % 2 == 0 { Side::XMin } else { Side::XMax };
+        let u = |r: &mut dyn FnMut() -> f64, lo: f64, hi: f64| (lo + (hi - lo) * r()) as f32;
+        let mut v = [0f32; 7];
+        for (k, (lo, hi)) in
+            [(-60.0, 60.0), (-60.0, 60.0), (0.5, 8.0), (0.5, 8.0), (0.5, 4.0), (0.5, 4.0)].into_iter().enumerate()
+        {
+            v[k] = u(&mut r, lo, hi);
+        }
+        // the tile's edge from 40 px outside the triangle's near edge to 40 px inside
+        let sgn = if side == Side::XMin { 1.0 } else { -1.0 };
+        let near = (v[0] as f64 - sgn * v[2] as f64) / v[4] as f64;
+        v[6] = (near + sgn * u(&mut r, -40.0, 40.0) as f64) as f32;
+        let (tri, tile) = template(&Plain, side, &v);
+        let (tri, tile) = (tri.triangle(), Tile { x0: tile[0], y0: tile[1], x1: tile[2], y1: tile[3] });
+        let f32_culls = matches!(m.setup(&tri).tile(&tile), TileResult::Empty);
+        let smt = Smt::folding();
+        let lits: Vec<String> = v.iter().map(|&x| cullproof::tools::symbolic::smt::lit(x)).collect();
+        let (t, tl) = template(&smt, side, &std::array::from_fn(|k| lits[k].clone()));
+        Mam2012Cull.assert_cull(&smt, side, &t, &tl);
+        let run = z3::run(&smt.script(&[]), 120.0).expect("z3 runs");
+        let want = if f32_culls { Answer::Sat } else { Answer::Unsat };
+        assert_eq!(run.answer, want, "instance {i} {v:?}");
+        if f32_culls {
+            culled += 1
+        } else {
+            kept += 1
+        }
+    }
+    assert!(culled >= 3 && kept >= 3, "{culled} culled, {kept} kept");
+}
