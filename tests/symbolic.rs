@@ -796,3 +796,31 @@ fn the_moving_template_separates_la2011_from_la2011_safe() {
     }
     assert!(safe.render().contains("every query unsat with satisfiable ranges"), "{}", safe.render());
 }
+
+/// The hypotheses an `unsat` needs include a reached tile: with ranges that put every
+/// `x-max` tile beside the triangle (`a` in [128, 136), `t` in [96, 128): the right edge
+/// `(a + c) / w` stays below 74), bbox-safe's `x-max` query is `unsat` for want of any
+/// reached tile and is reported unknown; its `x-min` query, where every tile of the
+/// ranges is reached, counts.
+#[test]
+fn an_unsat_without_any_reached_tile_is_not_counted() {
+    let f = family("bbox-safe", Template::Static).unwrap();
+    let r = cullproof::tools::symbolic::family::parse_ranges(
+        f.as_ref(),
+        "--ranges",
+        "a=128:136,c=1:1.125,w=1.875:2,t=96:128",
+    )
+    .unwrap();
+    let plan = vec![
+        cullproof::tools::symbolic::family::Query::free(0, r.clone()),
+        cullproof::tools::symbolic::family::Query::free(1, r),
+    ];
+    let limits = Limits { timeout: 300.0, rlimit: None, jobs: 2, solvers: Solvers::BITWUZLA };
+    let rep =
+        prove(by_id("bbox-safe").unwrap(), Template::Static, Strategy::Whole, 0, &plan, limits, None, None, false)
+            .unwrap();
+    let (min, max) = (&rep.queries[0], &rep.queries[1]);
+    assert_eq!((min.answer, min.hypotheses_sat), (Answer::Unsat, Some(true)), "{}", rep.render());
+    assert_eq!((max.answer, max.hypotheses_sat), (Answer::Unknown, Some(false)), "{}", rep.render());
+    assert!(rep.render().contains("the ranges with a reached tile were not shown satisfiable"), "{}", rep.render());
+}

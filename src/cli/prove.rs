@@ -50,7 +50,8 @@ pub struct ProveArgs {
     /// or `z3,bitwuzla`. Default: z3 for the concolic plan (its resource limit keeps
     /// the report the same on any machine), both for `whole`. Bitwuzla is the PyPI
     /// wheel `bitwuzla` run by `python3` (or CULLPROOF_PYTHON). An `unsat` counts only
-    /// when the same solver finds the query's ranges alone satisfiable.
+    /// when the same solver finds the query's ranges, with a tile the exact footprint
+    /// reaches, satisfiable.
     #[arg(long)]
     solvers: Option<String>,
     /// One range per input of the template, a=LO:HI,c=LO:HI,w=LO:HI,t=LO:HI (static;

@@ -3,8 +3,9 @@
 //! description the gate runs, written once over `F32Arith`) is emitted as one SMT-LIB 2
 //! query per side of the tile, every input free in the template's ranges, asking for a
 //! tile the method culls although the exact footprint reaches it. Every side must come
-//! back `unsat`, with the query's ranges alone shown satisfiable by the same solver (an
-//! `unsat` of contradictory hypotheses proves nothing). A `sat` is judged exactly and,
+//! back `unsat`, with the query's hypotheses (its ranges, and a tile the exact footprint
+//! reaches) shown satisfiable by the same solver (an `unsat` of contradictory
+//! hypotheses, or of ranges that hold no reached tile, proves nothing). A `sat` is judged exactly and,
 //! when confirmed, is a counterexample to the claim.
 //!
 //! Unlike the rounding lemmas (which never look at the code), this obligation reads the
@@ -51,7 +52,8 @@ pub struct SideRun {
     pub answer: &'static str,
     /// The solver whose answer it is.
     pub solver: &'static str,
-    /// On `unsat`: the query's ranges alone were found satisfiable.
+    /// On `unsat`: the query's ranges, with a tile the exact footprint reaches, were found
+    /// satisfiable.
     pub hypotheses_sat: Option<bool>,
     pub seconds: f64,
     /// None when the side is proven; what went wrong otherwise.
@@ -112,7 +114,7 @@ pub fn run(id: &str, limit: Duration) -> Vec<SideRun> {
                     q.judged.clone().unwrap_or_default()
                 )),
                 (Answer::Unknown, Some(false)) => {
-                    Some("unsat not counted: the ranges alone were not shown satisfiable".into())
+                    Some("unsat not counted: the ranges with a reached tile were not shown satisfiable".into())
                 }
                 (a, _) => Some(format!("{}: no answer within the limit", a.name())),
             };

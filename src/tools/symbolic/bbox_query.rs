@@ -115,12 +115,17 @@ impl<C: TemplateCull> Family for TemplateFamily<C> {
         }
         Ok(())
     }
-    fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
+    fn assert_reached(&self, smt: &Smt, side: usize, v: &[String]) {
         let (side, v) = (Side::of(side), [v[0].clone(), v[1].clone(), v[2].clone(), v[3].clone()]);
         let (tri, tile) = template(smt, side, &v);
-        self.0.assert_cull(smt, side, &tri, &tile);
         assert_reach(smt, side, &v);
         assert_far_reach(smt, side, &v, &tri, &tile);
+    }
+    fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
+        let (s, w) = (Side::of(side), [v[0].clone(), v[1].clone(), v[2].clone(), v[3].clone()]);
+        let (tri, tile) = template(smt, s, &w);
+        self.0.assert_cull(smt, s, &tri, &tile);
+        self.assert_reached(smt, side, v);
     }
     fn instance(&self, side: usize, v: &[f32]) -> (crate::model::Triangle, crate::model::Tile) {
         instance(Side::of(side), [v[0], v[1], v[2], v[3]])

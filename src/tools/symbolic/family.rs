@@ -25,8 +25,11 @@ pub trait Family: Sync {
     /// Whether `[lo, hi)` is allowed for input `k` (an explanation when not).
     fn check_range(&self, k: usize, lo: f32, hi: f32) -> std::result::Result<(), String>;
     /// Assert over `smt` that, for the inputs `v` (free variables or literals), the
-    /// method culls the template's tile of side `side` while the exact footprint
-    /// reaches into it.
+    /// exact footprint of the template's triangle reaches into its tile of side `side`
+    /// (the hypotheses of a violation, without the method).
+    fn assert_reached(&self, smt: &Smt, side: usize, v: &[String]);
+    /// Assert over `smt` that, for the inputs `v`, the method culls the template's tile
+    /// of side `side` while the exact footprint reaches into it.
     fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]);
     /// The triangle and tile of concrete inputs, computed in f32 by the same template.
     fn instance(&self, side: usize, v: &[f32]) -> (Triangle, Tile);
@@ -86,19 +89,26 @@ pub fn script(f: &dyn Family, q: &Query) -> (String, Vec<String>) {
 }
 
 /// The hypotheses of a query alone: its free inputs in their ranges (the fixed ones
-/// are literals), without the claim that the method culls a reached tile. An `unsat`
-/// of the query counts only when this script is `sat` with the same solver: an
-/// encoding whose hypotheses contradict each other would make every claim `unsat`.
+/// are literals) and the exact footprint reaching the tile, without the claim that the
+/// method culls it. An `unsat` of the query counts only when this script is `sat` with
+/// the same solver: ranges that contradict each other, or that hold no reached tile at
+/// all (the tile always beside the triangle), would make every claim `unsat`.
 pub fn hypotheses_script(f: &dyn Family, q: &Query) -> String {
     let smt = Smt::folding();
     let mut shown = Vec::new();
+    let mut v = Vec::new();
     for (k, name) in f.inputs().iter().enumerate() {
-        if q.fixed[k].is_none() {
-            let n = smt.var(name);
-            smt.range(&n, q.ranges[k][0], q.ranges[k][1]);
-            shown.push(n);
+        match q.fixed[k] {
+            Some(x) => v.push(super::smt::lit(x)),
+            None => {
+                let n = smt.var(name);
+                smt.range(&n, q.ranges[k][0], q.ranges[k][1]);
+                shown.push(n.clone());
+                v.push(n);
+            }
         }
     }
+    f.assert_reached(&smt, q.side, &v);
     smt.script(&shown)
 }
 

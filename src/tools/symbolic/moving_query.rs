@@ -82,13 +82,18 @@ impl<C: TemplateCull> Family for MovingFamily<C> {
         }
         Ok(())
     }
-    fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
+    fn assert_reached(&self, smt: &Smt, side: usize, v: &[String]) {
         let side = Side::of(side);
         let v: [String; 7] = std::array::from_fn(|k| v[k].clone());
         let (tri, tile) = template(smt, side, &v);
-        self.0.assert_cull(smt, side, &tri, &tile);
         assert_reach(smt, side, &v);
         assert_far_reach(smt, side, &v, &tri, &tile);
+    }
+    fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
+        let (s, w): (Side, [String; 7]) = (Side::of(side), std::array::from_fn(|k| v[k].clone()));
+        let (tri, tile) = template(smt, s, &w);
+        self.0.assert_cull(smt, s, &tri, &tile);
+        self.assert_reached(smt, side, v);
     }
     fn instance(&self, side: usize, v: &[f32]) -> (crate::model::Triangle, crate::model::Tile) {
         let (tri, t) = template(&Plain, Side::of(side), &std::array::from_fn(|k| v[k]));

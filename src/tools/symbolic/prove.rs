@@ -215,8 +215,8 @@ pub struct QueryReport {
     pub answer: Answer,
     /// The solver whose answer this is.
     pub solver: Solver,
-    /// On `unsat`: whether the query's hypotheses alone (its ranges and fixed values)
-    /// were found satisfiable by the same solver. An `unsat` whose hypotheses are not
+    /// On `unsat`: whether the query's hypotheses alone (its ranges and fixed values,
+    /// and a tile the exact footprint reaches) were found satisfiable by the same solver. An `unsat` whose hypotheses are not
     /// shown satisfiable is reported as `unknown`, with this false.
     pub hypotheses_sat: Option<bool>,
     /// Wall-clock seconds of the query.
@@ -495,7 +495,7 @@ impl ProveReport {
                 }
                 Answer::Unsat => s += "  none with these fixed values",
                 Answer::Unknown if q.hypotheses_sat == Some(false) => {
-                    s += "  unsat not counted: the ranges alone were not shown satisfiable"
+                    s += "  unsat not counted: the ranges with a reached tile were not shown satisfiable"
                 }
                 Answer::Unknown | Answer::Timeout | Answer::Budget => s += "  undecided",
             }
