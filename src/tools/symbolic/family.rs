@@ -67,12 +67,10 @@ impl Query {
     }
 }
 
-/// The script of a query (folding the fixed inputs into the method's steps; see
-/// [`Smt::folding`]) and the names of its free inputs, whose values the model shows.
-pub fn script(f: &dyn Family, q: &Query) -> (String, Vec<String>) {
-    let smt = Smt::folding();
-    let mut v = Vec::new();
-    let mut shown = Vec::new();
+/// A query's inputs over `smt`: a literal per fixed input, a variable confined to its
+/// range per free one; and the names of the free ones, whose values a model shows.
+fn inputs(smt: &Smt, f: &dyn Family, q: &Query) -> (Vec<String>, Vec<String>) {
+    let (mut v, mut shown) = (Vec::new(), Vec::new());
     for (k, name) in f.inputs().iter().enumerate() {
         match q.fixed[k] {
             Some(x) => v.push(super::smt::lit(x)),
@@ -84,6 +82,14 @@ pub fn script(f: &dyn Family, q: &Query) -> (String, Vec<String>) {
             }
         }
     }
+    (v, shown)
+}
+
+/// The script of a query (folding the fixed inputs into the method's steps; see
+/// [`Smt::folding`]) and the names of its free inputs, whose values the model shows.
+pub fn script(f: &dyn Family, q: &Query) -> (String, Vec<String>) {
+    let smt = Smt::folding();
+    let (v, shown) = inputs(&smt, f, q);
     f.assert_violation(&smt, q.side, &v);
     (smt.script(&shown), shown)
 }
@@ -95,19 +101,7 @@ pub fn script(f: &dyn Family, q: &Query) -> (String, Vec<String>) {
 /// all (the tile always beside the triangle), would make every claim `unsat`.
 pub fn hypotheses_script(f: &dyn Family, q: &Query) -> String {
     let smt = Smt::folding();
-    let mut shown = Vec::new();
-    let mut v = Vec::new();
-    for (k, name) in f.inputs().iter().enumerate() {
-        match q.fixed[k] {
-            Some(x) => v.push(super::smt::lit(x)),
-            None => {
-                let n = smt.var(name);
-                smt.range(&n, q.ranges[k][0], q.ranges[k][1]);
-                shown.push(n.clone());
-                v.push(n);
-            }
-        }
-    }
+    let (v, shown) = inputs(&smt, f, q);
     f.assert_reached(&smt, q.side, &v);
     smt.script(&shown)
 }
