@@ -285,7 +285,7 @@ impl Entry {
                 if cap.is_some_and(|c| margin <= c) {
                     return Place::Inside;
                 }
-                let tail = self.max_tail_rate.and(self.tail_caps.get(kind)).map(|c| c.0);
+                let tail = self.tail_rate().and(self.tail_caps.get(kind)).map(|c| c.0);
                 if tail.is_some_and(|t| margin <= t) {
                     return Place::Tail;
                 }
@@ -299,6 +299,12 @@ impl Entry {
                 })
             }
         }
+    }
+
+    /// The tail rate this entry holds (an expected violation's `max_tail_rate`; None
+    /// for any other entry).
+    pub fn tail_rate(&self) -> Option<f64> {
+        self.max_tail_rate.filter(|_| self.expect == Expected::Violation)
     }
 
     /// [`Entry::place`] when it is beyond: why; None inside the signature or in its tail.
@@ -446,7 +452,7 @@ impl TailCount {
 /// The tail over all regimes of one method ([`TailCount`]); a line when its cases pass
 /// what the rates allow, None within it.
 pub fn pooled_tail_breach<'a>(rows: impl IntoIterator<Item = (&'a Entry, u64, u64)>) -> Option<String> {
-    let rates = rows.into_iter().map(|(e, t, n)| (e.max_tail_rate.filter(|_| e.expect == Expected::Violation), t, n));
+    let rates = rows.into_iter().map(|(e, t, n)| (e.tail_rate(), t, n));
     let TailCount { tail, cases, allowed } = TailCount::of(rates);
     (cases > 0 && tail as f64 > allowed).then(|| {
         format!(

@@ -353,7 +353,7 @@ fn render_tail(r: &CheckReport) -> String {
         let rows = r.rows.iter().filter(|x| x.method == m);
         let tail: u64 = rows.clone().map(|x| x.tail).sum();
         let c = super::expect::TailCount::of(rows.map(|x| {
-            let rate = x.entry.as_ref().and_then(|e| e.max_tail_rate.filter(|_| e.expect == Expected::Violation));
+            let rate = x.entry.as_ref().and_then(Entry::tail_rate);
             (rate, x.tail, x.cases - x.not_judged)
         }));
         s += &format!(

@@ -181,35 +181,35 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
     let cfg = &cfg;
     let id = m.info().id;
     let measured = crate::gate::settings::Settings::whole(cfg).measured();
-    let entry = |r: Regime| o.expectations.map(|(ex, _)| ex.entry(id, r.name()).scoped(measured));
-    // The kinds of bound a judgement violates beyond the signature, largest margin first.
-    let beyond_kinds = |r: Regime, j: &Judgement| -> Vec<(String, f64, String)> {
+    // Each regime's entry, looked up once (with its tail's reach).
+    let entries: Option<BTreeMap<Regime, Entry>> = o
+        .expectations
+        .map(|(ex, _)| Regime::ALL.into_iter().map(|r| (r, ex.entry(id, r.name()).scoped(measured))).collect());
+    let entry = |r: Regime| entries.as_ref().and_then(|m| m.get(&r));
+    // The kinds of bound a judgement violates (by the minimum margin) in one place of
+    // the signature, largest margin first, each with why it stands there.
+    let kinds_in = |r: Regime, j: &Judgement, tail: bool| -> Vec<(String, f64, String)> {
         let Some(e) = entry(r) else { return Vec::new() };
         let mut v: Vec<_> = j
             .violated
             .iter()
             .filter(|(_, &mm)| mm >= o.min_margin)
-            .filter_map(|(k, &mm)| e.beyond(k, mm).map(|why| (k.clone(), mm, why)))
-            .collect();
-        v.sort_by(|a, b| b.1.total_cmp(&a.1));
-        v
-    };
-    // The kinds in the method's tail, largest margin first.
-    let tail_kinds = |r: Regime, j: &Judgement| -> Vec<(String, f64, String)> {
-        let Some(e) = entry(r) else { return Vec::new() };
-        let mut v: Vec<_> = j
-            .violated
-            .iter()
-            .filter(|(k, &mm)| mm >= o.min_margin && e.place(k, mm) == Place::Tail)
-            .map(|(k, &mm)| {
-                let cap = e.cap(k).map_or("not listed here".to_string(), |c| format!("above this regime's cap {c:e}"));
-                let most = e.tail_caps.get(k).map_or(f64::NAN, |c| c.0);
-                (k.clone(), mm, format!("{cap}, within the method's largest cap {most:e}"))
+            .filter_map(|(k, &mm)| match (e.place(k, mm), tail) {
+                (Place::Beyond(why), false) => Some((k.clone(), mm, why)),
+                (Place::Tail, true) => {
+                    let cap =
+                        e.cap(k).map_or("not listed here".to_string(), |c| format!("above this regime's cap {c:e}"));
+                    let most = e.tail_caps.get(k).map_or(f64::NAN, |c| c.0);
+                    Some((k.clone(), mm, format!("{cap}, within the method's largest cap {most:e}")))
+                }
+                _ => None,
             })
             .collect();
         v.sort_by(|a, b| b.1.total_cmp(&a.1));
         v
     };
+    let beyond_kinds = |r: Regime, j: &Judgement| kinds_in(r, j, false);
+    let tail_kinds = |r: Regime, j: &Judgement| kinds_in(r, j, true);
     let interesting = |r: Regime, j: &Judgement| {
         if o.gate {
             !beyond_kinds(r, j).is_empty() || !tail_kinds(r, j).is_empty()
@@ -421,7 +421,7 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
                 seen.admit_fraction /= seen.cases as f64;
             }
             if let Some(e) = entry(regime) {
-                seen.max_tail_rate = e.max_tail_rate;
+                seen.max_tail_rate = e.tail_rate();
                 seen.max_rate = e.max_rate;
                 seen.max_boundary_rate = e.max_boundary_rate;
                 seen.max_limit_rate = e.max_limit_rate;
@@ -441,19 +441,19 @@ pub fn search_with(cfg: &CheckConfig, m: MethodRef, o: &SearchOptions) -> Result
         })
         .collect();
     if o.gate {
-        let rows: Vec<(Entry, &RegimeSeen)> = regimes
+        let rows: Vec<(&Entry, &RegimeSeen)> = regimes
             .iter()
             .filter_map(|seen| {
                 let r = Regime::ALL.into_iter().find(|r| r.name() == seen.regime)?;
                 Some((entry(r)?, seen))
             })
             .collect();
-        breaches.extend(pooled_looser(rows.iter().map(|(e, seen)| (e, &seen.tight))).into_iter().map(|(_, l)| l));
+        breaches.extend(pooled_looser(rows.iter().map(|(e, seen)| (*e, &seen.tight))).into_iter().map(|(_, l)| l));
         breaches.extend(crate::gate::expect::pooled_boundary_breach(
-            rows.iter().map(|(e, seen)| (e, seen.violated, seen.cases)),
+            rows.iter().map(|(e, seen)| (*e, seen.violated, seen.cases)),
         ));
         breaches
-            .extend(crate::gate::expect::pooled_tail_breach(rows.iter().map(|(e, seen)| (e, seen.tail, seen.cases))));
+            .extend(crate::gate::expect::pooled_tail_breach(rows.iter().map(|(e, seen)| (*e, seen.tail, seen.cases))));
     }
     Ok(SearchReport {
         method: id.into(),
