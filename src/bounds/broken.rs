@@ -21,10 +21,10 @@
 //!   the tightness signature must see it at any seed and case count). Not in
 //!   `cullproof power`'s list.
 //!
-//! Four more, `broken/planted-eq/bbox-safe`, `broken/planted-band/bbox-safe`,
-//! `broken/planted-no-up/la2011-safe` and `broken/planted-no-dn/la2011-safe`, are rare
-//! slips planted in the `-safe` variants themselves ([`planted`]), not in `cullproof
-//! power`.
+//! Six more, `broken/planted-eq/bbox-safe`, `broken/planted-band/bbox-safe`, and
+//! `broken/planted-no-up/M-safe` and `broken/planted-no-dn/M-safe` for M = `la2011`
+//! and `nilsson2012-depth`, are rare slips planted in the `-safe` variants themselves
+//! ([`planted`]), not in `cullproof power`.
 
 pub mod planted;
 

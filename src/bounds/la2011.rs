@@ -187,57 +187,11 @@
 
 use super::*;
 use crate::bounds::arith::{tile_of, F32Arith, Plain, TriOf};
+use crate::bounds::round::{Nearest, Outward, Round};
 use std::marker::PhantomData;
 
 /// An f32 interval `[lo, hi]`; in `la2011` both ends are the one rounded value.
 type Iv = [f32; 2];
-
-/// How a value rounded to nearest becomes a bound: `la2011` keeps it as it is (the
-/// published arithmetic), `la2011-safe` steps it one f32 value outward. Written over
-/// [`F32Arith`], so that the f32 method and its SMT-LIB2 encoding are the same code.
-pub trait Round: 'static {
-    /// A value `<=` the exact result that `x` is the rounding (to nearest) of.
-    fn dn<A: F32Arith>(ar: &A, x: &A::F) -> A::F;
-    /// A value `>=` it.
-    fn up<A: F32Arith>(ar: &A, x: &A::F) -> A::F;
-    /// A computed value that must not be used (the quantity falls back to its full range).
-    fn bad<A: F32Arith>(ar: &A, x: &A::F) -> A::B;
-    /// Non-finite input (triangle or tile) gives the full domain before any arithmetic.
-    const GUARD: bool;
-}
-
-/// `la2011`: round to nearest, no steps; only NaN falls back.
-pub struct Nearest;
-
-impl Round for Nearest {
-    fn dn<A: F32Arith>(_: &A, x: &A::F) -> A::F {
-        x.clone()
-    }
-    fn up<A: F32Arith>(_: &A, x: &A::F) -> A::F {
-        x.clone()
-    }
-    fn bad<A: F32Arith>(ar: &A, x: &A::F) -> A::B {
-        ar.is_nan(x)
-    }
-    const GUARD: bool = false;
-}
-
-/// `la2011-safe`: f32 interval arithmetic (one step outward after each rounded
-/// operation); any non-finite value falls back.
-pub struct Outward;
-
-impl Round for Outward {
-    fn dn<A: F32Arith>(ar: &A, x: &A::F) -> A::F {
-        ar.next_down(x)
-    }
-    fn up<A: F32Arith>(ar: &A, x: &A::F) -> A::F {
-        ar.next_up(x)
-    }
-    fn bad<A: F32Arith>(ar: &A, x: &A::F) -> A::B {
-        ar.not(&ar.is_finite(x))
-    }
-    const GUARD: bool = true;
-}
 
 /// Encloses the exact product `a b` of two f32 values: `fl(a b)` stepped outward, or
 /// `fl(a b)` itself when it is exact (a factor 0 or ±1).

@@ -32,6 +32,7 @@ pub mod mam2012_hyperplane;
 pub mod mam2012_new;
 pub mod nilsson2012_depth;
 pub mod proofs;
+pub mod round;
 mod shared;
 pub(crate) mod step;
 pub use shared::{shared, shared_all, MethodRef};

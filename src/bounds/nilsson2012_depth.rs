@@ -120,7 +120,7 @@
 //! reject limit, and on screen-parallel triangles (all six w equal) an EMPTY interval:
 //! the plane bound `fl(fl(n_w w) / n_w)` rounds one ulp below the vertex box `[w, w]`
 //! and the intersection of the two culls every covered tile. `nilsson2012-depth-safe`
-//! runs the same code (one generic algorithm, `Round = Near` or `Outward`) with every
+//! runs the same code (one generic algorithm, `Round = Nearest` or `Outward`) with every
 //! rounded result that a bound depends on moved one f32 step outward.
 //!
 //! *Error analysis: directed steps (f32 interval arithmetic).* Every operation `a op b`
@@ -177,278 +177,319 @@
 //! by ulps).
 
 use super::*;
+use crate::bounds::arith::{tile_of, F32Arith, Plain, TriOf};
+use crate::bounds::round::{max_g, min_g, Nearest, Outward, Round};
 use std::marker::PhantomData;
 
-/// How each rounded f32 result is taken: as it comes (`Near`, the published method) or
-/// moved one f32 step outward (`Outward`, `nilsson2012-depth-safe`). Every bound below
-/// is written once, with `R::up` around a result that must not fall below the exact
-/// value and `R::dn` around one that must not exceed it; with `Near` both are the
-/// identity and the code is the published f32 computation, operation for operation.
-trait Round: Send + Sync + 'static {
-    /// True for the outward variant: NaN also propagates through min / max.
-    const SAFE: bool;
-    fn up(x: f32) -> f32;
-    fn dn(x: f32) -> f32;
-}
-
-/// Round to nearest, nothing more (`nilsson2012-depth`).
-struct Near;
-
-/// One step outward after each rounded operation (`nilsson2012-depth-safe`).
-struct Outward;
-
-impl Round for Near {
-    const SAFE: bool = false;
-    #[inline(always)]
-    fn up(x: f32) -> f32 {
-        x
-    }
-    #[inline(always)]
-    fn dn(x: f32) -> f32 {
-        x
-    }
-}
-
-impl Round for Outward {
-    const SAFE: bool = true;
-    #[inline(always)]
-    fn up(x: f32) -> f32 {
-        x.next_up()
-    }
-    #[inline(always)]
-    fn dn(x: f32) -> f32 {
-        x.next_down()
-    }
-}
-
-/// `a.min(b)`; for the safe variant a NaN operand gives NaN (an unknown value must not
-/// be skipped as `f32::min` does).
-fn min_r<R: Round>(a: f32, b: f32) -> f32 {
-    if R::SAFE && (a.is_nan() || b.is_nan()) {
-        f32::NAN
-    } else {
-        a.min(b)
-    }
-}
-
-/// `a.max(b)`, NaN-propagating for the safe variant (see [`min_r`]).
-fn max_r<R: Round>(a: f32, b: f32) -> f32 {
-    if R::SAFE && (a.is_nan() || b.is_nan()) {
-        f32::NAN
-    } else {
-        a.max(b)
-    }
-}
+// Every bound below is written once over [`F32Arith`], with `R::up` around a result
+// that must not fall below the exact value and `R::dn` around one that must not exceed
+// it ([`Round`]): with `Nearest` both are the identity and the code is the published f32
+// computation, operation for operation; with `Outward` each is one f32 step outward.
+// The same code is the method the gate runs ([`Plain`]) and its SMT-LIB 2 encoding.
 
 /// One moving plane with fixed normal n in (x, y, w): for every vertex, lens position
 /// and time, `n . p' <= max(e)` over the shutter (max plane) or `>= min(e)` (min plane).
-#[derive(Clone, Copy, Debug)]
-struct Plane {
-    n: [f32; 3],
-    /// The max plane's offsets at the two shutter ends, if it is enabled.
-    upper: Option<[f32; 2]>,
-    /// The min plane's offsets at the two shutter ends, if it is enabled.
-    lower: Option<[f32; 2]>,
+/// Its numbers are values of some [`F32Arith`].
+#[derive(Clone, Debug)]
+pub struct Plane<F, B> {
+    pub n: [F; 3],
+    /// The max plane's offsets at the two shutter ends, used when `upper_on`.
+    pub upper: [F; 2],
+    pub upper_on: B,
+    /// The min plane's offsets at the two shutter ends, used when `lower_on`.
+    pub lower: [F; 2],
+    pub lower_on: B,
 }
 
-/// What one plane says about w over a tile.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum WBound {
-    /// No hit is possible.
-    Empty,
-    /// `lo <= w <= hi` (lo >= 0, hi may be +inf).
-    Range(f32, f32),
+/// What one plane says about w over a tile: no hit is possible (`empty`), or
+/// `lo <= w <= hi` (lo >= 0, hi may be +inf).
+#[derive(Clone, Debug)]
+pub struct WBound<F, B> {
+    pub empty: B,
+    pub lo: F,
+    pub hi: F,
 }
 
 /// `w m <= E` for some `m in [m_lo, m_hi]`, `E in [e_lo, e_hi]`, with `w > 0`.
-fn w_from<R: Round>(m_lo: f32, e_hi: f32) -> WBound {
-    if !(m_lo.is_finite() && e_hi.is_finite()) {
-        return WBound::Range(0.0, f32::INFINITY);
-    }
-    if m_lo > 0.0 {
-        if e_hi <= 0.0 {
-            WBound::Empty
-        } else {
-            WBound::Range(0.0, R::up(e_hi / m_lo))
-        }
-    } else if e_hi < 0.0 {
-        if m_lo == 0.0 {
-            WBound::Empty
-        } else {
-            WBound::Range(R::dn(e_hi / m_lo), f32::INFINITY)
-        }
-    } else {
-        WBound::Range(0.0, f32::INFINITY)
-    }
+pub fn w_from<R: Round, A: F32Arith>(ar: &A, m_lo: &A::F, e_hi: &A::F) -> WBound<A::F, A::B> {
+    let (zero, inf) = (ar.lit(0.0), ar.lit(f32::INFINITY));
+    let fin = ar.and(&ar.is_finite(m_lo), &ar.is_finite(e_hi));
+    let pos = ar.and(&fin, &ar.gt(m_lo, &zero));
+    let neg = ar.all(&[fin, ar.not(&ar.gt(m_lo, &zero)), ar.lt(e_hi, &zero)]);
+    // m_lo > 0: e_hi <= 0 is no hit; else w <= e_hi / m_lo. m_lo <= 0 > e_hi: a hit
+    // needs m < 0 (none when m_lo = 0), and then w >= e_hi / m_lo.
+    let empty = ar.or(&ar.and(&pos, &ar.le(e_hi, &zero)), &ar.and(&neg, &ar.eq(m_lo, &zero)));
+    let q = ar.div(e_hi, m_lo);
+    WBound { empty, lo: ar.select(&neg, &R::dn(ar, &q), &zero), hi: ar.select(&pos, &R::up(ar, &q), &inf) }
 }
 
-fn sub3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+fn sub3<A: F32Arith>(ar: &A, a: &[A::F; 3], b: &[A::F; 3]) -> [A::F; 3] {
+    [0, 1, 2].map(|i| ar.sub(&a[i], &b[i]))
 }
 
-fn cross(p: [f32; 3], q: [f32; 3]) -> [f32; 3] {
-    [p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]]
+fn cross<A: F32Arith>(ar: &A, p: &[A::F; 3], q: &[A::F; 3]) -> [A::F; 3] {
+    let d = |a: usize, b: usize| ar.sub(&ar.mul(&p[a], &q[b]), &ar.mul(&p[b], &q[a]));
+    [d(1, 2), d(2, 0), d(0, 1)]
 }
 
 /// `a . b` rounded up (`R::up` after each operation): `>=` the exact dot product.
-fn dot_up<R: Round>(a: [f32; 3], b: [f32; 3]) -> f32 {
-    R::up(R::up(R::up(a[0] * b[0]) + R::up(a[1] * b[1])) + R::up(a[2] * b[2]))
+fn dot_up<R: Round, A: F32Arith>(ar: &A, a: &[A::F; 3], b: &[A::F; 3]) -> A::F {
+    let m = |i: usize| R::up(ar, &ar.mul(&a[i], &b[i]));
+    R::up(ar, &ar.add(&R::up(ar, &ar.add(&m(0), &m(1))), &m(2)))
 }
 
 /// `a . b` rounded down: `<=` the exact dot product.
-fn dot_dn<R: Round>(a: [f32; 3], b: [f32; 3]) -> f32 {
-    R::dn(R::dn(R::dn(a[0] * b[0]) + R::dn(a[1] * b[1])) + R::dn(a[2] * b[2]))
+fn dot_dn<R: Round, A: F32Arith>(ar: &A, a: &[A::F; 3], b: &[A::F; 3]) -> A::F {
+    let m = |i: usize| R::dn(ar, &ar.mul(&a[i], &b[i]));
+    R::dn(ar, &ar.add(&R::dn(ar, &ar.add(&m(0), &m(1))), &m(2)))
 }
 
 /// Same strict sign, both finite.
-fn same_sign(a: f32, b: f32) -> bool {
-    (a > 0.0 && b > 0.0 && b.is_finite() && a.is_finite()) || (a < 0.0 && b < 0.0 && a.is_finite() && b.is_finite())
+fn same_sign<A: F32Arith>(ar: &A, a: &A::F, b: &A::F) -> A::B {
+    let zero = ar.lit(0.0);
+    let fin = ar.and(&ar.is_finite(a), &ar.is_finite(b));
+    let pos = ar.and(&ar.gt(a, &zero), &ar.gt(b, &zero));
+    let neg = ar.and(&ar.lt(a, &zero), &ar.lt(b, &zero));
+    ar.and(&fin, &ar.or(&pos, &neg))
 }
 
-impl Plane {
+impl<F: Clone, B: Clone> Plane<F, B> {
     /// The planes with the normal of the triangle `base` (a shutter end, with CoC `cb`),
     /// bounding the triangle at that end and at the other end `oth` (CoC `co`).
-    fn new<R: Round>(base: [[f32; 3]; 3], cb: [f32; 3], oth: [[f32; 3]; 3], co: [f32; 3], k: f32) -> Plane {
+    fn new<R: Round, A: F32Arith<F = F, B = B>>(
+        ar: &A,
+        (base, cb): (&[[F; 3]; 3], &[F; 3]),
+        (oth, co): (&[[F; 3]; 3], &[F; 3]),
+        k: &F,
+    ) -> Self {
         // Any f32 normal will do (the offsets below are taken for this very n), so
-        // n needs no outward rounding.
-        let mut n = cross(sub3(base[1], base[0]), sub3(base[2], base[0]));
-        if n[2] < 0.0 {
-            n = n.map(|x| -x);
-        }
-        let lens = R::up(n[0].abs() + R::up(k * n[1].abs()));
-        let ext = |pts: [[f32; 3]; 3], c: [f32; 3]| -> (f32, f32) {
-            let mut hi = f32::NEG_INFINITY;
-            let mut lo = f32::INFINITY;
+        // n needs no outward rounding; it is turned to face +w.
+        let n = cross(ar, &sub3(ar, &base[1], &base[0]), &sub3(ar, &base[2], &base[0]));
+        let flip = ar.lt(&n[2], &ar.lit(0.0));
+        let n = n.map(|x| ar.select(&flip, &ar.neg(&x), &x));
+        let lens = R::up(ar, &ar.add(&ar.abs(&n[0]), &R::up(ar, &ar.mul(k, &ar.abs(&n[1])))));
+        let ext = |pts: &[[F; 3]; 3], c: &[F; 3]| -> (F, F) {
+            let mut hi = ar.lit(f32::NEG_INFINITY);
+            let mut lo = ar.lit(f32::INFINITY);
             for i in 0..3 {
-                let s = R::up(c[i].abs() * lens);
-                hi = max_r::<R>(hi, R::up(dot_up::<R>(n, pts[i]) + s));
-                lo = min_r::<R>(lo, R::dn(dot_dn::<R>(n, pts[i]) - s));
+                let s = R::up(ar, &ar.mul(&ar.abs(&c[i]), &lens));
+                hi = max_g::<R, A>(ar, &hi, &R::up(ar, &ar.add(&dot_up::<R, A>(ar, &n, &pts[i]), &s)));
+                lo = min_g::<R, A>(ar, &lo, &R::dn(ar, &ar.sub(&dot_dn::<R, A>(ar, &n, &pts[i]), &s)));
             }
             (lo, hi)
         };
         let (lb, hb) = ext(base, cb);
         let (lo, ho) = ext(oth, co);
-        let finite = n.iter().all(|x| x.is_finite());
+        let finite = ar.all(&n.each_ref().map(|x| ar.is_finite(x)));
         Plane {
+            upper_on: ar.and(&finite, &same_sign(ar, &hb, &ho)),
+            lower_on: ar.and(&finite, &same_sign(ar, &lb, &lo)),
             n,
-            upper: (finite && same_sign(hb, ho)).then_some([hb, ho]),
-            lower: (finite && same_sign(lb, lo)).then_some([lb, lo]),
+            upper: [hb, ho],
+            lower: [lb, lo],
         }
     }
 
-    /// The range of `m = n_x x + n_y y + n_w` over the tile (its four corners): the
-    /// least corner value rounded down, the greatest rounded up.
-    fn m_range<R: Round>(&self, tile: &Tile) -> (f32, f32) {
-        let n = self.n;
-        let lo = |x: f32, y: f32| R::dn(R::dn(R::dn(n[0] * x) + R::dn(n[1] * y)) + n[2]);
-        let hi = |x: f32, y: f32| R::up(R::up(R::up(n[0] * x) + R::up(n[1] * y)) + n[2]);
-        let corners = [(tile.x0, tile.y0), (tile.x1, tile.y0), (tile.x0, tile.y1), (tile.x1, tile.y1)];
-        (
-            corners.iter().map(|&(x, y)| lo(x, y)).fold(f32::INFINITY, min_r::<R>),
-            corners.iter().map(|&(x, y)| hi(x, y)).fold(f32::NEG_INFINITY, max_r::<R>),
-        )
+    /// The range of `m = n_x x + n_y y + n_w` over the tile `[x0, y0, x1, y1]` (its four
+    /// corners): the least corner value rounded down, the greatest rounded up.
+    fn m_range<R: Round, A: F32Arith<F = F, B = B>>(&self, ar: &A, tile: &[F; 4]) -> (F, F) {
+        let n = &self.n;
+        let lo = |x: &F, y: &F| {
+            R::dn(ar, &ar.add(&R::dn(ar, &ar.add(&R::dn(ar, &ar.mul(&n[0], x)), &R::dn(ar, &ar.mul(&n[1], y)))), &n[2]))
+        };
+        let hi = |x: &F, y: &F| {
+            R::up(ar, &ar.add(&R::up(ar, &ar.add(&R::up(ar, &ar.mul(&n[0], x)), &R::up(ar, &ar.mul(&n[1], y)))), &n[2]))
+        };
+        let [x0, y0, x1, y1] = tile;
+        let corners = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)];
+        let (mut m_lo, mut m_hi) = (ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
+        for (x, y) in corners {
+            m_lo = min_g::<R, A>(ar, &m_lo, &lo(x, y));
+            m_hi = max_g::<R, A>(ar, &m_hi, &hi(x, y));
+        }
+        (m_lo, m_hi)
     }
 
     /// The bounds on w of the max and the min plane over the tile (t^ = [0, 1]).
-    fn w_bounds<R: Round>(&self, tile: &Tile) -> [WBound; 2] {
-        let none = WBound::Range(0.0, f32::INFINITY);
-        let (m_lo, m_hi) = self.m_range::<R>(tile);
-        if m_lo.is_nan() || m_hi.is_nan() {
-            return [none, none];
-        }
+    fn w_bounds<R: Round, A: F32Arith<F = F, B = B>>(&self, ar: &A, tile: &[F; 4]) -> [WBound<F, B>; 2] {
+        let (m_lo, m_hi) = self.m_range::<R, A>(ar, tile);
+        // A NaN end of m, or a plane not enabled: no bound.
+        let unknown = ar.or(&ar.is_nan(&m_lo), &ar.is_nan(&m_hi));
+        let or_none = |on: &B, b: WBound<F, B>| {
+            let use_it = ar.and(on, &ar.not(&unknown));
+            WBound {
+                empty: ar.and(&use_it, &b.empty),
+                lo: ar.select(&use_it, &b.lo, &ar.lit(0.0)),
+                hi: ar.select(&use_it, &b.hi, &ar.lit(f32::INFINITY)),
+            }
+        };
         // max plane: w m <= M(t), M in [min, max] of its ends.
-        let up = self.upper.map_or(none, |e| w_from::<R>(m_lo, e[0].max(e[1])));
+        let up = w_from::<R, A>(ar, &m_lo, &ar.max(&self.upper[0], &self.upper[1]));
         // min plane: w m >= m(t)  <=>  w (-m) <= -m(t).
-        let lo = self.lower.map_or(none, |e| w_from::<R>(-m_hi, -(e[0].min(e[1]))));
-        [up, lo]
+        let lo = w_from::<R, A>(ar, &ar.neg(&m_hi), &ar.neg(&ar.min(&self.lower[0], &self.lower[1])));
+        [or_none(&self.upper_on, up), or_none(&self.lower_on, lo)]
     }
 }
 
-#[derive(Debug)]
-struct Prep<R> {
-    planes: [Plane; 2],
+/// The setup of `nilsson2012-depth` (`R = Nearest`) or `nilsson2012-depth-safe`
+/// (`R = Outward`), its numbers values of some [`F32Arith`].
+#[derive(Clone, Debug)]
+pub struct Setup<F, B> {
+    pub planes: [Plane<F, B>; 2],
     /// w range of the six vertices (test 1).
-    w_box: [f32; 2],
-    /// zeta range of the six vertices when all w > 0 (test 1 in zeta).
-    zeta_box: Option<[f32; 2]>,
+    pub w_box: [F; 2],
+    /// zeta range of the six vertices, used when all w > 0 (`zeta_on`; test 1 in zeta).
+    pub zeta_box: [F; 2],
+    pub zeta_on: B,
     /// Conversion: zeta = a + c / w with c in [c_lo, c_hi].
-    a: f32,
-    c: [f32; 2],
-    disabled: Option<&'static str>,
-    round: PhantomData<fn() -> R>,
+    pub a: F,
+    pub c: [F; 2],
+    /// Some number is not finite: the test is off.
+    pub disabled: B,
 }
 
 /// `c / w` over `c in [c0, c1]`, `w in [w0, w1]`, `0 <= w0 <= w1 < inf`, `w > 0`.
-fn c_over_w<R: Round>(c: [f32; 2], w: [f32; 2]) -> [f32; 2] {
-    if w[0] > 0.0 {
-        let q = [(c[0], w[0]), (c[0], w[1]), (c[1], w[0]), (c[1], w[1])];
-        return [
-            q.iter().map(|&(c, w)| R::dn(c / w)).fold(f32::INFINITY, min_r::<R>),
-            q.iter().map(|&(c, w)| R::up(c / w)).fold(f32::NEG_INFINITY, max_r::<R>),
-        ];
+fn c_over_w<R: Round, A: F32Arith>(ar: &A, c: &[A::F; 2], w: &[A::F; 2]) -> [A::F; 2] {
+    let zero = ar.lit(0.0);
+    let (mut lo, mut hi) = (ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
+    for (c, w) in [(&c[0], &w[0]), (&c[0], &w[1]), (&c[1], &w[0]), (&c[1], &w[1])] {
+        let q = ar.div(c, w);
+        lo = min_g::<R, A>(ar, &lo, &R::dn(ar, &q));
+        hi = max_g::<R, A>(ar, &hi, &R::up(ar, &q));
     }
-    let lo = if c[0] >= 0.0 { R::dn(c[0] / w[1]) } else { f32::NEG_INFINITY };
-    let hi = if c[1] <= 0.0 { R::up(c[1] / w[1]) } else { f32::INFINITY };
-    [lo, hi]
+    // w0 = 0: only the far end bounds the quotient, on the side c keeps its sign.
+    let lo0 = ar.select(&ar.le(&zero, &c[0]), &R::dn(ar, &ar.div(&c[0], &w[1])), &ar.lit(f32::NEG_INFINITY));
+    let hi0 = ar.select(&ar.le(&c[1], &zero), &R::up(ar, &ar.div(&c[1], &w[1])), &ar.lit(f32::INFINITY));
+    let pos = ar.gt(&w[0], &zero);
+    [ar.select(&pos, &lo, &lo0), ar.select(&pos, &hi, &hi0)]
+}
+
+/// The setup over any [`F32Arith`].
+pub fn setup_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> Setup<A::F, A::B> {
+    let nums: Vec<A::B> = tri
+        .q
+        .iter()
+        .chain(tri.r.iter())
+        .flatten()
+        .chain(tri.c0.iter())
+        .chain(tri.c1.iter())
+        .chain(std::iter::once(&tri.k))
+        .map(|v| ar.is_finite(v))
+        .collect();
+    let xyw = |p: &[A::F; 4]| [p[0].clone(), p[1].clone(), p[3].clone()];
+    let (q, r) = (tri.q.each_ref().map(xyw), tri.r.each_ref().map(xyw));
+    let planes = [
+        Plane::new::<R, A>(ar, (&q, &tri.c0), (&r, &tri.c1), &tri.k),
+        Plane::new::<R, A>(ar, (&r, &tri.c1), (&q, &tri.c0), &tri.k),
+    ];
+    let verts: Vec<&[A::F; 4]> = tri.q.iter().chain(tri.r.iter()).collect();
+    let zero = ar.lit(0.0);
+    let (mut w_lo, mut w_hi) = (ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
+    let (mut z_lo, mut z_hi) = (ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
+    let mut pos = vec![];
+    for p in &verts {
+        w_lo = ar.min(&w_lo, &p[3]);
+        w_hi = ar.max(&w_hi, &p[3]);
+        pos.push(ar.gt(&p[3], &zero));
+        let zw = ar.div(&p[2], &p[3]);
+        z_lo = min_g::<R, A>(ar, &z_lo, &R::dn(ar, &zw));
+        z_hi = max_g::<R, A>(ar, &z_hi, &R::up(ar, &zw));
+    }
+    // The (w, z) line through the vertices of least and greatest w (the first one met).
+    let pick = |least: bool| {
+        let mut best = verts[0].clone();
+        for p in &verts[1..] {
+            let b = if least { ar.lt(&p[3], &best[3]) } else { ar.gt(&p[3], &best[3]) };
+            best = [0, 1, 2, 3].map(|i| ar.select(&b, &p[i], &best[i]));
+        }
+        best
+    };
+    let (lo_v, hi_v) = (pick(true), pick(false));
+    let slope = ar.div(&ar.sub(&hi_v[2], &lo_v[2]), &ar.sub(&hi_v[3], &lo_v[3]));
+    let off = ar.sub(&lo_v[2], &ar.mul(&slope, &lo_v[3]));
+    let line = ar.all(&[ar.gt(&hi_v[3], &lo_v[3]), ar.is_finite(&slope), ar.is_finite(&off)]);
+    let (a, bb) = (ar.select(&line, &slope, &zero), ar.select(&line, &off, &zero));
+    // Residuals z - a w - bb, rounded down for the least and up for the greatest (a
+    // and bb are any f32 values: the conversion is exact for every A, B).
+    let (mut res_lo, mut res_hi) = (ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
+    for p in &verts {
+        let lo = R::dn(ar, &ar.sub(&R::dn(ar, &ar.sub(&p[2], &R::up(ar, &ar.mul(&a, &p[3])))), &bb));
+        let hi = R::up(ar, &ar.sub(&R::up(ar, &ar.sub(&p[2], &R::dn(ar, &ar.mul(&a, &p[3])))), &bb));
+        res_lo = min_g::<R, A>(ar, &res_lo, &lo);
+        res_hi = max_g::<R, A>(ar, &res_hi, &hi);
+    }
+    let mut c = [R::dn(ar, &ar.add(&bb, &res_lo)), R::up(ar, &ar.add(&bb, &res_hi))];
+    if R::GUARD {
+        let nan = ar.or(&ar.is_nan(&c[0]), &ar.is_nan(&c[1]));
+        c = [ar.select(&nan, &ar.lit(f32::NEG_INFINITY), &c[0]), ar.select(&nan, &ar.lit(f32::INFINITY), &c[1])];
+    }
+    Setup {
+        planes,
+        w_box: [w_lo, w_hi],
+        zeta_box: [z_lo, z_hi],
+        zeta_on: ar.all(&pos),
+        a,
+        c,
+        disabled: ar.not(&ar.all(&nums)),
+    }
+}
+
+/// The tile answer over any [`F32Arith`] for the tile `[x0, y0, x1, y1]`:
+/// `(nonempty, z)`, the tile Empty when `nonempty` is false (the tile reject); `z` the
+/// depth bounds (infinite ends: none on that side; all infinite when the test is off).
+pub fn tile_answer<R: Round, A: F32Arith>(ar: &A, s: &Setup<A::F, A::B>, tile: &[A::F; 4]) -> (A::B, [A::F; 2]) {
+    let (zero, inf, ninf) = (ar.lit(0.0), ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
+    // w: the box, w > 0, and the planes.
+    let (mut lo, mut hi) = (ar.max(&s.w_box[0], &zero), s.w_box[1].clone());
+    let mut empty = vec![];
+    for p in &s.planes {
+        for wb in p.w_bounds::<R, A>(ar, tile) {
+            empty.push(wb.empty);
+            lo = ar.select(&ar.is_nan(&wb.lo), &lo, &ar.max(&lo, &wb.lo));
+            hi = ar.select(&ar.is_nan(&wb.hi), &hi, &ar.min(&hi, &wb.hi));
+        }
+    }
+    empty.push(ar.any(&[ar.is_nan(&hi), ar.le(&hi, &zero), ar.gt(&lo, &hi)]));
+    let q = c_over_w::<R, A>(ar, &s.c, &[lo, hi]);
+    let (z0, z1) = (R::dn(ar, &ar.add(&s.a, &q[0])), R::up(ar, &ar.add(&s.a, &q[1])));
+    let (z0, z1) = (ar.select(&ar.is_nan(&z0), &ninf, &z0), ar.select(&ar.is_nan(&z1), &inf, &z1));
+    let z0 = ar.select(&s.zeta_on, &ar.max(&z0, &s.zeta_box[0]), &z0);
+    let z1 = ar.select(&s.zeta_on, &ar.min(&z1, &s.zeta_box[1]), &z1);
+    empty.push(ar.gt(&z0, &z1));
+    let nonempty = ar.or(&s.disabled, &ar.not(&ar.any(&empty)));
+    (nonempty, [ar.select(&s.disabled, &ninf, &z0), ar.select(&s.disabled, &inf, &z1)])
+}
+
+/// The prepared f32 method.
+struct Prep<R> {
+    s: Setup<f32, bool>,
+    round: PhantomData<fn() -> R>,
 }
 
 impl<R: Round> Prepared for Prep<R> {
     fn tile(&self, tile: &Tile) -> TileResult {
+        let (nonempty, z) = tile_answer::<R, Plain>(&Plain, &self.s, &tile_of(tile));
+        if !nonempty {
+            return TileResult::Empty;
+        }
         let mut b = TileBounds::full();
-        if self.disabled.is_some() {
-            return TileResult::Bounds(b);
-        }
-        // w: the box, w > 0, and the planes.
-        let (mut lo, mut hi) = (self.w_box[0].max(0.0), self.w_box[1]);
-        for p in &self.planes {
-            for wb in p.w_bounds::<R>(tile) {
-                match wb {
-                    WBound::Empty => return TileResult::Empty,
-                    WBound::Range(l, h) => {
-                        if !l.is_nan() {
-                            lo = lo.max(l);
-                        }
-                        if !h.is_nan() {
-                            hi = hi.min(h);
-                        }
-                    }
-                }
-            }
-        }
-        if hi.is_nan() || hi <= 0.0 || lo > hi {
-            return TileResult::Empty;
-        }
-        let q = c_over_w::<R>(self.c, [lo, hi]);
-        let mut z = [R::dn(self.a + q[0]), R::up(self.a + q[1])];
-        if z[0].is_nan() {
-            z[0] = f32::NEG_INFINITY;
-        }
-        if z[1].is_nan() {
-            z[1] = f32::INFINITY;
-        }
-        if let Some(zb) = self.zeta_box {
-            z = [z[0].max(zb[0]), z[1].min(zb[1])];
-        }
-        if z[0] > z[1] {
-            return TileResult::Empty;
-        }
         if z[0] > f32::NEG_INFINITY || z[1] < f32::INFINITY {
             b.z = Some(z);
         }
         TileResult::Bounds(b)
     }
     fn disabled(&self) -> Option<&'static str> {
-        self.disabled
+        self.s.disabled.then_some("non-finite triangle data")
     }
 }
 
-/// nilsson2012-depth (`Near`) or nilsson2012-depth-safe (`Outward`).
-struct Nilsson2012Depth<R> {
-    info: &'static MethodInfo,
-    round: PhantomData<fn() -> R>,
+/// nilsson2012-depth (`Nearest`) or nilsson2012-depth-safe (`Outward`).
+pub(crate) struct Nilsson2012Depth<R> {
+    pub(crate) info: &'static MethodInfo,
+    pub(crate) round: PhantomData<fn() -> R>,
 }
 
-static INFO: MethodInfo = MethodInfo {
+pub(crate) static INFO: MethodInfo = MethodInfo {
     id: "nilsson2012-depth",
     source: "Nilsson et al. 2012, Design and Novel Uses of Higher-Dimensional Rasterization, HPG 2012, \
              Appendix A (moving bounding box; moving planes, Eq. 1, Figure 18)",
@@ -457,59 +498,10 @@ static INFO: MethodInfo = MethodInfo {
     outputs: Outputs { tile_reject: true, lens: false, time: false, depth: true, per_sample: false },
 };
 
-fn prepare_with<R: Round>(tri: &Triangle) -> Prep<R> {
-    let xyw = |p: [f32; 4]| [p[0], p[1], p[3]];
-    let finite =
-        tri.q.iter().chain(tri.r.iter()).flatten().chain(tri.c0.iter()).chain(tri.c1.iter()).all(|v| v.is_finite())
-            && tri.k.is_finite();
-    let (q, r) = (tri.q.map(xyw), tri.r.map(xyw));
-    let planes = [Plane::new::<R>(q, tri.c0, r, tri.c1, tri.k), Plane::new::<R>(r, tri.c1, q, tri.c0, tri.k)];
-    let verts: Vec<[f32; 4]> = tri.q.iter().chain(tri.r.iter()).cloned().collect();
-    let w_box = [
-        verts.iter().map(|p| p[3]).fold(f32::INFINITY, f32::min),
-        verts.iter().map(|p| p[3]).fold(f32::NEG_INFINITY, f32::max),
-    ];
-    let zeta_box = verts.iter().all(|p| p[3] > 0.0).then(|| {
-        [
-            verts.iter().map(|p| R::dn(p[2] / p[3])).fold(f32::INFINITY, min_r::<R>),
-            verts.iter().map(|p| R::up(p[2] / p[3])).fold(f32::NEG_INFINITY, max_r::<R>),
-        ]
-    });
-    // The (w, z) line through the vertices of least and greatest w.
-    let lo_v = verts.iter().cloned().fold(verts[0], |a, p| if p[3] < a[3] { p } else { a });
-    let hi_v = verts.iter().cloned().fold(verts[0], |a, p| if p[3] > a[3] { p } else { a });
-    let (mut a, mut bb) = (0.0f32, 0.0f32);
-    if hi_v[3] > lo_v[3] {
-        a = (hi_v[2] - lo_v[2]) / (hi_v[3] - lo_v[3]);
-        bb = lo_v[2] - a * lo_v[3];
-        if !(a.is_finite() && bb.is_finite()) {
-            a = 0.0;
-            bb = 0.0;
-        }
-    }
-    // Residuals z - a w - bb, rounded down for the least and up for the greatest (a
-    // and bb are any f32 values: the conversion is exact for every A, B).
-    let res_lo = verts.iter().map(|p| R::dn(R::dn(p[2] - R::up(a * p[3])) - bb)).fold(f32::INFINITY, min_r::<R>);
-    let res_hi = verts.iter().map(|p| R::up(R::up(p[2] - R::dn(a * p[3])) - bb)).fold(f32::NEG_INFINITY, max_r::<R>);
-    let mut c = [R::dn(bb + res_lo), R::up(bb + res_hi)];
-    if R::SAFE && (c[0].is_nan() || c[1].is_nan()) {
-        c = [f32::NEG_INFINITY, f32::INFINITY];
-    }
-    Prep {
-        planes,
-        w_box,
-        zeta_box,
-        a,
-        c,
-        disabled: (!finite).then_some("non-finite triangle data"),
-        round: PhantomData,
-    }
-}
-
 /// The published setup (round to nearest).
 #[cfg(test)]
-fn prepare(tri: &Triangle) -> Prep<Near> {
-    prepare_with::<Near>(tri)
+fn prepare(tri: &Triangle) -> Setup<f32, bool> {
+    setup_of::<Nearest, Plain>(&Plain, &TriOf::of(tri))
 }
 
 impl<R: Round> Method for Nilsson2012Depth<R> {
@@ -517,11 +509,11 @@ impl<R: Round> Method for Nilsson2012Depth<R> {
         self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(prepare_with::<R>(tri))
+        Box::new(Prep::<R> { s: setup_of::<R, Plain>(&Plain, &TriOf::of(tri)), round: PhantomData })
     }
 }
 
-pub static METHOD: &dyn Method = &Nilsson2012Depth::<Near> { info: &INFO, round: PhantomData };
+pub static METHOD: &dyn Method = &Nilsson2012Depth::<Nearest> { info: &INFO, round: PhantomData };
 
 static INFO_SAFE: MethodInfo = MethodInfo {
     id: "nilsson2012-depth-safe",

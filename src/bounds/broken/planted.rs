@@ -11,16 +11,19 @@
 //! - `broken/planted-band/bbox-safe`: the shear dropped for a vertex whose depth lies in the
 //!   narrow band `2 <= w < 2 + 2^-14` (a term wrong in a band of relative width 2^-15).
 //!
-//! And two slips in `la2011-safe`'s arithmetic, for the proofs tied to the code
-//! ([`crate::bounds::proofs`]): `broken/planted-no-up/la2011-safe` keeps every lower
-//! end's outward step but drops the upper ends' (each upper end is the value rounded
-//! to nearest, as in `la2011`), `broken/planted-no-dn/la2011-safe` the reverse. Each is
-//! one outward step dropped from half of the operations: the kind of edit a proof of
-//! the variant must notice.
+//! And two slips in the arithmetic of each variant written with the shared rounding
+//! discipline ([`crate::bounds::round`]: `la2011-safe`, `nilsson2012-depth-safe`), for
+//! the proofs tied to the code ([`crate::bounds::proofs`]):
+//! `broken/planted-no-up/M-safe` keeps every lower end's outward step but drops the
+//! upper ends' (each upper end is the value rounded to nearest, as in the published
+//! method), `broken/planted-no-dn/M-safe` the reverse. Each is one outward step dropped
+//! from half of the operations: the kind of edit a proof of the variant must notice.
 
 use crate::bounds::arith::F32Arith;
 use crate::bounds::bbox::{BBox, Corner, SafeCorner};
-use crate::bounds::la2011::{La2011, Round};
+use crate::bounds::la2011::La2011;
+use crate::bounds::nilsson2012_depth::Nilsson2012Depth;
+use crate::bounds::round::Round;
 use crate::bounds::{Method, MethodInfo, Outputs};
 use crate::model::Dims;
 
@@ -53,7 +56,7 @@ impl Corner for BandSlip {
     }
 }
 
-/// `la2011-safe` with the upper ends' steps dropped.
+/// A `-safe` arithmetic ([`Round`]) with the upper ends' steps dropped.
 pub struct NoUp;
 
 impl Round for NoUp {
@@ -69,7 +72,7 @@ impl Round for NoUp {
     const GUARD: bool = true;
 }
 
-/// `la2011-safe` with the lower ends' steps dropped.
+/// A `-safe` arithmetic with the lower ends' steps dropped.
 pub struct NoDn;
 
 impl Round for NoDn {
@@ -114,10 +117,28 @@ static INFO_NO_DN: MethodInfo = MethodInfo {
     ..crate::bounds::la2011::INFO
 };
 
+static INFO_NO_UP_DEPTH: MethodInfo = MethodInfo {
+    id: "broken/planted-no-up/nilsson2012-depth-safe",
+    source: "nilsson2012-depth-safe with the outward step of every upper end dropped",
+    ..crate::bounds::nilsson2012_depth::INFO
+};
+static INFO_NO_DN_DEPTH: MethodInfo = MethodInfo {
+    id: "broken/planted-no-dn/nilsson2012-depth-safe",
+    source: "nilsson2012-depth-safe with the outward step of every lower end dropped",
+    ..crate::bounds::nilsson2012_depth::INFO
+};
+
 /// `broken/planted-no-up/la2011-safe`.
 pub static NO_UP: &dyn Method = &La2011::<NoUp> { info: &INFO_NO_UP, round: std::marker::PhantomData };
 /// `broken/planted-no-dn/la2011-safe`.
 pub static NO_DN: &dyn Method = &La2011::<NoDn> { info: &INFO_NO_DN, round: std::marker::PhantomData };
+
+/// `broken/planted-no-up/nilsson2012-depth-safe`.
+pub static NO_UP_DEPTH: &dyn Method =
+    &Nilsson2012Depth::<NoUp> { info: &INFO_NO_UP_DEPTH, round: std::marker::PhantomData };
+/// `broken/planted-no-dn/nilsson2012-depth-safe`.
+pub static NO_DN_DEPTH: &dyn Method =
+    &Nilsson2012Depth::<NoDn> { info: &INFO_NO_DN_DEPTH, round: std::marker::PhantomData };
 
 /// `broken/planted-eq/bbox-safe`.
 pub static EQ: &dyn Method = &BBox { info: &INFO_EQ, corner: EqSlip };
@@ -126,5 +147,5 @@ pub static BAND: &dyn Method = &BBox { info: &INFO_BAND, corner: BandSlip };
 
 /// The planted variant with this id, if it is one.
 pub fn parse(id: &str) -> Option<&'static dyn Method> {
-    [EQ, BAND, NO_UP, NO_DN].into_iter().find(|m| m.info().id == id)
+    [EQ, BAND, NO_UP, NO_DN, NO_UP_DEPTH, NO_DN_DEPTH].into_iter().find(|m| m.info().id == id)
 }

@@ -7,6 +7,12 @@ use oracles::DepthCheck;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+/// [`w_from`] in f32: None when no hit is possible, else `(lo, hi)`.
+fn wf<R: Round>(m_lo: f32, e_hi: f32) -> Option<(f32, f32)> {
+    let b = w_from::<R, Plain>(&Plain, &m_lo, &e_hi);
+    (!b.empty).then_some((b.lo, b.hi))
+}
+
 fn bounds(tri: &Triangle, tile: &Tile) -> Option<TileBounds> {
     bounds_of(METHOD, tri, tile)
 }
@@ -74,7 +80,9 @@ fn static_tilted_triangle_from_a_camera() {
         let b = bounds(&tri, tile).unwrap();
         let z = b.z.unwrap();
         // The planes make it much tighter than the vertex box.
-        let zb = prepare(&tri).zeta_box.unwrap();
+        let p = prepare(&tri);
+        assert!(p.zeta_on);
+        let zb = p.zeta_box;
         assert!(z[1] - z[0] < 0.5 * (zb[1] - zb[0]), "{z:?} vs box {zb:?}");
     }
     assert!(n > 1000, "{n}");
@@ -152,7 +160,7 @@ fn plane_sweeping_the_lens_is_dropped() {
         k: 1.0,
     };
     let p = prepare(&tri);
-    assert!(p.planes[0].upper.is_none() && p.planes[0].lower.is_none());
+    assert!(!p.planes[0].upper_on && !p.planes[0].lower_on);
     spot_check(&tri, &Tile::square(0.0, 0.0, 4.0), 3000, 9);
 }
 
@@ -169,13 +177,13 @@ fn degenerate_input_does_not_panic() {
 
 #[test]
 fn w_rule() {
-    assert_eq!(w_from::<Near>(2.0, 4.0), WBound::Range(0.0, 2.0));
-    assert_eq!(w_from::<Near>(2.0, -4.0), WBound::Empty);
-    assert_eq!(w_from::<Near>(-2.0, -4.0), WBound::Range(2.0, f32::INFINITY));
-    assert_eq!(w_from::<Near>(0.0, -4.0), WBound::Empty);
-    assert_eq!(w_from::<Near>(-1.0, 4.0), WBound::Range(0.0, f32::INFINITY));
-    assert_eq!(c_over_w::<Near>([-2.0, -1.0], [0.0, 4.0]), [f32::NEG_INFINITY, -0.25]);
-    assert_eq!(c_over_w::<Near>([1.0, 2.0], [1.0, 4.0]), [0.25, 2.0]);
+    assert_eq!(wf::<Nearest>(2.0, 4.0), Some((0.0, 2.0)));
+    assert_eq!(wf::<Nearest>(2.0, -4.0), None);
+    assert_eq!(wf::<Nearest>(-2.0, -4.0), Some((2.0, f32::INFINITY)));
+    assert_eq!(wf::<Nearest>(0.0, -4.0), None);
+    assert_eq!(wf::<Nearest>(-1.0, 4.0), Some((0.0, f32::INFINITY)));
+    assert_eq!(c_over_w::<Nearest, Plain>(&Plain, &[-2.0, -1.0], &[0.0, 4.0]), [f32::NEG_INFINITY, -0.25]);
+    assert_eq!(c_over_w::<Nearest, Plain>(&Plain, &[1.0, 2.0], &[1.0, 4.0]), [0.25, 2.0]);
 }
 
 /// Random triangles of every kind (thin lens or per-vertex CoC, vertices behind the
@@ -365,7 +373,9 @@ fn safe_is_not_vacuous() {
         [[-1.0, -1.0, 3.0], [1.5, -1.0, 6.0], [-1.0, 1.5, 9.0]],
     );
     let tilted = Triangle { c0: [0.0; 3], c1: [0.0; 3], ..tilted };
-    let zb = prepare(&tilted).zeta_box.unwrap();
+    let p = prepare(&tilted);
+    assert!(p.zeta_on);
+    let zb = p.zeta_box;
     for tile in [Tile::square(5.0, 5.0, 4.0), Tile::square(20.0, 10.0, 8.0)] {
         let z = bounds_of(METHOD_SAFE, &tilted, &tile).unwrap().z.unwrap();
         let z0 = bounds(&tilted, &tile).unwrap().z.unwrap();
@@ -383,13 +393,14 @@ fn safe_is_not_vacuous() {
 #[test]
 fn safe_w_rule_rounds_outward() {
     // 1 / 3 is not an f32: the bounds step past it.
-    let WBound::Range(_, hi) = w_from::<Outward>(3.0, 1.0) else { panic!() };
+    let (_, hi) = wf::<Outward>(3.0, 1.0).unwrap();
     assert!(hi as f64 > 1.0 / 3.0);
-    let WBound::Range(lo, _) = w_from::<Outward>(-3.0, -1.0) else { panic!() };
+    let (lo, _) = wf::<Outward>(-3.0, -1.0).unwrap();
     assert!((lo as f64) < 1.0 / 3.0);
-    let q = c_over_w::<Outward>([1.0, 2.0], [3.0, 7.0]);
+    let q = c_over_w::<Outward, Plain>(&Plain, &[1.0, 2.0], &[3.0, 7.0]);
     assert!((q[0] as f64) < 1.0 / 7.0 && q[1] as f64 > 2.0 / 3.0);
     // NaN is not skipped by the safe min / max.
-    assert!(min_r::<Outward>(1.0, f32::NAN).is_nan() && min_r::<Near>(1.0, f32::NAN) == 1.0);
-    assert_eq!(w_from::<Outward>(f32::NEG_INFINITY, 1.0), WBound::Range(0.0, f32::INFINITY));
+    assert!(min_g::<Outward, Plain>(&Plain, &1.0, &f32::NAN).is_nan());
+    assert_eq!(min_g::<Nearest, Plain>(&Plain, &1.0, &f32::NAN), 1.0);
+    assert_eq!(wf::<Outward>(f32::NEG_INFINITY, 1.0), Some((0.0, f32::INFINITY)));
 }

@@ -82,10 +82,17 @@ fn mirrored(r: [[f32; 2]; 4]) -> [[f32; 2]; 4] {
     [neg(r[0]), r[1], r[2], neg(r[3])]
 }
 
-/// What a method asserts on this template: that it culls the template's tile of `side`
-/// (the tile `[x0, y0, x1, y1]`, the triangle built by [`template`]).
+/// What a method says on a template: the term that it culls the template's tile of
+/// `side` (the tile `[x0, y0, x1, y1]`, the triangle built by [`template`] or the moving
+/// template's). Defining terms go into `smt`; the query asserts the returned term.
 pub trait TemplateCull: Sync {
-    fn assert_cull(&self, smt: &Smt, side: Side, tri: &TriOf<String>, tile: &[String; 4]);
+    fn cull(&self, smt: &Smt, side: Side, tri: &TriOf<String>, tile: &[String; 4]) -> String;
+    /// When only some parts of the method are encoded (a conjunction whose other parts
+    /// can only cull more): the parts left out. A model is still a counterexample (the
+    /// judge runs the whole method), but an `unsat` proves nothing.
+    fn partial(&self) -> Option<&'static str> {
+        None
+    }
 }
 
 /// The query family of every method on this template: the inputs, sides, ranges and
@@ -94,6 +101,9 @@ pub trait TemplateCull: Sync {
 pub struct TemplateFamily<C>(pub C);
 
 impl<C: TemplateCull> Family for TemplateFamily<C> {
+    fn partial(&self) -> Option<&'static str> {
+        self.0.partial()
+    }
     fn inputs(&self) -> &'static [&'static str] {
         &INPUTS
     }
@@ -124,7 +134,7 @@ impl<C: TemplateCull> Family for TemplateFamily<C> {
     fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
         let (s, w) = (Side::of(side), [v[0].clone(), v[1].clone(), v[2].clone(), v[3].clone()]);
         let (tri, tile) = template(smt, s, &w);
-        self.0.assert_cull(smt, s, &tri, &tile);
+        smt.assert(&self.0.cull(smt, s, &tri, &tile));
         self.assert_reached(smt, side, v);
     }
     fn instance(&self, side: usize, v: &[f32]) -> (crate::model::Triangle, crate::model::Tile) {
@@ -160,7 +170,7 @@ pub fn template<A: F32Arith>(ar: &A, side: Side, v: &[A::F; 4]) -> (TriOf<A::F>,
 /// bbox's cull under one corner rule (bbox, bbox-safe or a planted slip): its setup and
 /// tile reject on the template.
 impl TemplateCull for Rule {
-    fn assert_cull(&self, smt: &Smt, side: Side, tri: &TriOf<String>, tile: &[String; 4]) {
+    fn cull(&self, smt: &Smt, side: Side, tri: &TriOf<String>, tile: &[String; 4]) -> String {
         let (enabled, bx) = aabb_of(smt, self, tri);
         // The method's reject is `enabled` and one of four disjoint-side tests; the query
         // asserts the side it attacks (a model satisfies the whole reject, and z3 need
@@ -169,7 +179,7 @@ impl TemplateCull for Rule {
             Side::XMin => smt.lt(&tile[2], &bx[0]),
             Side::XMax => smt.gt(&tile[0], &bx[1]),
         };
-        smt.assert(&smt.and(&enabled, &cull));
+        smt.and(&enabled, &cull)
     }
 }
 

@@ -33,6 +33,11 @@ pub trait Family: Sync {
     fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]);
     /// The triangle and tile of concrete inputs, computed in f32 by the same template.
     fn instance(&self, side: usize, v: &[f32]) -> (Triangle, Tile);
+    /// When only part of the method's cull is encoded: the parts left out (an `unsat`
+    /// then proves nothing; a model is still judged against the whole method).
+    fn partial(&self) -> Option<&'static str> {
+        None
+    }
 }
 
 /// One query: a side, a half-open range per input, and the inputs fixed to a value

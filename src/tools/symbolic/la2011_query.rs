@@ -18,48 +18,39 @@
 //! whole answer's reject instead made a query z3 4.8.12 did not decide within 900 s.
 
 use super::bbox_query::{Side, TemplateCull};
+use super::rounding::{Rounding, WithRound};
 use super::smt::Smt;
-use crate::bounds::arith::TriOf;
-use crate::bounds::broken::planted::{NoDn, NoUp};
-use crate::bounds::la2011::{setup_of, Nearest, Outward, Round};
+use crate::bounds::arith::{F32Arith, TriOf};
+use crate::bounds::la2011::setup_of;
+use crate::bounds::round::Round;
 
-/// la2011's cull on the template, in one of its arithmetics.
+/// la2011's cull on the template, in one of its arithmetics ([`Rounding`]: `la2011`,
+/// `la2011-safe` or a planted slip of it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum La2011Cull {
-    /// `la2011`: rounded to nearest.
-    Nearest,
-    /// `la2011-safe`: every rounding stepped outward.
-    Outward,
-    /// The planted slips of [`crate::bounds::broken::planted`]: the upper (lower) ends' steps dropped.
-    NoUp,
-    NoDn,
-}
+pub struct La2011Cull(pub Rounding);
 
 impl TemplateCull for La2011Cull {
-    fn assert_cull(&self, smt: &Smt, _side: Side, tri: &TriOf<String>, tile: &[String; 4]) {
-        match self {
-            La2011Cull::Nearest => assert_time_reject::<Nearest>(smt, tri, tile),
-            La2011Cull::Outward => assert_time_reject::<Outward>(smt, tri, tile),
-            La2011Cull::NoUp => assert_time_reject::<NoUp>(smt, tri, tile),
-            La2011Cull::NoDn => assert_time_reject::<NoDn>(smt, tri, tile),
-        }
+    fn cull(&self, smt: &Smt, _side: Side, tri: &TriOf<String>, tile: &[String; 4]) -> String {
+        self.0.with(TimeReject { smt, tri, tile })
     }
 }
 
-/// la2011's setup, its x time part asserted to say Empty.
-fn assert_time_reject<R: Round>(smt: &Smt, tri: &TriOf<String>, tile: &[String; 4]) {
-    let s = setup_of::<R, Smt>(smt, tri);
-    let (time_ok, _) = s.x.time::<R, Smt>(smt, &[tile[0].clone(), tile[2].clone()]);
-    smt.assert(&format!("(not {time_ok})"));
+/// la2011's setup, the term that its x time part says Empty.
+struct TimeReject<'a> {
+    smt: &'a Smt,
+    tri: &'a TriOf<String>,
+    tile: &'a [String; 4],
+}
+
+impl WithRound<String> for TimeReject<'_> {
+    fn run<R: Round>(self) -> String {
+        let s = setup_of::<R, Smt>(self.smt, self.tri);
+        let (time_ok, _) = s.x.time::<R, Smt>(self.smt, &[self.tile[0].clone(), self.tile[2].clone()]);
+        self.smt.not(&time_ok)
+    }
 }
 
 /// The cull of `id`, if it is la2011, la2011-safe or one of its planted slips.
 pub fn cull_of(id: &str) -> Option<La2011Cull> {
-    match id {
-        "la2011" => Some(La2011Cull::Nearest),
-        "la2011-safe" => Some(La2011Cull::Outward),
-        "broken/planted-no-up/la2011-safe" => Some(La2011Cull::NoUp),
-        "broken/planted-no-dn/la2011-safe" => Some(La2011Cull::NoDn),
-        _ => None,
-    }
+    Rounding::of(id, "la2011").map(La2011Cull)
 }

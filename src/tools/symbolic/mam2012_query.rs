@@ -18,10 +18,10 @@ use crate::bounds::mam2012::{setup_of, tile_answer};
 pub struct Mam2012Cull;
 
 impl TemplateCull for Mam2012Cull {
-    fn assert_cull(&self, smt: &Smt, _side: Side, tri: &TriOf<String>, tile: &[String; 4]) {
+    fn cull(&self, smt: &Smt, _side: Side, tri: &TriOf<String>, tile: &[String; 4]) -> String {
         let (why, s) = setup_of(smt, tri, false);
         let (nonempty, ..) = tile_answer(smt, &s, tile);
         let runs = smt.not(&smt.any(&why));
-        smt.assert(&smt.and(&runs, &smt.not(&nonempty)));
+        smt.and(&runs, &smt.not(&nonempty))
     }
 }

@@ -22,6 +22,13 @@
 //!   per-sample lines' coefficients): `crate::bounds::mam2012::setup_of`,
 //!   `crate::bounds::mam2012::tile_answer`. `mam2012-safe` shares the formulas (over
 //!   `crate::bounds::mam2012::Ops`) but its interval arithmetic is not encoded.
+//! - `nilsson2012-depth` and `nilsson2012-depth-safe`: the whole setup (the two moving
+//!   planes and their offsets, the vertex boxes, the (w, z) line of the conversion) and
+//!   the whole tile answer (the w bounds of the planes over the tile, the depth
+//!   interval, the Empty decision): `crate::bounds::nilsson2012_depth::setup_of`,
+//!   `crate::bounds::nilsson2012_depth::tile_answer`.
+//! - Two slips planted in each of `la2011-safe` and `nilsson2012-depth-safe` (one
+//!   outward step dropped on one side; [`rounding`]), for the proofs tied to the code.
 //! - `mam2012-hyperplane` (and `-ps`): the tile path only (the planes of Eq. 7-9, the
 //!   reject, the range cuts and the clamp), from the f32 setup's edges
 //!   (`crate::bounds::mam2012_hyperplane::edges_of`, `tile_answer`); the setup (the
@@ -29,7 +36,9 @@
 //!
 //! The queries attack the x sides of the box (of the footprint, for la2011) on a
 //! template triangle (four inputs): [`bbox_query`] for bbox, bbox-safe and the planted
-//! slips, [`la2011_query`] for la2011 and la2011-safe. A method's template is a
+//! slips, [`la2011_query`] for la2011 and la2011-safe, [`mam2012_query`] and
+//! [`nilsson2012_query`]; the moving template ([`moving_query`], seven inputs) takes
+//! every method's cull too. A method's template is a
 //! [`family::Family`]; by default the search runs the concolic plan ([`concolic`]):
 //! many small queries, each with some inputs fixed, under a deterministic resource
 //! limit, in parallel.
@@ -40,7 +49,9 @@ pub mod family;
 pub mod la2011_query;
 pub mod mam2012_query;
 pub mod moving_query;
+pub mod nilsson2012_query;
 pub mod prove;
+pub mod rounding;
 pub mod smt;
 pub mod solver;
 pub mod z3;

@@ -61,6 +61,9 @@ fn mirrored(r: [[f32; 2]; 7]) -> [[f32; 2]; 7] {
 pub struct MovingFamily<C>(pub C);
 
 impl<C: TemplateCull> Family for MovingFamily<C> {
+    fn partial(&self) -> Option<&'static str> {
+        self.0.partial()
+    }
     fn inputs(&self) -> &'static [&'static str] {
         &INPUTS
     }
@@ -92,7 +95,7 @@ impl<C: TemplateCull> Family for MovingFamily<C> {
     fn assert_violation(&self, smt: &Smt, side: usize, v: &[String]) {
         let (s, w): (Side, [String; 7]) = (Side::of(side), std::array::from_fn(|k| v[k].clone()));
         let (tri, tile) = template(smt, s, &w);
-        self.0.assert_cull(smt, s, &tri, &tile);
+        smt.assert(&self.0.cull(smt, s, &tri, &tile));
         self.assert_reached(smt, side, v);
     }
     fn instance(&self, side: usize, v: &[f32]) -> (crate::model::Triangle, crate::model::Tile) {
