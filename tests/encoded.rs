@@ -11,6 +11,8 @@ mod hyperplane_old;
 mod la2011_old;
 #[path = "encoded/mam2012_old.rs"]
 mod mam2012_old;
+#[path = "encoded/nilsson2012_depth_old.rs"]
+mod nilsson2012_depth_old;
 
 use cullproof::bounds::by_id;
 use cullproof::{Tile, Triangle};
@@ -66,5 +68,14 @@ fn mam2012_hyperplane_tile_path_is_its_old_code_bit_for_bit() {
         let (tiles, culled) = compare_bits(id, N, |tri, tile| hyperplane_old::answer(ps, tri, tile));
         assert_eq!(tiles, 2 * N);
         assert!(culled > N / 20, "{id}: only {culled} of {tiles} tiles culled: the reject went untested");
+    }
+}
+
+#[test]
+fn nilsson2012_depth_is_its_old_code_bit_for_bit() {
+    for (id, safe) in [("nilsson2012-depth", false), ("nilsson2012-depth-safe", true)] {
+        let (tiles, culled) = compare(id, N, |tri, tile| nilsson2012_depth_old::answer(safe, tri, tile));
+        assert_eq!(tiles, 2 * N);
+        assert!(culled > N / 50, "{id}: only {culled} of {tiles} tiles culled: the reject went untested");
     }
 }

@@ -79,7 +79,11 @@ pub fn rule(id: &str) -> Result<Rule> {
         "bbox-safe" => Rule::Safe,
         "broken/planted-eq/bbox-safe" => Rule::Eq,
         "broken/planted-band/bbox-safe" => Rule::Band,
-        _ => bail!("--method {id}: no symbolic encoding (methods with one: {})", ENCODED.join(", ")),
+        _ => bail!(
+            "--method {id}: no symbolic encoding (methods with one: {}; encoded in part: {})",
+            ENCODED.join(", "),
+            PARTLY_ENCODED.join(", ")
+        ),
     })
 }
 
