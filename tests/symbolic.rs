@@ -826,19 +826,21 @@ fn an_unsat_without_any_reached_tile_is_not_counted() {
     assert!(rep.render().contains("the ranges with a reached tile were not shown satisfiable"), "{}", rep.render());
 }
 
-/// nilsson2012-depth's encoded cull (its whole setup and tile answer, over `F32Arith`)
-/// asserts exactly what the f32 method culls: on pinned instances of both templates
-/// (every vertex at one depth per shutter end, the screen-parallel triangles where the
-/// published plane bound can round below the vertex depth), the assertion is sat
-/// exactly where the method answers Empty, for the published method and for its -safe
-/// variant.
+/// nilsson2012-depth's encoded failure (its whole setup and tile answer, over
+/// `F32Arith`) asserts exactly what the f32 method does wrong or culls: on pinned
+/// instances of both templates (every vertex at one depth per shutter end, the
+/// screen-parallel triangles where the published plane bound can round below the vertex
+/// depth), the assertion is sat exactly where the method answers Empty or, for a flat
+/// triangle (one z and one w for all six vertices), answers a depth interval that
+/// excludes `z / w` (decided here in exact f64 products), for the published method and
+/// for its -safe variant and planted slips.
 #[test]
 fn the_nilsson2012_cull_asserts_what_the_method_culls() {
     use cullproof::tools::symbolic::bbox_query::{self, Side, TemplateCull};
     use cullproof::tools::symbolic::moving_query;
     use cullproof::tools::symbolic::nilsson2012_query::cull_of;
     let mut r = rng(11);
-    let (mut culled, mut kept) = (0, 0);
+    let (mut culled, mut kept, mut depth_wrong) = (0, 0, 0);
     for i in 0..24 {
         let side = if i % 2 == 0 { Side::XMin } else { Side::XMax };
         let moving = i % 3 == 0;
@@ -880,8 +882,24 @@ fn the_nilsson2012_cull_asserts_what_the_method_culls() {
             v = draw(&mut r);
         }
         let (tri, tile) = build(&v);
-        for id in ["nilsson2012-depth", "nilsson2012-depth-safe"] {
-            let f32_culls = matches!(by_id(id).unwrap().setup(&tri).tile(&tile), TileResult::Empty);
+        for id in [
+            "nilsson2012-depth",
+            "nilsson2012-depth-safe",
+            "broken/planted-no-up/nilsson2012-depth-safe",
+            "broken/planted-no-dn/nilsson2012-depth-safe",
+        ] {
+            let m = by_id(id).or_else(|| cullproof::bounds::broken::parse(id)).unwrap();
+            let flat = tri.q.iter().chain(&tri.r).all(|p| p[2] == tri.q[0][2] && p[3] == tri.q[0][3]);
+            let (zv, wv) = (tri.q[0][2] as f64, tri.q[0][3] as f64);
+            let f32_culls = match m.setup(&tri).tile(&tile) {
+                TileResult::Empty => true,
+                TileResult::Bounds(b) => {
+                    let z = b.z.unwrap_or([f32::NEG_INFINITY, f32::INFINITY]);
+                    let wrong = flat && wv > 0.0 && ((z[1] as f64) * wv < zv || (z[0] as f64) * wv > zv);
+                    depth_wrong += wrong as usize;
+                    wrong
+                }
+            };
             let smt = Smt::folding();
             let lits: Vec<String> = v.iter().map(|&x| cullproof::tools::symbolic::smt::lit(x)).collect();
             let (t, tl) = if moving {
@@ -900,7 +918,7 @@ fn the_nilsson2012_cull_asserts_what_the_method_culls() {
             }
         }
     }
-    assert!(culled >= 3 && kept >= 3, "{culled} culled, {kept} kept");
+    assert!(culled >= 3 && kept >= 3 && depth_wrong >= 3, "{culled} culled, {kept} kept, {depth_wrong} depth");
 }
 
 /// The conjunctions encoded in part (`lc` and `mam2012-new`: their la2011 part): a model is judged against the whole method and confirmed (Bitwuzla,
@@ -946,5 +964,31 @@ fn a_method_encoded_in_part_finds_counterexamples_but_proves_nothing() {
         if want == Answer::Unknown {
             assert!(r.render().contains("only part of the method is encoded"), "{id}: {}", r.render());
         }
+    }
+}
+
+/// On the static template (narrow ranges, every input free, Bitwuzla), the search finds
+/// an f32 failure of nilsson2012-depth on a screen-parallel triangle (a culled tile or a
+/// depth interval below the one depth), and each planted slip
+/// of nilsson2012-depth-safe (one side's outward steps dropped) as a depth interval that
+/// misses the covered samples' depth: `z max` for the dropped upward steps, `z min` for
+/// the dropped downward ones, each confirmed by the exact judge.
+#[test]
+fn the_static_template_finds_nilsson2012_depth_and_its_planted_slips() {
+    let ranges = "a=128:256,c=1:2,w=1.875:2,t=96:128";
+    let limits = Limits { timeout: 600.0, rlimit: None, jobs: 1, solvers: Solvers::BITWUZLA };
+    for (id, kinds) in [
+        ("nilsson2012-depth", &["tile culled", "z max", "z min"][..]),
+        ("broken/planted-no-up/nilsson2012-depth-safe", &["z max"]),
+        ("broken/planted-no-dn/nilsson2012-depth-safe", &["z min"]),
+    ] {
+        let m = by_id(id).or_else(|| cullproof::bounds::broken::parse(id)).unwrap();
+        let f = family(id, Template::Static).unwrap();
+        let r = cullproof::tools::symbolic::family::parse_ranges(f.as_ref(), "--ranges", ranges).unwrap();
+        let plan = vec![cullproof::tools::symbolic::family::Query::free(0, r)];
+        let found = prove(m, Template::Static, Strategy::Whole, 0, &plan, limits, None, None, false).unwrap();
+        let q = found.queries.iter().find(|q| q.confirmed).unwrap_or_else(|| panic!("{id}: {}", found.render()));
+        let judged = q.judged.clone().unwrap_or_default();
+        assert!(kinds.iter().any(|k| judged == format!("violation ({k})")), "{id}: {}", found.render());
     }
 }

@@ -93,6 +93,11 @@ pub trait TemplateCull: Sync {
     fn partial(&self) -> Option<&'static str> {
         None
     }
+    /// Whether the term also holds where the method keeps the tile but its depth
+    /// interval excludes the covered samples' depth (a depth bound's failure).
+    fn depth(&self) -> bool {
+        false
+    }
 }
 
 /// The query family of every method on this template: the inputs, sides, ranges and
@@ -101,6 +106,9 @@ pub trait TemplateCull: Sync {
 pub struct TemplateFamily<C>(pub C);
 
 impl<C: TemplateCull> Family for TemplateFamily<C> {
+    fn depth(&self) -> bool {
+        self.0.depth()
+    }
     fn partial(&self) -> Option<&'static str> {
         self.0.partial()
     }

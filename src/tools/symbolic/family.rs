@@ -38,6 +38,11 @@ pub trait Family: Sync {
     fn partial(&self) -> Option<&'static str> {
         None
     }
+    /// Whether a violation may also be a depth interval that excludes the covered
+    /// samples' depth on a kept tile (not only a culled tile).
+    fn depth(&self) -> bool {
+        false
+    }
 }
 
 /// One query: a side, a half-open range per input, and the inputs fixed to a value

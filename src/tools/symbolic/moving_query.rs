@@ -61,6 +61,9 @@ fn mirrored(r: [[f32; 2]; 7]) -> [[f32; 2]; 7] {
 pub struct MovingFamily<C>(pub C);
 
 impl<C: TemplateCull> Family for MovingFamily<C> {
+    fn depth(&self) -> bool {
+        self.0.depth()
+    }
     fn partial(&self) -> Option<&'static str> {
         self.0.partial()
     }
