@@ -351,15 +351,15 @@ pub struct Setup<F, B> {
 /// `c / w` over `c in [c0, c1]`, `w in [w0, w1]`, `0 <= w0 <= w1 < inf`, `w > 0`.
 fn c_over_w<R: Round, A: F32Arith>(ar: &A, c: &[A::F; 2], w: &[A::F; 2]) -> [A::F; 2] {
     let zero = ar.lit(0.0);
+    let q = [ar.div(&c[0], &w[0]), ar.div(&c[0], &w[1]), ar.div(&c[1], &w[0]), ar.div(&c[1], &w[1])];
     let (mut lo, mut hi) = (ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
-    for (c, w) in [(&c[0], &w[0]), (&c[0], &w[1]), (&c[1], &w[0]), (&c[1], &w[1])] {
-        let q = ar.div(c, w);
-        lo = min_g::<R, A>(ar, &lo, &R::dn(ar, &q));
-        hi = max_g::<R, A>(ar, &hi, &R::up(ar, &q));
+    for q in &q {
+        lo = min_g::<R, A>(ar, &lo, &R::dn(ar, q));
+        hi = max_g::<R, A>(ar, &hi, &R::up(ar, q));
     }
     // w0 = 0: only the far end bounds the quotient, on the side c keeps its sign.
-    let lo0 = ar.select(&ar.le(&zero, &c[0]), &R::dn(ar, &ar.div(&c[0], &w[1])), &ar.lit(f32::NEG_INFINITY));
-    let hi0 = ar.select(&ar.le(&c[1], &zero), &R::up(ar, &ar.div(&c[1], &w[1])), &ar.lit(f32::INFINITY));
+    let lo0 = ar.select(&ar.le(&zero, &c[0]), &R::dn(ar, &q[1]), &ar.lit(f32::NEG_INFINITY));
+    let hi0 = ar.select(&ar.le(&c[1], &zero), &R::up(ar, &q[3]), &ar.lit(f32::INFINITY));
     let pos = ar.gt(&w[0], &zero);
     [ar.select(&pos, &lo, &lo0), ar.select(&pos, &hi, &hi0)]
 }

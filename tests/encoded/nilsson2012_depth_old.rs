@@ -319,11 +319,16 @@ fn prepare_with<R: Round>(tri: &Triangle) -> Prep<R> {
     }
 }
 
-/// The old method's answer (`safe`: nilsson2012-depth-safe).
-pub fn answer(safe: bool, tri: &Triangle, tile: &Tile) -> TileResult {
+/// The old method's setup (`safe`: nilsson2012-depth-safe).
+pub fn prepared(safe: bool, tri: &Triangle) -> Box<dyn Prepared> {
     if safe {
-        prepare_with::<Outward>(tri).tile(tile)
+        Box::new(prepare_with::<Outward>(tri))
     } else {
-        prepare_with::<Near>(tri).tile(tile)
+        Box::new(prepare_with::<Near>(tri))
     }
+}
+
+/// The old method's answer.
+pub fn answer(safe: bool, tri: &Triangle, tile: &Tile) -> TileResult {
+    prepared(safe, tri).tile(tile)
 }
