@@ -211,6 +211,7 @@ pub struct WBound<F, B> {
 }
 
 /// `w m <= E` for some `m in [m_lo, m_hi]`, `E in [e_lo, e_hi]`, with `w > 0`.
+#[inline(always)]
 pub fn w_from<R: Round, A: F32Arith>(ar: &A, m_lo: &A::F, e_hi: &A::F) -> WBound<A::F, A::B> {
     let (zero, inf) = (ar.lit(0.0), ar.lit(f32::INFINITY));
     let fin = ar.and(&ar.is_finite(m_lo), &ar.is_finite(e_hi));
@@ -292,6 +293,7 @@ impl<F: Clone, B: Clone> Plane<F, B> {
 
     /// The range of `m = n_x x + n_y y + n_w` over the tile `[x0, y0, x1, y1]` (its four
     /// corners): the least corner value rounded down, the greatest rounded up.
+    #[inline(always)]
     fn m_range<R: Round, A: F32Arith<F = F, B = B>>(&self, ar: &A, tile: &[F; 4]) -> (F, F) {
         let n = &self.n;
         let lo = |x: &F, y: &F| {
@@ -311,6 +313,7 @@ impl<F: Clone, B: Clone> Plane<F, B> {
     }
 
     /// The bounds on w of the max and the min plane over the tile (t^ = [0, 1]).
+    #[inline(always)]
     fn w_bounds<R: Round, A: F32Arith<F = F, B = B>>(&self, ar: &A, tile: &[F; 4]) -> [WBound<F, B>; 2] {
         let (m_lo, m_hi) = self.m_range::<R, A>(ar, tile);
         // A NaN end of m, or a plane not enabled: no bound.
@@ -349,6 +352,7 @@ pub struct Setup<F, B> {
 }
 
 /// `c / w` over `c in [c0, c1]`, `w in [w0, w1]`, `0 <= w0 <= w1 < inf`, `w > 0`.
+#[inline(always)]
 fn c_over_w<R: Round, A: F32Arith>(ar: &A, c: &[A::F; 2], w: &[A::F; 2]) -> [A::F; 2] {
     let zero = ar.lit(0.0);
     let q = [ar.div(&c[0], &w[0]), ar.div(&c[0], &w[1]), ar.div(&c[1], &w[0]), ar.div(&c[1], &w[1])];
@@ -437,26 +441,27 @@ pub fn setup_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> Setup<A::F,
 /// The tile answer over any [`F32Arith`] for the tile `[x0, y0, x1, y1]`:
 /// `(nonempty, z)`, the tile Empty when `nonempty` is false (the tile reject); `z` the
 /// depth bounds (infinite ends: none on that side; all infinite when the test is off).
+#[inline(always)]
 pub fn tile_answer<R: Round, A: F32Arith>(ar: &A, s: &Setup<A::F, A::B>, tile: &[A::F; 4]) -> (A::B, [A::F; 2]) {
     let (zero, inf, ninf) = (ar.lit(0.0), ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
     // w: the box, w > 0, and the planes.
     let (mut lo, mut hi) = (ar.max(&s.w_box[0], &zero), s.w_box[1].clone());
-    let mut empty = vec![];
+    let mut empty = ar.truth(false);
     for p in &s.planes {
         for wb in p.w_bounds::<R, A>(ar, tile) {
-            empty.push(wb.empty);
+            empty = ar.or(&empty, &wb.empty);
             lo = ar.select(&ar.is_nan(&wb.lo), &lo, &ar.max(&lo, &wb.lo));
             hi = ar.select(&ar.is_nan(&wb.hi), &hi, &ar.min(&hi, &wb.hi));
         }
     }
-    empty.push(ar.any(&[ar.is_nan(&hi), ar.le(&hi, &zero), ar.gt(&lo, &hi)]));
+    let empty = ar.any(&[empty, ar.is_nan(&hi), ar.le(&hi, &zero), ar.gt(&lo, &hi)]);
     let q = c_over_w::<R, A>(ar, &s.c, &[lo, hi]);
     let (z0, z1) = (R::dn(ar, &ar.add(&s.a, &q[0])), R::up(ar, &ar.add(&s.a, &q[1])));
     let (z0, z1) = (ar.select(&ar.is_nan(&z0), &ninf, &z0), ar.select(&ar.is_nan(&z1), &inf, &z1));
     let z0 = ar.select(&s.zeta_on, &ar.max(&z0, &s.zeta_box[0]), &z0);
     let z1 = ar.select(&s.zeta_on, &ar.min(&z1, &s.zeta_box[1]), &z1);
-    empty.push(ar.gt(&z0, &z1));
-    let nonempty = ar.or(&s.disabled, &ar.not(&ar.any(&empty)));
+    let empty = ar.or(&empty, &ar.gt(&z0, &z1));
+    let nonempty = ar.or(&s.disabled, &ar.not(&empty));
     (nonempty, [ar.select(&s.disabled, &ninf, &z0), ar.select(&s.disabled, &inf, &z1)])
 }
 

@@ -56,15 +56,18 @@ impl Round for Outward {
 }
 
 /// `min(a, b)` ([`F32Arith::min`]); with the guards on, a NaN operand gives NaN.
+#[inline(always)]
 pub fn min_g<R: Round, A: F32Arith>(ar: &A, a: &A::F, b: &A::F) -> A::F {
     guarded::<R, A>(ar, a, b, ar.min(a, b))
 }
 
 /// `max(a, b)` ([`F32Arith::max`]); with the guards on, a NaN operand gives NaN.
+#[inline(always)]
 pub fn max_g<R: Round, A: F32Arith>(ar: &A, a: &A::F, b: &A::F) -> A::F {
     guarded::<R, A>(ar, a, b, ar.max(a, b))
 }
 
+#[inline(always)]
 fn guarded<R: Round, A: F32Arith>(ar: &A, a: &A::F, b: &A::F, m: A::F) -> A::F {
     if R::GUARD {
         let nan = ar.or(&ar.is_nan(a), &ar.is_nan(b));
