@@ -106,27 +106,31 @@ static INFO_BAND: MethodInfo = MethodInfo {
     outputs: OUTPUTS,
 };
 
-static INFO_NO_UP: MethodInfo = MethodInfo {
-    id: "broken/planted-no-up/la2011-safe",
-    source: "la2011-safe with the outward step of every upper end dropped",
-    ..crate::bounds::la2011::INFO
-};
-static INFO_NO_DN: MethodInfo = MethodInfo {
-    id: "broken/planted-no-dn/la2011-safe",
-    source: "la2011-safe with the outward step of every lower end dropped",
-    ..crate::bounds::la2011::INFO
-};
+/// A planted slip's description: the method's own, under the slip's id and source.
+const fn slip(id: &'static str, source: &'static str, of: MethodInfo) -> MethodInfo {
+    MethodInfo { id, source, ..of }
+}
 
-static INFO_NO_UP_DEPTH: MethodInfo = MethodInfo {
-    id: "broken/planted-no-up/nilsson2012-depth-safe",
-    source: "nilsson2012-depth-safe with the outward step of every upper end dropped",
-    ..crate::bounds::nilsson2012_depth::INFO
-};
-static INFO_NO_DN_DEPTH: MethodInfo = MethodInfo {
-    id: "broken/planted-no-dn/nilsson2012-depth-safe",
-    source: "nilsson2012-depth-safe with the outward step of every lower end dropped",
-    ..crate::bounds::nilsson2012_depth::INFO
-};
+static INFO_NO_UP: MethodInfo = slip(
+    "broken/planted-no-up/la2011-safe",
+    "la2011-safe with the outward step of every upper end dropped",
+    crate::bounds::la2011::INFO,
+);
+static INFO_NO_DN: MethodInfo = slip(
+    "broken/planted-no-dn/la2011-safe",
+    "la2011-safe with the outward step of every lower end dropped",
+    crate::bounds::la2011::INFO,
+);
+static INFO_NO_UP_DEPTH: MethodInfo = slip(
+    "broken/planted-no-up/nilsson2012-depth-safe",
+    "nilsson2012-depth-safe with the outward step of every upper end dropped",
+    crate::bounds::nilsson2012_depth::INFO,
+);
+static INFO_NO_DN_DEPTH: MethodInfo = slip(
+    "broken/planted-no-dn/nilsson2012-depth-safe",
+    "nilsson2012-depth-safe with the outward step of every lower end dropped",
+    crate::bounds::nilsson2012_depth::INFO,
+);
 
 /// `broken/planted-no-up/la2011-safe`.
 pub static NO_UP: &dyn Method = &La2011::<NoUp> { info: &INFO_NO_UP, round: std::marker::PhantomData };

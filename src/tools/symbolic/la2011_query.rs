@@ -18,7 +18,7 @@
 //! whole answer's reject instead made a query z3 4.8.12 did not decide within 900 s.
 
 use super::bbox_query::{Side, TemplateCull};
-use super::rounding::{Rounding, WithRound};
+use super::rounding::{CullArgs, Rounding, WithRound};
 use super::smt::Smt;
 use crate::bounds::arith::{F32Arith, TriOf};
 use crate::bounds::la2011::setup_of;
@@ -31,22 +31,19 @@ pub struct La2011Cull(pub Rounding);
 
 impl TemplateCull for La2011Cull {
     fn cull(&self, smt: &Smt, _side: Side, tri: &TriOf<String>, tile: &[String; 4]) -> String {
-        self.0.with(TimeReject { smt, tri, tile })
+        self.0.with(TimeReject(CullArgs { smt, tri, tile }))
     }
 }
 
 /// la2011's setup, the term that its x time part says Empty.
-struct TimeReject<'a> {
-    smt: &'a Smt,
-    tri: &'a TriOf<String>,
-    tile: &'a [String; 4],
-}
+struct TimeReject<'a>(CullArgs<'a>);
 
 impl WithRound<String> for TimeReject<'_> {
     fn run<R: Round>(self) -> String {
-        let s = setup_of::<R, Smt>(self.smt, self.tri);
-        let (time_ok, _) = s.x.time::<R, Smt>(self.smt, &[self.tile[0].clone(), self.tile[2].clone()]);
-        self.smt.not(&time_ok)
+        let CullArgs { smt, tri, tile } = self.0;
+        let s = setup_of::<R, Smt>(smt, tri);
+        let (time_ok, _) = s.x.time::<R, Smt>(smt, &[tile[0].clone(), tile[2].clone()]);
+        smt.not(&time_ok)
     }
 }
 

@@ -20,7 +20,7 @@
 //! product rounded down and up (no real arithmetic; see [`product_below`]).
 
 use super::bbox_query::{Side, TemplateCull};
-use super::rounding::{Rounding, WithRound};
+use super::rounding::{CullArgs, Rounding, WithRound};
 use super::smt::Smt;
 use crate::bounds::arith::{F32Arith, TriOf};
 use crate::bounds::nilsson2012_depth::{setup_of, tile_answer};
@@ -49,7 +49,7 @@ pub struct Nilsson2012Cull(pub Rounding);
 
 impl TemplateCull for Nilsson2012Cull {
     fn cull(&self, smt: &Smt, _side: Side, tri: &TriOf<String>, tile: &[String; 4]) -> String {
-        self.0.with(Reject { smt, tri, tile })
+        self.0.with(Reject(CullArgs { smt, tri, tile }))
     }
     fn depth(&self) -> bool {
         true
@@ -58,17 +58,13 @@ impl TemplateCull for Nilsson2012Cull {
 
 /// The setup and tile answer: the term that the answer is Empty, or that its depth
 /// interval excludes the one depth of a flat triangle's hits.
-struct Reject<'a> {
-    smt: &'a Smt,
-    tri: &'a TriOf<String>,
-    tile: &'a [String; 4],
-}
+struct Reject<'a>(CullArgs<'a>);
 
 impl WithRound<String> for Reject<'_> {
     fn run<R: Round>(self) -> String {
-        let s = setup_of::<R, Smt>(self.smt, self.tri);
-        let (smt, tri) = (self.smt, self.tri);
-        let (nonempty, z) = tile_answer::<R, Smt>(smt, &s, self.tile);
+        let CullArgs { smt, tri, tile } = self.0;
+        let s = setup_of::<R, Smt>(smt, tri);
+        let (nonempty, z) = tile_answer::<R, Smt>(smt, &s, tile);
         let (zv, wv) = (&tri.q[0][2], &tri.q[0][3]);
         let mut flat = vec![smt.gt(wv, &smt.lit(0.0))];
         for p in tri.q.iter().chain(&tri.r) {

@@ -2,6 +2,8 @@
 //! ([`crate::bounds::round`]): the published one, the `-safe` one, and the two planted
 //! slips of the `-safe` one ([`crate::bounds::broken::planted`]), named by method id.
 
+use super::smt::Smt;
+use crate::bounds::arith::TriOf;
 use crate::bounds::broken::planted::{NoDn, NoUp};
 use crate::bounds::round::{Nearest, Outward, Round};
 
@@ -49,4 +51,12 @@ impl Rounding {
 /// Code generic over a [`Round`], run by [`Rounding::with`].
 pub trait WithRound<T> {
     fn run<R: Round>(self) -> T;
+}
+
+/// What a template cull reads: the SMT builder, the template's triangle and its tile.
+#[derive(Clone, Copy)]
+pub struct CullArgs<'a> {
+    pub smt: &'a Smt,
+    pub tri: &'a TriOf<String>,
+    pub tile: &'a [String; 4],
 }
