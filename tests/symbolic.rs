@@ -992,3 +992,65 @@ fn the_static_template_finds_nilsson2012_depth_and_its_planted_slips() {
         assert!(kinds.iter().any(|k| judged == format!("violation ({k})")), "{id}: {}", found.render());
     }
 }
+
+/// The static template's exact side (the footprint reaches the tile: the near edge
+/// before the tile, the far edge at the tile's nearest row after it), attacked with the
+/// tile 0.3 px inside or outside each edge: the SMT assertion is sat exactly where the
+/// exact judge finds a covered sample and unsat exactly where it certifies the tile empty.
+/// The far edge is the hypotenuse at row 8 moved by the lens in x and y, not the far
+/// vertex, which let a solver place the tile 8 px beyond the triangle (a model the judge
+/// found empty).
+#[test]
+fn the_static_templates_exact_side_agrees_with_the_judge_at_both_edges() {
+    use cullproof::tools::symbolic::bbox_query::{template, Side};
+    let cfg = cullproof::gate::CheckConfig::default_with(vec![&CullAll]);
+    let m = cullproof::bounds::shared(&CullAll);
+    let f = family("bbox", Template::Static).unwrap();
+    let mut r = rng(23);
+    let (mut reached, mut empty) = (0, 0);
+    for i in 0..32 {
+        let side = if i % 2 == 0 { Side::XMin } else { Side::XMax };
+        let sgn = if side == Side::XMin { 1.0 } else { -1.0 };
+        let u = |r: &mut dyn FnMut() -> f64, lo: f64, hi: f64| (lo + (hi - lo) * r()) as f32;
+        // c / w <= 4: the lens's vertical shift keeps row 8 inside the triangle, where the
+        // far bound is exact
+        let (a, c, w) = (u(&mut r, -60.0, 60.0), u(&mut r, 0.5, 2.0), u(&mut r, 0.5, 4.0));
+        let inside = i % 4 < 2;
+        let d = if inside { 0.3 } else { -0.3 };
+        let t = if i % 8 < 4 {
+            // the near edge: x-min reaches when (a - c) / w < t, x-max when (a + c) / w > t
+            ((a as f64 - sgn * c as f64) / w as f64 + sgn * d) as f32
+        } else {
+            // the far edge at row 8, the lens moving it by (1 + s) c / w towards the tile
+            let far = if side == Side::XMin { a + 64.0 * w } else { a - 64.0 * w };
+            let (far, a64, c64, w64) = (far as f64, a as f64, c as f64, w as f64);
+            let tilt = c64 * (far - a64).abs() / (8.0 * w64);
+            let e = (7.0 * far + a64 + sgn * (8.0 * c64 + tilt)) / (8.0 * w64);
+            // x-min: x0 = t - 1 reaches when x0 < e; x-max: x1 = t + 1 when x1 > e
+            (e - sgn * d + sgn) as f32
+        };
+        let v = [a, c, w, t];
+        let (tri, tile) = template(&Plain, side, &v);
+        let (tri, tile) = (tri.triangle(), Tile { x0: tile[0], y0: tile[1], x1: tile[2], y1: tile[3] });
+        let case = cullproof::model::Case { triangle: tri, lens: None };
+        let (js, _) = cullproof::gate::judge(&cfg, std::slice::from_ref(&m), &case, &tile, i as u64);
+        let j = &js[0];
+        let smt = Smt::folding();
+        let lits: Vec<String> = v.iter().map(|&x| cullproof::tools::symbolic::smt::lit(x)).collect();
+        f.assert_reached(&smt, i % 2, &lits);
+        let run = z3::run(&smt.script(&[]), 60.0).expect("z3 runs");
+        match (j.violation.is_some(), j.verdict() == cullproof::judge::Verdict::Proven) {
+            (true, _) => {
+                assert_eq!(run.answer, Answer::Sat, "instance {i} {v:?}: the judge finds a covered sample");
+                reached += 1;
+            }
+            (false, true) => {
+                assert_eq!(run.answer, Answer::Unsat, "instance {i} {v:?}: the judge certifies the tile empty");
+                empty += 1;
+            }
+            _ => {}
+        }
+        assert_eq!(j.violation.is_some(), inside, "instance {i} {v:?}: the tile is 0.3 px from an edge");
+    }
+    assert!(reached >= 12 && empty >= 12, "{reached} reached, {empty} empty");
+}
