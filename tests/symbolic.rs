@@ -649,8 +649,6 @@ impl cullproof::bounds::Method for CullAll {
 fn the_moving_templates_exact_side_agrees_with_the_judge() {
     use cullproof::tools::symbolic::bbox_query::Side;
     use cullproof::tools::symbolic::moving_query::{assert_reach, template};
-    let cfg = cullproof::gate::CheckConfig::default_with(vec![&CullAll]);
-    let m = cullproof::bounds::shared(&CullAll);
     let mut r = rng(11);
     let (mut reached, mut empty) = (0, 0);
     for i in 0..24 {
@@ -670,26 +668,13 @@ fn the_moving_templates_exact_side_agrees_with_the_judge() {
         let t = (edge + sgn * d) as f32;
         let v = [a0, a1, c0, c1, w0, w1, t];
         let (tri, tile) = template(&Plain, side, &v);
-        let (tri, tile) = (tri.triangle(), Tile { x0: tile[0], y0: tile[1], x1: tile[2], y1: tile[3] });
-        let case = cullproof::model::Case { triangle: tri, lens: None };
-        let (js, _) = cullproof::gate::judge(&cfg, std::slice::from_ref(&m), &case, &tile, i as u64);
-        let j = &js[0];
-        let smt = Smt::folding();
-        let lits: Vec<String> = v.iter().map(|&x| cullproof::tools::symbolic::smt::lit(x)).collect();
-        assert_reach(&smt, side, &std::array::from_fn(|k| lits[k].clone()));
-        let run = z3::run(&smt.script(&[]), 60.0).expect("z3 runs");
-        match (j.violation.is_some(), j.verdict() == cullproof::judge::Verdict::Proven) {
-            (true, _) => {
-                assert_eq!(run.answer, Answer::Sat, "instance {i} {v:?}: the judge finds a covered sample");
-                reached += 1;
-            }
-            (false, true) => {
-                assert_eq!(run.answer, Answer::Unsat, "instance {i} {v:?}: the judge certifies the tile empty");
-                empty += 1;
-            }
-            _ => {}
-        }
-        assert_eq!(j.violation.is_some(), inside, "instance {i} {v:?}: the edge is 0.3 px from the tile");
+        let pinned = (tri.triangle(), Tile { x0: tile[0], y0: tile[1], x1: tile[2], y1: tile[3] });
+        let got = reach_agrees_with_judge(i, &v, pinned, |smt, lits| {
+            assert_reach(smt, side, &std::array::from_fn(|k| lits[k].clone()))
+        });
+        reached += (got == Some(true)) as usize;
+        empty += (got == Some(false)) as usize;
+        assert_eq!(got, Some(inside), "instance {i} {v:?}: the edge is 0.3 px from the tile");
     }
     assert!(reached >= 10 && empty >= 10, "{reached} reached, {empty} empty");
 }
@@ -1003,8 +988,6 @@ fn the_static_template_finds_nilsson2012_depth_and_its_planted_slips() {
 #[test]
 fn the_static_templates_exact_side_agrees_with_the_judge_at_both_edges() {
     use cullproof::tools::symbolic::bbox_query::{template, Side};
-    let cfg = cullproof::gate::CheckConfig::default_with(vec![&CullAll]);
-    let m = cullproof::bounds::shared(&CullAll);
     let f = family("bbox", Template::Static).unwrap();
     let mut r = rng(23);
     let (mut reached, mut empty) = (0, 0);
@@ -1031,26 +1014,44 @@ fn the_static_templates_exact_side_agrees_with_the_judge_at_both_edges() {
         };
         let v = [a, c, w, t];
         let (tri, tile) = template(&Plain, side, &v);
-        let (tri, tile) = (tri.triangle(), Tile { x0: tile[0], y0: tile[1], x1: tile[2], y1: tile[3] });
-        let case = cullproof::model::Case { triangle: tri, lens: None };
-        let (js, _) = cullproof::gate::judge(&cfg, std::slice::from_ref(&m), &case, &tile, i as u64);
-        let j = &js[0];
-        let smt = Smt::folding();
-        let lits: Vec<String> = v.iter().map(|&x| cullproof::tools::symbolic::smt::lit(x)).collect();
-        f.assert_reached(&smt, i % 2, &lits);
-        let run = z3::run(&smt.script(&[]), 60.0).expect("z3 runs");
-        match (j.violation.is_some(), j.verdict() == cullproof::judge::Verdict::Proven) {
-            (true, _) => {
-                assert_eq!(run.answer, Answer::Sat, "instance {i} {v:?}: the judge finds a covered sample");
-                reached += 1;
-            }
-            (false, true) => {
-                assert_eq!(run.answer, Answer::Unsat, "instance {i} {v:?}: the judge certifies the tile empty");
-                empty += 1;
-            }
-            _ => {}
-        }
-        assert_eq!(j.violation.is_some(), inside, "instance {i} {v:?}: the tile is 0.3 px from an edge");
+        let pinned = (tri.triangle(), Tile { x0: tile[0], y0: tile[1], x1: tile[2], y1: tile[3] });
+        let got = reach_agrees_with_judge(i, &v, pinned, |smt, lits| f.assert_reached(smt, i % 2, lits));
+        reached += (got == Some(true)) as usize;
+        empty += (got == Some(false)) as usize;
+        assert_eq!(got, Some(inside), "instance {i} {v:?}: the tile is 0.3 px from an edge");
     }
     assert!(reached >= 12 && empty >= 12, "{reached} reached, {empty} empty");
+}
+
+/// Judge the template tile of pinned inputs `v` exactly (with a method that culls
+/// everything, so a violation is a covered sample) and have z3 decide the template's
+/// reach assertion (`assert_reach`) on the same inputs: sat where the judge finds a
+/// covered sample, unsat where it certifies the tile empty. Returns whether the tile is
+/// reached (`None` when the judge left it undecided).
+fn reach_agrees_with_judge(
+    i: usize,
+    v: &[f32],
+    (tri, tile): (Triangle, Tile),
+    assert_reach: impl Fn(&Smt, &[String]),
+) -> Option<bool> {
+    let cfg = cullproof::gate::CheckConfig::default_with(vec![&CullAll]);
+    let m = cullproof::bounds::shared(&CullAll);
+    let case = cullproof::model::Case { triangle: tri, lens: None };
+    let (js, _) = cullproof::gate::judge(&cfg, std::slice::from_ref(&m), &case, &tile, i as u64);
+    let j = &js[0];
+    let smt = Smt::folding();
+    let lits: Vec<String> = v.iter().map(|&x| cullproof::tools::symbolic::smt::lit(x)).collect();
+    assert_reach(&smt, &lits);
+    let run = z3::run(&smt.script(&[]), 60.0).expect("z3 runs");
+    match (j.violation.is_some(), j.verdict() == cullproof::judge::Verdict::Proven) {
+        (true, _) => {
+            assert_eq!(run.answer, Answer::Sat, "instance {i} {v:?}: the judge finds a covered sample");
+            Some(true)
+        }
+        (false, true) => {
+            assert_eq!(run.answer, Answer::Unsat, "instance {i} {v:?}: the judge certifies the tile empty");
+            Some(false)
+        }
+        _ => None,
+    }
 }
