@@ -16,6 +16,14 @@
 
 use crate::model::{Tile, Triangle};
 
+/// Which end of an interval a value is: below (`Lo`) or above (`Hi`) the exact value it
+/// encloses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum End {
+    Lo,
+    Hi,
+}
+
 /// The f32 operations a bound's setup and tile test are written in.
 pub trait F32Arith {
     /// An f32 value (a number, or a term).
@@ -49,6 +57,16 @@ pub trait F32Arith {
     fn not(&self, a: &Self::B) -> Self::B;
     /// `if c { a } else { b }`.
     fn select(&self, c: &Self::B, a: &Self::F, b: &Self::F) -> Self::F;
+
+    /// `a`, one end (`end`) of an interval enclosing some exact quantity, taken from
+    /// here on as an exact value of its own: the code that follows is right for exact
+    /// values, and the real-arithmetic lemma named `lemma` carries that to the quantity
+    /// the end encloses (the lemmas are listed and checked by `cullproof proofs`). The
+    /// enclosure check of the proofs verifies that `a` is such an end; every other
+    /// instance returns `a` itself.
+    fn pin(&self, a: &Self::F, _end: End, _lemma: &'static str) -> Self::F {
+        a.clone()
+    }
 
     /// `a > b`.
     fn gt(&self, a: &Self::F, b: &Self::F) -> Self::B {

@@ -186,7 +186,7 @@
 //! that is the precision f32 has at 1e6 px, not a choice).
 
 use super::*;
-use crate::bounds::arith::{tile_of, F32Arith, Plain, TriOf};
+use crate::bounds::arith::{tile_of, End, F32Arith, Plain, TriOf};
 use crate::bounds::round::{Nearest, Outward, Round};
 use std::marker::PhantomData;
 
@@ -355,20 +355,33 @@ pub(crate) fn chord_nonpos(l0: f32, l1: f32) -> Option<[f32; 2]> {
 /// (`l0 <= 0 < l1`); the denominator is rounded up in both cases (see the module's
 /// `la2011-safe` analysis). A NaN crossing leaves that end at 0 (lower) or 1 (upper).
 pub fn chord<R: Round, A: F32Arith>(ar: &A, l0: &A::F, l1: &A::F) -> (A::B, [A::F; 2]) {
+    // The chord through two lower ends lies below the exact chord: the t it keeps
+    // (where it is <= 0) include those the exact chord keeps. From here on the chord
+    // is the one through `l0`, `l1` themselves.
+    let (l0, l1) = (&ar.pin(l0, End::Lo, CHORD_LEMMA), &ar.pin(l1, End::Lo, CHORD_LEMMA));
     let (zero, one) = (ar.lit(0.0), ar.lit(1.0));
-    let q = ar.div(l0, &R::up(ar, &ar.sub(l0, l1)));
+    let den = R::up(ar, &ar.sub(l0, l1));
+    let q = ar.div(l0, &den);
     // `t.clamp(0, 1)`: `if t < 0 { 0 }`, then `if t > 1 { 1 }`.
     let clamp = |t: &A::F| {
         let t = ar.select(&ar.lt(t, &zero), &zero, t);
         ar.select(&ar.gt(&t, &one), &one, &t)
     };
     let (lo, hi) = (R::dn(ar, &q), R::up(ar, &q));
-    let lower = ar.select(&ar.is_nan(&lo), &zero, &clamp(&lo));
-    let upper = ar.select(&ar.is_nan(&hi), &one, &clamp(&hi));
     let (p0, p1) = (ar.gt(l0, &zero), ar.gt(l1, &zero));
+    // The lower end is used only where l0 > 0 >= l1 (then the denominator is > 0);
+    // the upper end only where l0 <= 0 < l1 and the denominator is < 0 (a -0
+    // denominator gives an infinite or NaN quotient: the end stays at 1 either way).
+    let lower = ar.select(&ar.or(&ar.is_nan(&lo), &p1), &zero, &clamp(&lo));
+    let upper = ar.select(&ar.or(&ar.is_nan(&hi), &ar.not(&ar.lt(&den, &zero))), &one, &clamp(&hi));
     let t = [ar.select(&p0, &lower, &zero), ar.select(&p0, &one, &ar.select(&p1, &upper, &one))];
     (ar.not(&ar.and(&p0, &p1)), t)
 }
+
+/// The lemma of the pins of [`chord`]: for `l0 <= L0`, `l1 <= L1` and t in [0, 1],
+/// `(1-t) L0 + t L1 <= 0` implies `(1-t) l0 + t l1 <= 0` (checked by z3 in real
+/// arithmetic, `cullproof proofs`).
+pub const CHORD_LEMMA: &str = "a chord through lower ends keeps every t the exact chord keeps";
 
 /// Hull over t in [0, 1] of `{u real : d(t) + u s(t) < 0}`, for `d`, `s` affine in t
 /// with end values in `d[e]`, `s[e]` and sign class `class` of `s`; false when empty.

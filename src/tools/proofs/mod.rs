@@ -10,4 +10,5 @@
 
 pub mod check;
 pub mod composition;
+pub mod enclosure;
 pub mod run;

@@ -1,0 +1,1214 @@
+//! The enclosure check: the composition of a `-safe` variant's rounding argument,
+//! machine-checked over the method's own code for **every** input.
+//!
+//! The variant's f32 code (written once over [`F32Arith`], the description the gate runs)
+//! is run once over [`Trace`], an instance that records every operation instead of
+//! computing it: the result is the code's whole data flow for symbolic inputs, one
+//! graph. Over that graph [`Check`] assigns each value a **direction** towards its
+//! **exact value** (the same operations carried out in real arithmetic, without any
+//! rounding or outward step, along the branches the f32 code takes):
+//!
+//! - `Exact`: the f32 value is its exact value (inputs, literals, a product by 0 or ±1);
+//! - `Lo` / `Hi`: it is `<=` / `>=` its exact value;
+//! - a *rounded* direction: the f32 value is the rounding to nearest of a real that has
+//!   that direction (the result of `+ - * /` before its outward step).
+//!
+//! Directions follow fixed rules, each a lemma: rounding then stepping outward in the
+//! right direction encloses (STEP, checked by z3 in `step.smt2`); `+`, `-` combine ends
+//! of one side (a - b with a lower and b upper is lower); a product or quotient keeps or
+//! flips sides by the signs the code has established (a quotient `a / b` is an upper end
+//! of `A / B` when `a` is upper and `B > 0`, and `b` is lower when `a >= 0`, upper when
+//! `a <= 0`: the rules are listed in [`RULES`] and checked in real arithmetic by z3
+//! ([`rules_script`])); min and max of same-sided ends, of NaN-free values, keep the side;
+//! `max(|lo|, |hi|)` of one interval is an upper end of `|x|`; a select joins the
+//! directions of its two arms, each taken under its branch's condition. Conditions the
+//! code tests become facts inside their branch: the sign of a value compared with 0 (and
+//! of its exact value, when the value is an end of the right side), finiteness, NaN-free
+//! values, exact products (a factor tested equal to 0 or ±1).
+//!
+//! A value becomes unusable (`Any`) as soon as no rule applies: a rounded result used
+//! without its outward step, a step in the wrong direction, a min of a lower and an
+//! upper end, a quotient whose divisor sign is not established. The check then demands
+//! that every **output** end of the tile answer is an end of its side (or exact) and
+//! NaN-free, and that every value the code **pins** ([`F32Arith::pin`], a step whose
+//! argument is a real-arithmetic lemma, such as "a chord through lower ends lies below the
+//! exact chord") is an end of the side the lemma needs. Those lemmas are in [`LEMMAS`],
+//! each checked by z3 in real arithmetic ([`lemmas_script`]).
+//!
+//! What stays an argument: the method's derivation in real arithmetic (that the exact
+//! values bound the covered samples: the method's file), and that the branches the f32
+//! code takes on its ends are the conservative ones (a comparison of a lower end with 0
+//! that says "positive" is one the exact value agrees with). The check does not look at
+//! the tile answer's Empty flag: it is a comparison of checked ends.
+
+use crate::bounds::arith::{End, F32Arith};
+use std::cell::RefCell;
+use std::collections::{HashMap, HashSet};
+
+/// A value of the trace (an index into its operations).
+pub type N = u32;
+/// A truth value of the trace.
+pub type Bn = u32;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Op {
+    Input(u32),
+    Lit(u32),
+    Add(N, N),
+    Sub(N, N),
+    Mul(N, N),
+    Div(N, N),
+    Fma(N, N, N),
+    Neg(N),
+    Abs(N),
+    Min(N, N),
+    Max(N, N),
+    Up(N),
+    Dn(N),
+    Sel(Bn, N, N),
+    Pin(N, End, u32),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum BOp {
+    Const(bool),
+    Lt(N, N),
+    Le(N, N),
+    Eq(N, N),
+    IsNan(N),
+    IsFinite(N),
+    And(Bn, Bn),
+    Or(Bn, Bn),
+    Not(Bn),
+}
+
+/// Interned nodes.
+struct Pool<T> {
+    nodes: Vec<T>,
+    index: HashMap<T, u32>,
+}
+
+impl<T> Default for Pool<T> {
+    fn default() -> Self {
+        Pool { nodes: vec![], index: HashMap::new() }
+    }
+}
+
+impl<T: Copy + Eq + std::hash::Hash> Pool<T> {
+    fn add(&mut self, t: T) -> u32 {
+        if let Some(&i) = self.index.get(&t) {
+            return i;
+        }
+        let i = self.nodes.len() as u32;
+        self.nodes.push(t);
+        self.index.insert(t, i);
+        i
+    }
+}
+
+/// The recording instance of [`F32Arith`]: every operation becomes a node of one graph
+/// (equal operations on equal operands are one node). Truth values with a constant
+/// operand are folded, so that code paths the arithmetic rules out at compile time (a
+/// factor 1 of the x axis) leave no branch behind.
+#[derive(Default)]
+pub struct Trace {
+    f: RefCell<Pool<Op>>,
+    b: RefCell<Pool<BOp>>,
+    inputs: RefCell<Vec<String>>,
+    lemmas: RefCell<Vec<&'static str>>,
+}
+
+impl Trace {
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// A fresh input named `name` (any f32 value).
+    pub fn input(&self, name: &str) -> N {
+        let mut ins = self.inputs.borrow_mut();
+        ins.push(name.to_string());
+        let i = ins.len() as u32 - 1;
+        self.f.borrow_mut().add(Op::Input(i))
+    }
+    /// How many operations the trace holds.
+    pub fn len(&self) -> usize {
+        self.f.borrow().nodes.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    fn op(&self, n: N) -> Op {
+        self.f.borrow().nodes[n as usize]
+    }
+    fn bop(&self, b: Bn) -> BOp {
+        self.b.borrow().nodes[b as usize]
+    }
+    fn node(&self, o: Op) -> N {
+        self.f.borrow_mut().add(o)
+    }
+    fn bnode(&self, o: BOp) -> Bn {
+        self.b.borrow_mut().add(o)
+    }
+    fn lit_of(&self, n: N) -> Option<f32> {
+        match self.op(n) {
+            Op::Lit(b) => Some(f32::from_bits(b)),
+            _ => None,
+        }
+    }
+    fn const_of(&self, b: Bn) -> Option<bool> {
+        match self.bop(b) {
+            BOp::Const(v) => Some(v),
+            _ => None,
+        }
+    }
+}
+
+impl F32Arith for Trace {
+    type F = N;
+    type B = Bn;
+
+    fn lit(&self, v: f32) -> N {
+        // One NaN: every NaN literal means "no value".
+        let v = if v.is_nan() { f32::NAN } else { v };
+        self.node(Op::Lit(v.to_bits()))
+    }
+    fn add(&self, a: &N, b: &N) -> N {
+        self.node(Op::Add(*a, *b))
+    }
+    fn sub(&self, a: &N, b: &N) -> N {
+        self.node(Op::Sub(*a, *b))
+    }
+    fn mul(&self, a: &N, b: &N) -> N {
+        self.node(Op::Mul(*a, *b))
+    }
+    fn div(&self, a: &N, b: &N) -> N {
+        self.node(Op::Div(*a, *b))
+    }
+    fn fma(&self, a: &N, b: &N, c: &N) -> N {
+        self.node(Op::Fma(*a, *b, *c))
+    }
+    fn neg(&self, a: &N) -> N {
+        match self.lit_of(*a) {
+            Some(v) => self.lit(-v),
+            None => self.node(Op::Neg(*a)),
+        }
+    }
+    fn abs(&self, a: &N) -> N {
+        match self.lit_of(*a) {
+            Some(v) => self.lit(v.abs()),
+            None => self.node(Op::Abs(*a)),
+        }
+    }
+    fn min(&self, a: &N, b: &N) -> N {
+        self.node(Op::Min(*a, *b))
+    }
+    fn max(&self, a: &N, b: &N) -> N {
+        self.node(Op::Max(*a, *b))
+    }
+    fn next_up(&self, a: &N) -> N {
+        self.node(Op::Up(*a))
+    }
+    fn next_down(&self, a: &N) -> N {
+        self.node(Op::Dn(*a))
+    }
+    fn lt(&self, a: &N, b: &N) -> Bn {
+        match (self.lit_of(*a), self.lit_of(*b)) {
+            (Some(x), Some(y)) => self.truth(x < y),
+            _ => self.bnode(BOp::Lt(*a, *b)),
+        }
+    }
+    fn le(&self, a: &N, b: &N) -> Bn {
+        match (self.lit_of(*a), self.lit_of(*b)) {
+            (Some(x), Some(y)) => self.truth(x <= y),
+            _ => self.bnode(BOp::Le(*a, *b)),
+        }
+    }
+    fn eq(&self, a: &N, b: &N) -> Bn {
+        match (self.lit_of(*a), self.lit_of(*b)) {
+            (Some(x), Some(y)) => self.truth(x == y),
+            _ => self.bnode(BOp::Eq(*a, *b)),
+        }
+    }
+    fn is_nan(&self, a: &N) -> Bn {
+        match self.lit_of(*a) {
+            Some(x) => self.truth(x.is_nan()),
+            None => self.bnode(BOp::IsNan(*a)),
+        }
+    }
+    fn is_finite(&self, a: &N) -> Bn {
+        match self.lit_of(*a) {
+            Some(x) => self.truth(x.is_finite()),
+            None => self.bnode(BOp::IsFinite(*a)),
+        }
+    }
+    fn truth(&self, b: bool) -> Bn {
+        self.bnode(BOp::Const(b))
+    }
+    fn and(&self, a: &Bn, b: &Bn) -> Bn {
+        match (self.const_of(*a), self.const_of(*b)) {
+            (Some(false), _) | (_, Some(false)) => self.truth(false),
+            (Some(true), _) => *b,
+            (_, Some(true)) => *a,
+            _ if a == b => *a,
+            _ => self.bnode(BOp::And(*a, *b)),
+        }
+    }
+    fn or(&self, a: &Bn, b: &Bn) -> Bn {
+        match (self.const_of(*a), self.const_of(*b)) {
+            (Some(true), _) | (_, Some(true)) => self.truth(true),
+            (Some(false), _) => *b,
+            (_, Some(false)) => *a,
+            _ if a == b => *a,
+            _ => self.bnode(BOp::Or(*a, *b)),
+        }
+    }
+    fn not(&self, a: &Bn) -> Bn {
+        match self.bop(*a) {
+            BOp::Const(v) => self.truth(!v),
+            BOp::Not(x) => x,
+            _ => self.bnode(BOp::Not(*a)),
+        }
+    }
+    fn select(&self, c: &Bn, a: &N, b: &N) -> N {
+        match self.const_of(*c) {
+            Some(true) => *a,
+            Some(false) => *b,
+            None if a == b => *a,
+            None => self.node(Op::Sel(*c, *a, *b)),
+        }
+    }
+    fn pin(&self, a: &N, end: End, lemma: &'static str) -> N {
+        let mut ls = self.lemmas.borrow_mut();
+        let i = match ls.iter().position(|l| *l == lemma) {
+            Some(i) => i,
+            None => {
+                ls.push(lemma);
+                ls.len() - 1
+            }
+        };
+        drop(ls);
+        self.node(Op::Pin(*a, end, i as u32))
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// Exact values.
+
+type Ri = u32;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Real {
+    /// An input, or a pinned end (its own exact value from there on).
+    Var(N),
+    K(u32),
+    Add(Ri, Ri),
+    Sub(Ri, Ri),
+    Mul(Ri, Ri),
+    Div(Ri, Ri),
+    Neg(Ri),
+    Abs(Ri),
+    Min(Ri, Ri),
+    Max(Ri, Ri),
+    /// The exact value along the branch the f32 code takes.
+    Ite(Bn, Ri, Ri),
+}
+
+// ---------------------------------------------------------------------------------
+// Directions.
+
+/// What a value is to its exact value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pre {
+    /// The value is NaN (a literal): it stands for "no value" and is allowed anywhere
+    /// a NaN-tolerant claim is made; outputs must be NaN-free.
+    Nan,
+    Exact,
+    Lo,
+    Hi,
+    Any,
+}
+
+/// A direction: `pre`, after a rounding to nearest when `rounded`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Dir {
+    pre: Pre,
+    rounded: bool,
+}
+
+const EXACT: Dir = Dir { pre: Pre::Exact, rounded: false };
+const ANY: Dir = Dir { pre: Pre::Any, rounded: false };
+
+fn unrounded(pre: Pre) -> Dir {
+    Dir { pre, rounded: false }
+}
+fn rounded(pre: Pre) -> Dir {
+    if pre == Pre::Any || pre == Pre::Nan {
+        unrounded(pre)
+    } else {
+        Dir { pre, rounded: true }
+    }
+}
+
+fn flip(p: Pre) -> Pre {
+    match p {
+        Pre::Lo => Pre::Hi,
+        Pre::Hi => Pre::Lo,
+        p => p,
+    }
+}
+
+fn join_pre(a: Pre, b: Pre) -> Pre {
+    use Pre::*;
+    match (a, b) {
+        (Nan, x) | (x, Nan) => x,
+        (Any, _) | (_, Any) => Any,
+        (Exact, x) | (x, Exact) => x,
+        (Lo, Lo) => Lo,
+        (Hi, Hi) => Hi,
+        _ => Any,
+    }
+}
+
+fn join(a: Dir, b: Dir) -> Dir {
+    let pre = join_pre(a.pre, b.pre);
+    if pre == Pre::Any {
+        return ANY;
+    }
+    let r = (a.rounded && a.pre != Pre::Nan) || (b.rounded && b.pre != Pre::Nan);
+    Dir { pre, rounded: r && pre != Pre::Nan }
+}
+
+/// `a + b` of two ends: same sides stay, exact is neutral.
+fn add_pre(a: Pre, b: Pre) -> Pre {
+    use Pre::*;
+    match (a, b) {
+        (Nan, _) | (_, Nan) => Nan,
+        (Exact, x) | (x, Exact) => x,
+        (Lo, Lo) => Lo,
+        (Hi, Hi) => Hi,
+        _ => Any,
+    }
+}
+
+/// A sign.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Sg {
+    Pos,
+    Neg,
+    NonNeg,
+    NonPos,
+    Zero,
+}
+
+impl Sg {
+    fn of(v: f32) -> Option<Sg> {
+        if v > 0.0 {
+            Some(Sg::Pos)
+        } else if v < 0.0 {
+            Some(Sg::Neg)
+        } else if v == 0.0 {
+            Some(Sg::Zero)
+        } else {
+            None
+        }
+    }
+    fn ge0(self) -> bool {
+        matches!(self, Sg::Pos | Sg::NonNeg | Sg::Zero)
+    }
+    fn le0(self) -> bool {
+        matches!(self, Sg::Neg | Sg::NonPos | Sg::Zero)
+    }
+    fn strict(self) -> bool {
+        matches!(self, Sg::Pos | Sg::Neg)
+    }
+    fn neg(self) -> Sg {
+        match self {
+            Sg::Pos => Sg::Neg,
+            Sg::Neg => Sg::Pos,
+            Sg::NonNeg => Sg::NonPos,
+            Sg::NonPos => Sg::NonNeg,
+            Sg::Zero => Sg::Zero,
+        }
+    }
+    /// The stronger of two facts about one number.
+    fn meet(a: Option<Sg>, b: Option<Sg>) -> Option<Sg> {
+        match (a, b) {
+            (None, x) | (x, None) => x,
+            (Some(x), Some(y)) if x.strict() || x == Sg::Zero => Some(x).or(Some(y)),
+            (Some(x), Some(y)) if y.strict() || y == Sg::Zero => Some(y).or(Some(x)),
+            (Some(Sg::NonNeg), Some(Sg::NonPos)) | (Some(Sg::NonPos), Some(Sg::NonNeg)) => Some(Sg::Zero),
+            (Some(x), Some(_)) => Some(x),
+        }
+    }
+}
+
+/// Facts that hold inside a branch.
+#[derive(Clone, Default)]
+struct Facts {
+    /// f32 signs of values (each value NaN-free, or the sign only if it is not NaN:
+    /// `sure` tells which).
+    f_sign: HashMap<N, (Sg, bool)>,
+    /// Signs of exact values.
+    r_sign: HashMap<Ri, Sg>,
+    finite: HashSet<N>,
+    nan_free: HashSet<N>,
+    /// Disjunctions known true (their disjuncts).
+    ors: Vec<Vec<Bn>>,
+    /// The branch cannot be taken (a constant false condition).
+    dead: bool,
+}
+
+/// A failed demand of the check.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Failure {
+    /// The output or the lemma the demand was made for.
+    pub what: String,
+    /// What the value is instead.
+    pub found: String,
+}
+
+/// What the check found for one traced tile answer.
+#[derive(Clone, Debug, Default)]
+pub struct Outcome {
+    /// Operations of the traced code.
+    pub ops: usize,
+    /// Output ends checked.
+    pub outputs: usize,
+    /// Pinned ends checked (occurrences, under their branches).
+    pub pins: usize,
+    /// The lemmas the pins use, by name.
+    pub lemmas: Vec<&'static str>,
+    /// Demands not met (empty: the composition is checked).
+    pub failures: Vec<Failure>,
+    /// How often each rule was used.
+    pub rules: Vec<(&'static str, usize)>,
+}
+
+/// The direction analysis over one [`Trace`].
+pub struct Check<'t> {
+    t: &'t Trace,
+    reals: RefCell<Pool<Real>>,
+    real_memo: RefCell<HashMap<N, Ri>>,
+    ctxs: RefCell<Vec<Facts>>,
+    ctx_index: RefCell<HashMap<(usize, Bn, bool), usize>>,
+    dir_memo: RefCell<HashMap<(N, usize), Dir>>,
+    nan_memo: RefCell<HashMap<(N, usize), bool>>,
+    fin_memo: RefCell<HashMap<(N, usize), bool>>,
+    failures: RefCell<Vec<Failure>>,
+    pins: RefCell<usize>,
+    used: RefCell<HashMap<&'static str, usize>>,
+}
+
+const ROOT: usize = 0;
+
+impl<'t> Check<'t> {
+    pub fn new(t: &'t Trace) -> Self {
+        Check {
+            t,
+            reals: RefCell::new(Pool::default()),
+            real_memo: RefCell::new(HashMap::new()),
+            ctxs: RefCell::new(vec![Facts::default()]),
+            ctx_index: RefCell::new(HashMap::new()),
+            dir_memo: RefCell::new(HashMap::new()),
+            nan_memo: RefCell::new(HashMap::new()),
+            fin_memo: RefCell::new(HashMap::new()),
+            failures: RefCell::new(vec![]),
+            pins: RefCell::new(0),
+            used: RefCell::new(HashMap::new()),
+        }
+    }
+
+    fn rule(&self, name: &'static str) {
+        *self.used.borrow_mut().entry(name).or_insert(0) += 1;
+    }
+
+    // --- exact values -------------------------------------------------------------
+
+    fn rnode(&self, r: Real) -> Ri {
+        self.reals.borrow_mut().add(r)
+    }
+    fn rget(&self, r: Ri) -> Real {
+        self.reals.borrow().nodes[r as usize]
+    }
+
+    /// The exact value of `n`: its operations in real arithmetic, steps and roundings
+    /// dropped, selects along the f32 branch.
+    fn real(&self, n: N) -> Ri {
+        if let Some(&r) = self.real_memo.borrow().get(&n) {
+            return r;
+        }
+        let t = self.t;
+        let r = match t.op(n) {
+            Op::Input(_) | Op::Pin(..) => self.rnode(Real::Var(n)),
+            Op::Lit(b) => self.rnode(Real::K(b)),
+            Op::Add(a, b) => self.rnode(Real::Add(self.real(a), self.real(b))),
+            Op::Sub(a, b) => self.rnode(Real::Sub(self.real(a), self.real(b))),
+            Op::Mul(a, b) => self.rnode(Real::Mul(self.real(a), self.real(b))),
+            Op::Div(a, b) => self.rnode(Real::Div(self.real(a), self.real(b))),
+            Op::Fma(a, b, c) => {
+                let m = self.rnode(Real::Mul(self.real(a), self.real(b)));
+                self.rnode(Real::Add(m, self.real(c)))
+            }
+            Op::Neg(a) => self.rnode(Real::Neg(self.real(a))),
+            Op::Abs(a) => self.rnode(Real::Abs(self.real(a))),
+            Op::Min(a, b) => self.minmax(true, self.real(a), self.real(b)),
+            Op::Max(a, b) => self.minmax(false, self.real(a), self.real(b)),
+            Op::Up(a) | Op::Dn(a) => self.real(a),
+            Op::Sel(c, a, b) => {
+                let (ra, rb) = (self.real(a), self.real(b));
+                if ra == rb {
+                    ra
+                } else {
+                    self.rnode(Real::Ite(c, ra, rb))
+                }
+            }
+        };
+        self.real_memo.borrow_mut().insert(n, r);
+        r
+    }
+
+    /// min / max of exact values, with min(+inf, x) = x and max(-inf, x) = x.
+    fn minmax(&self, min: bool, a: Ri, b: Ri) -> Ri {
+        if a == b {
+            return a;
+        }
+        let neutral = if min { f32::INFINITY } else { f32::NEG_INFINITY }.to_bits();
+        if self.rget(a) == Real::K(neutral) {
+            return b;
+        }
+        if self.rget(b) == Real::K(neutral) {
+            return a;
+        }
+        self.rnode(if min { Real::Min(a, b) } else { Real::Max(a, b) })
+    }
+
+    // --- facts --------------------------------------------------------------------
+
+    fn facts(&self, ctx: usize) -> std::cell::Ref<'_, Facts> {
+        std::cell::Ref::map(self.ctxs.borrow(), |c| &c[ctx])
+    }
+
+    /// The branch of `ctx` where `c` is `v`.
+    fn push(&self, ctx: usize, c: Bn, v: bool) -> usize {
+        if let Some(&i) = self.ctx_index.borrow().get(&(ctx, c, v)) {
+            return i;
+        }
+        let mut f = self.facts(ctx).clone();
+        self.assume(ctx, &mut f, c, v);
+        let mut cs = self.ctxs.borrow_mut();
+        cs.push(f);
+        let i = cs.len() - 1;
+        drop(cs);
+        self.ctx_index.borrow_mut().insert((ctx, c, v), i);
+        i
+    }
+
+    /// Add to `f` what `c == v` says (directions are read in `ctx`, the branch the
+    /// condition is tested in).
+    fn assume(&self, ctx: usize, f: &mut Facts, c: Bn, v: bool) {
+        let t = self.t;
+        match (t.bop(c), v) {
+            (BOp::Const(k), v) => {
+                if k != v {
+                    f.dead = true
+                }
+            }
+            (BOp::Not(x), v) => self.assume(ctx, f, x, !v),
+            (BOp::And(x, y), true) | (BOp::Or(x, y), false) => {
+                self.assume(ctx, f, x, v);
+                self.assume(ctx, f, y, v);
+            }
+            (BOp::Or(..), true) => {
+                let mut ds = vec![];
+                self.disjuncts(c, &mut ds);
+                f.ors.push(ds);
+            }
+            (BOp::And(..), false) => {}
+            (BOp::IsNan(a), false) => {
+                f.nan_free.insert(a);
+            }
+            (BOp::IsFinite(a), true) => {
+                f.finite.insert(a);
+                f.nan_free.insert(a);
+            }
+            (BOp::IsNan(_), true) | (BOp::IsFinite(_), false) => {}
+            (BOp::Eq(a, b), true) => {
+                f.nan_free.insert(a);
+                f.nan_free.insert(b);
+                if t.lit_of(b) == Some(0.0) {
+                    self.sign_fact(ctx, f, a, Sg::Zero, true);
+                }
+                if t.lit_of(a) == Some(0.0) {
+                    self.sign_fact(ctx, f, b, Sg::Zero, true);
+                }
+            }
+            (BOp::Eq(..), false) => {}
+            (BOp::Lt(a, b), true) | (BOp::Le(a, b), true) => {
+                let strict = matches!(t.bop(c), BOp::Lt(..));
+                f.nan_free.insert(a);
+                f.nan_free.insert(b);
+                if t.lit_of(b) == Some(0.0) {
+                    self.sign_fact(ctx, f, a, if strict { Sg::Neg } else { Sg::NonPos }, true);
+                }
+                if t.lit_of(a) == Some(0.0) {
+                    self.sign_fact(ctx, f, b, if strict { Sg::Pos } else { Sg::NonNeg }, true);
+                }
+            }
+            (BOp::Lt(a, b), false) | (BOp::Le(a, b), false) => {
+                // not (a < b): a >= b or a NaN operand.
+                let strict = matches!(t.bop(c), BOp::Lt(..));
+                if t.lit_of(b) == Some(0.0) {
+                    self.sign_fact(ctx, f, a, if strict { Sg::NonNeg } else { Sg::Pos }, false);
+                }
+                if t.lit_of(a) == Some(0.0) {
+                    self.sign_fact(ctx, f, b, if strict { Sg::NonPos } else { Sg::Neg }, false);
+                }
+            }
+        }
+    }
+
+    fn disjuncts(&self, c: Bn, out: &mut Vec<Bn>) {
+        match self.t.bop(c) {
+            BOp::Or(x, y) => {
+                self.disjuncts(x, out);
+                self.disjuncts(y, out);
+            }
+            _ => out.push(c),
+        }
+    }
+
+    /// Record the sign `s` of the f32 value `a` (`sure`: `a` is not NaN), and what it
+    /// says of the exact value of `a` when `a` is an end of the right side.
+    fn sign_fact(&self, ctx: usize, f: &mut Facts, a: N, s: Sg, sure: bool) {
+        let sure = sure || f.nan_free.contains(&a) || self.nan_free(a, ctx);
+        let old = f.f_sign.get(&a).copied();
+        let new = match old {
+            Some((o, os)) if os == sure => (Sg::meet(Some(o), Some(s)).unwrap_or(s), sure),
+            Some((o, true)) => (o, true),
+            _ => (s, sure),
+        };
+        f.f_sign.insert(a, new);
+        if !sure {
+            return;
+        }
+        let d = self.dir(a, ctx);
+        let r = self.real(a);
+        let rs = match (d.pre, d.rounded) {
+            (Pre::Exact, false) => Some(s),
+            // a <= A: a > 0 gives A > 0, a >= 0 gives A >= 0.
+            (Pre::Lo, false) => match s {
+                Sg::Pos => Some(Sg::Pos),
+                Sg::NonNeg | Sg::Zero => Some(Sg::NonNeg),
+                _ => None,
+            },
+            (Pre::Hi, false) => match s {
+                Sg::Neg => Some(Sg::Neg),
+                Sg::NonPos | Sg::Zero => Some(Sg::NonPos),
+                _ => None,
+            },
+            // a = RN(A) exact-valued: rounding is monotone, so a > 0 needs A > 0.
+            (Pre::Exact, true) => match s {
+                Sg::Pos | Sg::Neg => Some(s),
+                _ => None,
+            },
+            _ => None,
+        };
+        if let Some(rs) = rs {
+            let m = Sg::meet(f.r_sign.get(&r).copied(), Some(rs)).unwrap_or(rs);
+            f.r_sign.insert(r, m);
+        }
+    }
+
+    /// The sign of the f32 value `n` in `ctx`, if known (NaN aside: a NaN `n` makes
+    /// everything computed from it NaN).
+    fn f_sign(&self, n: N, ctx: usize) -> Option<Sg> {
+        if let Some(v) = self.t.lit_of(n) {
+            return Sg::of(v);
+        }
+        if let Some(&(s, _)) = self.facts(ctx).f_sign.get(&n) {
+            return Some(s);
+        }
+        match self.t.op(n) {
+            Op::Abs(_) => return Some(Sg::NonNeg),
+            Op::Neg(a) => {
+                if let Some(s) = self.f_sign(a, ctx) {
+                    return Some(s.neg());
+                }
+            }
+            _ => {}
+        }
+        // An end whose exact value has a strict sign on its far side: a >= A > 0.
+        let d = self.dir(n, ctx);
+        if d.rounded {
+            return None;
+        }
+        let rs = self.r_sign(self.real(n), ctx)?;
+        match d.pre {
+            Pre::Exact => Some(rs),
+            Pre::Hi if rs == Sg::Pos || rs == Sg::NonNeg => Some(rs),
+            Pre::Lo if rs == Sg::Neg || rs == Sg::NonPos => Some(rs),
+            _ => None,
+        }
+    }
+
+    /// The sign of an exact value in `ctx`, if known.
+    fn r_sign(&self, r: Ri, ctx: usize) -> Option<Sg> {
+        let fact = self.facts(ctx).r_sign.get(&r).copied();
+        let own = match self.rget(r) {
+            Real::K(b) => Sg::of(f32::from_bits(b)),
+            Real::Abs(_) => Some(Sg::NonNeg),
+            Real::Neg(a) => self.r_sign(a, ctx).map(Sg::neg),
+            Real::Add(a, b) => add_sign(self.r_sign(a, ctx), self.r_sign(b, ctx)),
+            Real::Sub(a, b) => add_sign(self.r_sign(a, ctx), self.r_sign(b, ctx).map(Sg::neg)),
+            Real::Mul(a, b) => mul_sign(self.r_sign(a, ctx), self.r_sign(b, ctx)),
+            _ => None,
+        };
+        Sg::meet(fact, own)
+    }
+
+    fn finite(&self, n: N, ctx: usize) -> bool {
+        if let Some(&v) = self.fin_memo.borrow().get(&(n, ctx)) {
+            return v;
+        }
+        let t = self.t;
+        let known = self.facts(ctx).finite.contains(&n);
+        let v = known
+            || match t.op(n) {
+                Op::Lit(b) => f32::from_bits(b).is_finite(),
+                Op::Neg(a) | Op::Abs(a) | Op::Pin(a, ..) => self.finite(a, ctx),
+                Op::Min(a, b) | Op::Max(a, b) => self.finite(a, ctx) && self.finite(b, ctx),
+                Op::Sel(c, a, b) => self.finite(a, self.push(ctx, c, true)) && self.finite(b, self.push(ctx, c, false)),
+                _ => false,
+            };
+        self.fin_memo.borrow_mut().insert((n, ctx), v);
+        v
+    }
+
+    /// Whether `n` cannot be NaN in `ctx`.
+    fn nan_free(&self, n: N, ctx: usize) -> bool {
+        if self.facts(ctx).dead {
+            return true;
+        }
+        if let Some(&v) = self.nan_memo.borrow().get(&(n, ctx)) {
+            return v;
+        }
+        let t = self.t;
+        let known = self.facts(ctx).nan_free.contains(&n);
+        let v = known
+            || self.finite(n, ctx)
+            || match t.op(n) {
+                Op::Lit(b) => !f32::from_bits(b).is_nan(),
+                Op::Input(_) => false,
+                // finite + finite is never NaN; finite + inf neither.
+                Op::Add(a, b) | Op::Sub(a, b) => {
+                    (self.finite(a, ctx) && self.nan_free(b, ctx)) || (self.nan_free(a, ctx) && self.finite(b, ctx))
+                }
+                Op::Mul(a, b) => self.finite(a, ctx) && self.finite(b, ctx),
+                Op::Div(a, b) => {
+                    self.finite(a, ctx)
+                        && self.nan_free(b, ctx)
+                        && self.f_sign(b, ctx).is_some_and(|s| s.strict())
+                }
+                Op::Fma(a, b, c) => self.finite(a, ctx) && self.finite(b, ctx) && self.finite(c, ctx),
+                Op::Neg(a) | Op::Abs(a) | Op::Up(a) | Op::Dn(a) | Op::Pin(a, ..) => self.nan_free(a, ctx),
+                Op::Min(a, b) | Op::Max(a, b) => self.nan_free(a, ctx) && self.nan_free(b, ctx),
+                Op::Sel(c, a, b) => {
+                    self.nan_free(a, self.push(ctx, c, true)) && self.nan_free(b, self.push(ctx, c, false))
+                }
+            };
+        self.nan_memo.borrow_mut().insert((n, ctx), v);
+        v
+    }
+
+    /// Whether `a * b` is exact in `ctx`: a factor is the literal 0 or ±1, or the branch
+    /// holds a disjunction each of whose terms says so of `a` or `b`.
+    fn exact_product(&self, a: N, b: N, ctx: usize) -> bool {
+        let t = self.t;
+        let unit = |x: N| matches!(t.lit_of(x), Some(v) if v == 0.0 || v.abs() == 1.0);
+        if unit(a) || unit(b) {
+            return true;
+        }
+        let says = |d: Bn| match t.bop(d) {
+            BOp::Eq(x, k) => {
+                let kv = t.lit_of(k);
+                let of_factor = x == a || x == b;
+                let abs_of_factor = matches!(t.op(x), Op::Abs(y) if y == a || y == b);
+                (of_factor && matches!(kv, Some(v) if v == 0.0 || v.abs() == 1.0))
+                    || (abs_of_factor && matches!(kv, Some(v) if v == 0.0 || v == 1.0))
+            }
+            _ => false,
+        };
+        let f = self.facts(ctx);
+        f.ors.iter().any(|ds| ds.iter().all(|&d| says(d)))
+    }
+
+    // --- directions -----------------------------------------------------------------
+
+    fn dir(&self, n: N, ctx: usize) -> Dir {
+        if self.facts(ctx).dead {
+            return unrounded(Pre::Nan);
+        }
+        if let Some(&d) = self.dir_memo.borrow().get(&(n, ctx)) {
+            return d;
+        }
+        let d = self.dir_of(n, ctx);
+        self.dir_memo.borrow_mut().insert((n, ctx), d);
+        d
+    }
+
+    /// Operands of an arithmetic operation: unrounded directions (a rounded value used
+    /// without its step gives nothing).
+    fn operand(&self, n: N, ctx: usize) -> Pre {
+        let d = self.dir(n, ctx);
+        if d.rounded {
+            Pre::Any
+        } else {
+            d.pre
+        }
+    }
+
+    fn dir_of(&self, n: N, ctx: usize) -> Dir {
+        let t = self.t;
+        match t.op(n) {
+            Op::Input(_) => EXACT,
+            Op::Lit(b) => unrounded(if f32::from_bits(b).is_nan() { Pre::Nan } else { Pre::Exact }),
+            Op::Add(a, b) => {
+                self.rule("sum of same-sided ends");
+                rounded(add_pre(self.operand(a, ctx), self.operand(b, ctx)))
+            }
+            Op::Sub(a, b) => {
+                self.rule("sum of same-sided ends");
+                rounded(add_pre(self.operand(a, ctx), flip(self.operand(b, ctx))))
+            }
+            Op::Mul(a, b) => self.product(a, b, ctx),
+            Op::Div(a, b) => self.quotient(a, b, ctx),
+            Op::Fma(a, b, c) => {
+                let all = [a, b, c].iter().all(|&x| self.operand(x, ctx) == Pre::Exact);
+                if all {
+                    rounded(Pre::Exact)
+                } else {
+                    ANY
+                }
+            }
+            Op::Neg(a) => {
+                let d = self.dir(a, ctx);
+                Dir { pre: flip(d.pre), rounded: d.rounded }
+            }
+            Op::Abs(a) => {
+                let d = self.dir(a, ctx);
+                if d.pre == Pre::Exact || d.pre == Pre::Nan {
+                    d
+                } else {
+                    ANY
+                }
+            }
+            Op::Min(a, b) | Op::Max(a, b) => {
+                if !(self.nan_free(a, ctx) && self.nan_free(b, ctx)) {
+                    return ANY;
+                }
+                if let (Op::Max(..), Op::Abs(x), Op::Abs(y)) = (t.op(n), t.op(a), t.op(b)) {
+                    if self.pair(x, y, ctx) {
+                        self.rule("max(|lo|, |hi|) >= |x|");
+                        return unrounded(Pre::Hi);
+                    }
+                }
+                let (da, db) = (self.operand(a, ctx), self.operand(b, ctx));
+                self.rule("min/max of same-sided ends");
+                unrounded(match (da, db) {
+                    (Pre::Exact, x) | (x, Pre::Exact) => x,
+                    (Pre::Lo, Pre::Lo) => Pre::Lo,
+                    (Pre::Hi, Pre::Hi) => Pre::Hi,
+                    _ => Pre::Any,
+                })
+            }
+            Op::Up(a) | Op::Dn(a) => {
+                let up = matches!(t.op(n), Op::Up(_));
+                let d = self.dir(a, ctx);
+                let want = if up { Pre::Hi } else { Pre::Lo };
+                match d.pre {
+                    Pre::Nan => d,
+                    Pre::Exact => {
+                        self.rule("STEP");
+                        unrounded(want)
+                    }
+                    p if p == want => {
+                        self.rule("STEP");
+                        unrounded(want)
+                    }
+                    _ => ANY,
+                }
+            }
+            Op::Sel(c, a, b) => join(self.dir(a, self.push(ctx, c, true)), self.dir(b, self.push(ctx, c, false))),
+            Op::Pin(a, end, lemma) => {
+                *self.pins.borrow_mut() += 1;
+                let d = self.dir(a, ctx);
+                let want = if end == End::Lo { Pre::Lo } else { Pre::Hi };
+                let ok = !d.rounded && (d.pre == want || d.pre == Pre::Exact);
+                if !ok {
+                    let name = t.lemmas.borrow()[lemma as usize];
+                    self.fail(format!("pinned {} end (lemma `{name}`)", end_name(end)), d);
+                }
+                EXACT
+            }
+        }
+    }
+
+    /// `x`, `y` are the two ends of one interval: one lower and one upper, the same
+    /// exact value.
+    fn pair(&self, x: N, y: N, ctx: usize) -> bool {
+        let (dx, dy) = (self.operand(x, ctx), self.operand(y, ctx));
+        let sides = matches!((dx, dy), (Pre::Lo, Pre::Hi) | (Pre::Hi, Pre::Lo) | (Pre::Exact, _) | (_, Pre::Exact));
+        sides && dx != Pre::Any && dy != Pre::Any && self.real(x) == self.real(y)
+    }
+
+    fn product(&self, a: N, b: N, ctx: usize) -> Dir {
+        let (da, db) = (self.operand(a, ctx), self.operand(b, ctx));
+        if da == Pre::Nan || db == Pre::Nan {
+            return unrounded(Pre::Nan);
+        }
+        if da == Pre::Exact && db == Pre::Exact {
+            if self.exact_product(a, b, ctx) {
+                self.rule("exact product (a factor 0 or ±1)");
+                return EXACT;
+            }
+            return rounded(Pre::Exact);
+        }
+        // One exact factor of known sign scales the other end (flipping it when <= 0).
+        for (x, dx, y, dy) in [(a, da, b, db), (b, db, a, da)] {
+            if dy == Pre::Exact {
+                if let Some(s) = self.f_sign(y, ctx) {
+                    if s.ge0() {
+                        self.rule("end times an exact factor >= 0");
+                        return rounded(dx);
+                    }
+                    if s.le0() {
+                        self.rule("end times an exact factor <= 0");
+                        return rounded(flip(dx));
+                    }
+                }
+            }
+            let _ = x;
+        }
+        // Two lower ends >= 0: a b <= A b <= A B.
+        let (sa, sb) = (self.f_sign(a, ctx), self.f_sign(b, ctx));
+        if da == Pre::Lo && db == Pre::Lo && sa.is_some_and(Sg::ge0) && sb.is_some_and(Sg::ge0) {
+            self.rule("product of lower ends >= 0");
+            return rounded(Pre::Lo);
+        }
+        // Two upper ends of exact values >= 0: a b >= a B >= A B.
+        let (ra, rb) = (self.r_sign(self.real(a), ctx), self.r_sign(self.real(b), ctx));
+        if da == Pre::Hi && db == Pre::Hi && ra.is_some_and(Sg::ge0) && rb.is_some_and(Sg::ge0) {
+            self.rule("product of upper ends of values >= 0");
+            return rounded(Pre::Hi);
+        }
+        ANY
+    }
+
+    fn quotient(&self, a: N, b: N, ctx: usize) -> Dir {
+        let (da, db) = (self.operand(a, ctx), self.operand(b, ctx));
+        if da == Pre::Nan || db == Pre::Nan {
+            return unrounded(Pre::Nan);
+        }
+        // The divisor's exact value and the divisor have one strict sign.
+        let rb = self.r_sign(self.real(b), ctx);
+        let fb = self.f_sign(b, ctx);
+        let strict = match (rb, fb) {
+            (Some(r), Some(f)) if r.strict() && f.strict() && (r == f) => Some(r),
+            (_, Some(f)) if db == Pre::Exact && f.strict() => Some(f),
+            _ => None,
+        };
+        let Some(sb) = strict else { return ANY };
+        if da == Pre::Exact && db == Pre::Exact {
+            return rounded(Pre::Exact);
+        }
+        let sa = self.f_sign(a, ctx);
+        // Upper end of A / B: A / B <= a / B <= a / b.
+        let num_hi = da == Pre::Exact || (da == Pre::Hi && sb == Sg::Pos) || (da == Pre::Lo && sb == Sg::Neg);
+        let den_hi = db == Pre::Exact
+            || (db == Pre::Lo && sa.is_some_and(Sg::ge0))
+            || (db == Pre::Hi && sa.is_some_and(Sg::le0));
+        let num_lo = da == Pre::Exact || (da == Pre::Lo && sb == Sg::Pos) || (da == Pre::Hi && sb == Sg::Neg);
+        let den_lo = db == Pre::Exact
+            || (db == Pre::Hi && sa.is_some_and(Sg::ge0))
+            || (db == Pre::Lo && sa.is_some_and(Sg::le0));
+        if num_hi && den_hi {
+            self.rule("quotient of ends, divisor of one strict sign");
+            return rounded(Pre::Hi);
+        }
+        if num_lo && den_lo {
+            self.rule("quotient of ends, divisor of one strict sign");
+            return rounded(Pre::Lo);
+        }
+        ANY
+    }
+
+    fn fail(&self, what: String, d: Dir) {
+        let found = describe(d);
+        let f = Failure { what, found };
+        let mut fs = self.failures.borrow_mut();
+        if !fs.contains(&f) {
+            fs.push(f);
+        }
+    }
+
+    /// Demand that each output is an end of its side (or exact) and NaN-free, and
+    /// collect the outcome (pins are demanded as they are met).
+    pub fn run(&self, outputs: &[(N, End, String)]) -> Outcome {
+        for (n, end, name) in outputs {
+            let d = self.dir(*n, ROOT);
+            let want = if *end == End::Lo { Pre::Lo } else { Pre::Hi };
+            if d.rounded || !(d.pre == want || d.pre == Pre::Exact) {
+                self.fail(format!("output {name} ({} end)", end_name(*end)), d);
+            }
+            if !self.nan_free(*n, ROOT) {
+                self.failures
+                    .borrow_mut()
+                    .push(Failure { what: format!("output {name}"), found: "may be NaN".into() });
+            }
+        }
+        let mut rules: Vec<(&'static str, usize)> = self.used.borrow().iter().map(|(k, v)| (*k, *v)).collect();
+        rules.sort();
+        Outcome {
+            ops: self.t.len(),
+            outputs: outputs.len(),
+            pins: *self.pins.borrow(),
+            lemmas: self.t.lemmas.borrow().clone(),
+            failures: self.failures.borrow().clone(),
+            rules,
+        }
+    }
+}
+
+fn end_name(e: End) -> &'static str {
+    match e {
+        End::Lo => "lower",
+        End::Hi => "upper",
+    }
+}
+
+fn describe(d: Dir) -> String {
+    let p = match d.pre {
+        Pre::Nan => "NaN",
+        Pre::Exact => "exact",
+        Pre::Lo => "a lower end",
+        Pre::Hi => "an upper end",
+        Pre::Any => "no end (no rule applies: a step missing, in the wrong direction, or ends of both sides mixed)",
+    };
+    if d.rounded {
+        format!("rounded to nearest from {p}, with no outward step")
+    } else {
+        p.to_string()
+    }
+}
+
+fn add_sign(a: Option<Sg>, b: Option<Sg>) -> Option<Sg> {
+    let (a, b) = (a?, b?);
+    if a.ge0() && b.ge0() {
+        Some(if a == Sg::Pos || b == Sg::Pos { Sg::Pos } else { Sg::NonNeg })
+    } else if a.le0() && b.le0() {
+        Some(if a == Sg::Neg || b == Sg::Neg { Sg::Neg } else { Sg::NonPos })
+    } else {
+        None
+    }
+}
+
+fn mul_sign(a: Option<Sg>, b: Option<Sg>) -> Option<Sg> {
+    let (a, b) = (a?, b?);
+    if a == Sg::Zero || b == Sg::Zero {
+        return Some(Sg::Zero);
+    }
+    let neg = a.le0() != b.le0();
+    let strict = a.strict() && b.strict();
+    Some(match (neg, strict) {
+        (false, true) => Sg::Pos,
+        (false, false) => Sg::NonNeg,
+        (true, true) => Sg::Neg,
+        (true, false) => Sg::NonPos,
+    })
+}
+
+// ---------------------------------------------------------------------------------
+// The variants checked.
+
+use crate::bounds::arith::TriOf;
+use crate::bounds::round::{Outward, Round};
+
+/// A triangle and a tile of fresh inputs.
+fn inputs(t: &Trace) -> (TriOf<N>, [N; 4]) {
+    let v = |p: &str, i: usize| ["x", "y", "z", "w"].map(|c| t.input(&format!("{p}{i}.{c}")));
+    let tri = TriOf {
+        q: [0, 1, 2].map(|i| v("q", i)),
+        r: [0, 1, 2].map(|i| v("r", i)),
+        c0: [0, 1, 2].map(|i| t.input(&format!("c0.{i}"))),
+        c1: [0, 1, 2].map(|i| t.input(&format!("c1.{i}"))),
+        k: t.input("k"),
+    };
+    let tile = ["x0", "y0", "x1", "y1"].map(|n| t.input(n));
+    (tri, tile)
+}
+
+fn ends(name: &str, v: &[N; 2]) -> [(N, End, String); 2] {
+    [(v[0], End::Lo, format!("{name} lower")), (v[1], End::Hi, format!("{name} upper"))]
+}
+
+/// The traced tile answer of `la2011` written with the arithmetic `R`: its outputs.
+fn la2011<R: Round>(t: &Trace) -> Vec<(N, End, String)> {
+    use crate::bounds::la2011::{setup_of, tile_answer};
+    let (tri, tile) = inputs(t);
+    let s = setup_of::<R, Trace>(t, &tri);
+    let (_, tt, u, v) = tile_answer::<R, Trace>(t, &s, &tile);
+    [ends("t", &tt), ends("u", &u), ends("v", &v)].concat()
+}
+
+/// The variants whose composition the check covers, and the arithmetic of each.
+pub const CHECKED: &[&str] = &["la2011-safe"];
+
+/// Trace the tile answer of `id` (a variant of [`CHECKED`] or one of its planted slips
+/// `broken/planted-no-up/ID`, `broken/planted-no-dn/ID`) and check it.
+pub fn check(id: &str) -> Option<Outcome> {
+    use crate::bounds::broken::planted::{NoDn, NoUp};
+    let t = Trace::new();
+    let base = id.rsplit('/').next()?;
+    if !CHECKED.contains(&base) {
+        return None;
+    }
+    let outs = match (id.strip_suffix(base)?, base) {
+        ("", "la2011-safe") => la2011::<Outward>(&t),
+        ("broken/planted-no-up/", "la2011-safe") => la2011::<NoUp>(&t),
+        ("broken/planted-no-dn/", "la2011-safe") => la2011::<NoDn>(&t),
+        _ => return None,
+    };
+    Some(Check::new(&t).run(&outs))
+}
+
+impl Check<'_> {
+    /// Debug: the first operation (deepest) that is `Any` under `n` at the root.
+    pub fn culprit(&self, n: N) -> String {
+        self.culprit_in(n, ROOT, 0)
+    }
+    fn culprit_in(&self, n: N, ctx: usize, depth: usize) -> String {
+        let d = self.dir(n, ctx);
+        let op = self.t.op(n);
+        let kids: Vec<(N, usize)> = match op {
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Min(a, b) | Op::Max(a, b) => {
+                vec![(a, ctx), (b, ctx)]
+            }
+            Op::Neg(a) | Op::Abs(a) | Op::Up(a) | Op::Dn(a) | Op::Pin(a, ..) => vec![(a, ctx)],
+            Op::Sel(c, a, b) => vec![(a, self.push(ctx, c, true)), (b, self.push(ctx, c, false))],
+            _ => vec![],
+        };
+        for (k, kc) in kids {
+            let dk = self.dir(k, kc);
+            if dk.pre == Pre::Any || (dk.rounded && !matches!(op, Op::Up(_) | Op::Dn(_) | Op::Sel(..) | Op::Neg(_) | Op::Abs(_))) {
+                return self.culprit_in(k, kc, depth + 1);
+            }
+        }
+        let kid_dirs: Vec<String> = match op {
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Min(a, b) | Op::Max(a, b) => vec![
+                format!("{:?} {:?} sign {:?} rs {:?}", self.t.op(a), self.dir(a, ctx), self.f_sign(a, ctx), self.r_sign(self.real(a), ctx)),
+                format!("{:?} {:?} sign {:?} rs {:?} nanfree {}", self.t.op(b), self.dir(b, ctx), self.f_sign(b, ctx), self.r_sign(self.real(b), ctx), self.nan_free(b, ctx)),
+            ],
+            _ => vec![],
+        };
+        format!("depth {depth} node {n} {op:?} -> {d:?} ctx {ctx}; kids {kid_dirs:?}")
+    }
+}
