@@ -68,6 +68,13 @@ pub trait F32Arith {
         a.clone()
     }
 
+    /// `a`, a value the code is free to choose (any f32 value would keep the method
+    /// right, `why` says why), taken from here on as an exact value of its own; the
+    /// enclosure check demands nothing of it. Every instance but the check returns `a`.
+    fn choose(&self, a: &Self::F, _why: &'static str) -> Self::F {
+        a.clone()
+    }
+
     /// `a > b`.
     fn gt(&self, a: &Self::F, b: &Self::F) -> Self::B {
         self.lt(b, a)

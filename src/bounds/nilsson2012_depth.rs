@@ -177,7 +177,7 @@
 //! by ulps).
 
 use super::*;
-use crate::bounds::arith::{tile_of, F32Arith, Plain, TriOf};
+use crate::bounds::arith::{tile_of, End, F32Arith, Plain, TriOf};
 use crate::bounds::round::{max_g, min_g, Nearest, Outward, Round};
 use std::marker::PhantomData;
 
@@ -213,6 +213,7 @@ pub struct WBound<F, B> {
 /// `w m <= E` for some `m in [m_lo, m_hi]`, `E in [e_lo, e_hi]`, with `w > 0`.
 #[inline(always)]
 pub fn w_from<R: Round, A: F32Arith>(ar: &A, m_lo: &A::F, e_hi: &A::F) -> WBound<A::F, A::B> {
+    let (m_lo, e_hi) = (&ar.pin(m_lo, End::Lo, W_LEMMA), &ar.pin(e_hi, End::Hi, W_LEMMA));
     let (zero, inf) = (ar.lit(0.0), ar.lit(f32::INFINITY));
     let fin = ar.and(&ar.is_finite(m_lo), &ar.is_finite(e_hi));
     let pos = ar.and(&fin, &ar.gt(m_lo, &zero));
@@ -221,8 +222,15 @@ pub fn w_from<R: Round, A: F32Arith>(ar: &A, m_lo: &A::F, e_hi: &A::F) -> WBound
     // needs m < 0 (none when m_lo = 0), and then w >= e_hi / m_lo.
     let empty = ar.or(&ar.and(&pos, &ar.le(e_hi, &zero)), &ar.and(&neg, &ar.eq(m_lo, &zero)));
     let q = ar.div(e_hi, m_lo);
-    WBound { empty, lo: ar.select(&neg, &R::dn(ar, &q), &zero), hi: ar.select(&pos, &R::up(ar, &q), &inf) }
+    // (m_lo = 0 with a hit needing m < 0 is Empty; its lower end is left at 0.)
+    let neg_strict = ar.and(&neg, &ar.lt(m_lo, &zero));
+    WBound { empty, lo: ar.select(&neg_strict, &R::dn(ar, &q), &zero), hi: ar.select(&pos, &R::up(ar, &q), &inf) }
 }
+
+/// The lemma of the pins of [`w_from`]: for `w > 0`, `m >= m_lo` and `E <= e_hi`,
+/// `w m <= E` gives `w <= e_hi / m_lo` when `m_lo > 0`, and `w >= e_hi / m_lo` when
+/// `m_lo < 0` and `e_hi < 0` (checked by z3 in real arithmetic, `cullproof proofs`).
+pub const W_LEMMA: &str = "w m <= E bounds w by e_hi / m_lo for every m >= m_lo, E <= e_hi";
 
 fn sub3<A: F32Arith>(ar: &A, a: &[A::F; 3], b: &[A::F; 3]) -> [A::F; 3] {
     [0, 1, 2].map(|i| ar.sub(&a[i], &b[i]))
@@ -245,6 +253,11 @@ fn dot_dn<R: Round, A: F32Arith>(ar: &A, a: &[A::F; 3], b: &[A::F; 3]) -> A::F {
     R::dn(ar, &ar.add(&R::dn(ar, &ar.add(&m(0), &m(1))), &m(2)))
 }
 
+/// Why the plane's normal may be any f32 vector (see [`F32Arith::choose`]).
+pub const NORMAL_CHOICE: &str = "the planes' offsets are bounded for the normal computed, whatever it is";
+/// Why the depth line may be any f32 line.
+pub const LINE_CHOICE: &str = "the residuals about the (w, z) line are bounded for the line computed, whatever it is";
+
 /// Same strict sign, both finite.
 fn same_sign<A: F32Arith>(ar: &A, a: &A::F, b: &A::F) -> A::B {
     let zero = ar.lit(0.0);
@@ -266,6 +279,7 @@ impl<F: Clone, B: Clone> Plane<F, B> {
         // Any f32 normal will do (the offsets below are taken for this very n), so
         // n needs no outward rounding; it is turned to face +w.
         let n = cross(ar, &sub3(ar, &base[1], &base[0]), &sub3(ar, &base[2], &base[0]));
+        let n = n.map(|x| ar.choose(&x, NORMAL_CHOICE));
         let flip = ar.lt(&n[2], &ar.lit(0.0));
         let n = n.map(|x| ar.select(&flip, &ar.neg(&x), &x));
         let lens = R::up(ar, &ar.add(&ar.abs(&n[0]), &R::up(ar, &ar.mul(k, &ar.abs(&n[1])))));
@@ -411,6 +425,7 @@ pub fn setup_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> Setup<A::F,
     let (lo_v, hi_v) = (pick(true), pick(false));
     let slope = ar.div(&ar.sub(&hi_v[2], &lo_v[2]), &ar.sub(&hi_v[3], &lo_v[3]));
     let off = ar.sub(&lo_v[2], &ar.mul(&slope, &lo_v[3]));
+    let (slope, off) = (ar.choose(&slope, LINE_CHOICE), ar.choose(&off, LINE_CHOICE));
     let line = ar.all(&[ar.gt(&hi_v[3], &lo_v[3]), ar.is_finite(&slope), ar.is_finite(&off)]);
     let (a, bb) = (ar.select(&line, &slope, &zero), ar.select(&line, &off, &zero));
     // Residuals z - a w - bb, rounded down for the least and up for the greatest (a

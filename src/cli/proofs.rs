@@ -5,6 +5,7 @@
 use crate::bounds::proofs::{strength, variant, Script, Tool, Variant, SCRIPTS, VARIANTS};
 use crate::tools::proofs::check;
 use crate::tools::proofs::composition::{self, SideRun};
+use crate::tools::proofs::enclosure;
 use crate::tools::proofs::run::{self, Outcome, Verdict};
 use anyhow::{bail, Result};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -62,6 +63,43 @@ pub struct MethodStrength {
     pub rerun_ok: Option<bool>,
 }
 
+/// One variant's enclosure check (see [`enclosure`]).
+#[derive(Clone, Debug, Serialize)]
+pub struct EnclosureRun {
+    pub method: &'static str,
+    /// Operations of the traced tile answer.
+    pub ops: usize,
+    /// Output ends checked.
+    pub outputs: usize,
+    /// Pinned ends checked, and the lemmas they use.
+    pub pins: usize,
+    pub lemmas: Vec<&'static str>,
+    /// Values the code chooses freely.
+    pub choices: Vec<&'static str>,
+    /// Each rule and how often it applied.
+    pub rules: Vec<(&'static str, usize)>,
+    /// Demands not met: `what` and what the value is instead (none: checked).
+    pub failures: Vec<(String, String)>,
+    pub seconds: f64,
+}
+
+/// Run the enclosure check of `id`, if it has one.
+pub fn run_enclosure(id: &'static str) -> Option<EnclosureRun> {
+    let t = Instant::now();
+    let o = enclosure::check(id)?;
+    Some(EnclosureRun {
+        method: id,
+        ops: o.ops,
+        outputs: o.outputs,
+        pins: o.pins,
+        lemmas: o.lemmas,
+        choices: o.choices,
+        rules: o.rules,
+        failures: o.failures.into_iter().map(|f| (f.what, f.found)).collect(),
+        seconds: t.elapsed().as_secs_f64(),
+    })
+}
+
 /// The whole report.
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
@@ -70,6 +108,9 @@ pub struct Report {
     /// The composition over the code on the template (see [`composition`]): one query
     /// per side of each variant that has one.
     pub composition: Vec<SideRun>,
+    /// The composition over the code for every input (see [`enclosure`]): one run per
+    /// variant that has one.
+    pub enclosure: Vec<EnclosureRun>,
     pub methods: Vec<MethodStrength>,
     pub seconds: f64,
 }
@@ -80,6 +121,7 @@ impl Report {
         self.scripts.iter().all(|s| s.outcome.verdict == Verdict::Proven)
             && self.checks.iter().all(|c| c.error.is_none())
             && self.composition.iter().all(|c| c.error.is_none())
+            && self.enclosure.iter().all(|e| e.failures.is_empty())
     }
 }
 
@@ -148,7 +190,11 @@ pub fn run(ids: &[&'static str], limit: Duration, triangles: usize, jobs: usize,
         pb.set_message(format!("template {id}"));
         comp.extend(composition::run(id, limit));
     }
+    pb.set_message("enclosure");
+    let encl: Vec<EnclosureRun> = ids.iter().filter_map(|id| run_enclosure(id)).collect();
     pb.finish_and_clear();
+    let encl_ok = |id: &str| encl.iter().filter(|e| e.method == id).all(|e| e.failures.is_empty());
+    let has_encl = |id: &str| encl.iter().any(|e| e.method == id);
     let checks_ok = checks.iter().all(|c| c.error.is_none());
     let comp_ok = |id: &str| comp.iter().filter(|c| c.method == id).all(|c| c.error.is_none());
     let methods = ids
@@ -159,25 +205,33 @@ pub fn run(ids: &[&'static str], limit: Duration, triangles: usize, jobs: usize,
                 Some(v) => Some(
                     checks_ok
                         && comp_ok(id)
+                        && encl_ok(id)
                         && v.scripts.iter().all(|n| {
                             runs.iter().any(|r: &ScriptRun| r.script.name == *n && r.outcome.verdict == Verdict::Proven)
                         }),
                 ),
-                None => composition::applies(id).then(|| comp_ok(id)),
+                None => (composition::applies(id) || has_encl(id)).then(|| comp_ok(id) && encl_ok(id)),
             };
             MethodStrength { id, strength: strength(id), proof, rerun_ok }
         })
         .collect();
-    Report { scripts: runs, checks, composition: comp, methods, seconds: start.elapsed().as_secs_f64() }
+    Report {
+        scripts: runs,
+        checks,
+        composition: comp,
+        enclosure: encl,
+        methods,
+        seconds: start.elapsed().as_secs_f64(),
+    }
 }
 
 /// The tables.
 pub fn render(r: &Report) -> String {
     let mut s = String::from("Scripts (src/bounds/proofs/; times are wall clock):\n");
-    s += &format!("{:<16} {:<16} {:<6} {:<8} {:>8}\n", "lemma", "file", "tool", "verdict", "seconds");
+    s += &format!("{:<16} {:<22} {:<6} {:<8} {:>8}\n", "lemma", "file", "tool", "verdict", "seconds");
     for x in &r.scripts {
         s += &format!(
-            "{:<16} {:<16} {:<6} {:<8} {:>8.2}\n",
+            "{:<16} {:<22} {:<6} {:<8} {:>8.2}\n",
             x.script.name,
             x.script.file,
             x.script.tool.binary(),
@@ -221,6 +275,33 @@ pub fn render(r: &Report) -> String {
             );
         }
     }
+    if !r.enclosure.is_empty() {
+        s += "\nComposition over the code, for every input (the enclosure check: the tile answer traced, every \
+              end of its side of its exact value by the rules of `enclosure rules`):\n";
+        for e in &r.enclosure {
+            s += &format!(
+                "  {:<8} {:<34} {} ends, {} pins, {} operations {:>8.2}\n",
+                if e.failures.is_empty() { "checked" } else { "FAILED" },
+                e.method,
+                e.outputs,
+                e.pins,
+                e.ops,
+                e.seconds
+            );
+            for l in &e.lemmas {
+                s += &format!("      pinned by the lemma: {l}\n");
+            }
+            for c in &e.choices {
+                s += &format!("      chosen freely: {c}\n");
+            }
+            for (what, found) in e.failures.iter().take(8) {
+                s += &format!("      {what}: {found}\n");
+            }
+            if e.failures.len() > 8 {
+                s += &format!("      ... and {} more\n", e.failures.len() - 8);
+            }
+        }
+    }
     s += "\nStrongest verdict per method:\n";
     for m in &r.methods {
         match (&m.proof, m.rerun_ok) {
@@ -229,7 +310,7 @@ pub fn render(r: &Report) -> String {
                     "{:<24} {} — re-run: {}\n",
                     m.id,
                     m.strength,
-                    if ok { "every script and template query proven" } else { "FAILED" }
+                    if ok { "every script, check and template query proven" } else { "FAILED" }
                 );
                 for rg in v.ranges {
                     s += &format!("    {}: {}\n", rg.inputs, rg.range);
@@ -237,8 +318,12 @@ pub fn render(r: &Report) -> String {
                 s += &format!("    scripts: {}\n", v.scripts.join(", "));
             }
             (None, Some(ok)) => {
-                s +=
-                    &format!("{:<24} {} — template query: {}\n", m.id, m.strength, if ok { "proven" } else { "FAILED" })
+                s += &format!(
+                    "{:<24} {} — its checks over the code: {}\n",
+                    m.id,
+                    m.strength,
+                    if ok { "proven" } else { "FAILED" }
+                )
             }
             _ => s += &format!("{:<24} {}\n", m.id, m.strength),
         }
