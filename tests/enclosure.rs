@@ -21,18 +21,28 @@ use std::cell::RefCell;
 use std::cmp::Ordering;
 
 #[test]
-fn la2011_safe_is_checked_over_its_code_and_every_end_encloses() {
+fn the_checked_variants_pass_over_their_code() {
     let o = check("la2011-safe").expect("la2011-safe is checked");
     assert!(o.failures.is_empty(), "{:?}", o.failures);
     assert_eq!(o.outputs, 6, "t, u, v: both ends each");
     assert!(o.pins > 0 && o.lemmas.len() == 1, "the chord's pins: {} {:?}", o.pins, o.lemmas);
     let used = |r: &str| o.rules.iter().find(|(n, _)| *n == r).map_or(0, |x| x.1);
     assert!(used("STEP") > 0 && used("quotient of ends, divisor of one strict sign") > 0, "{:?}", o.rules);
+    let o = check("nilsson2012-depth-safe").expect("nilsson2012-depth-safe is checked");
+    assert!(o.failures.is_empty(), "{:?}", o.failures);
+    assert_eq!(o.outputs, 2, "z: both ends");
+    assert_eq!(o.lemmas.len(), 3, "w from a plane, the w range, the residuals' range: {:?}", o.lemmas);
+    assert_eq!(o.choices.len(), 2, "the normal and the depth line: {:?}", o.choices);
 }
 
 #[test]
 fn a_dropped_outward_step_fails_the_enclosure_check() {
-    for (id, side) in [("broken/planted-no-up/la2011-safe", "upper"), ("broken/planted-no-dn/la2011-safe", "lower")] {
+    for (id, side) in [
+        ("broken/planted-no-up/la2011-safe", "upper"),
+        ("broken/planted-no-dn/la2011-safe", "lower"),
+        ("broken/planted-no-up/nilsson2012-depth-safe", "upper"),
+        ("broken/planted-no-dn/nilsson2012-depth-safe", "lower"),
+    ] {
         let o = check(id).expect("a planted slip of a checked variant is checked");
         assert!(!o.failures.is_empty(), "{id} passed");
         assert!(
@@ -42,6 +52,7 @@ fn a_dropped_outward_step_fails_the_enclosure_check() {
         );
     }
     assert!(check("la2011").is_none(), "the published method has no enclosure claim");
+    assert!(check("nilsson2012-depth").is_none(), "the published method has no enclosure claim");
 }
 
 /// An extended exact value.
@@ -107,6 +118,7 @@ struct V(f32, X);
 struct Pair {
     bad: RefCell<Vec<String>>,
     pins: RefCell<usize>,
+    turn: RefCell<usize>,
 }
 
 fn on_side(v: &V, end: End) -> bool {
@@ -208,6 +220,32 @@ impl F32Arith for Pair {
             b.clone()
         }
     }
+    fn pin_range(&self, v: &[V; 2], _positive: bool, lemma: &'static str) -> [V; 2] {
+        *self.pins.borrow_mut() += 1;
+        for (x, end) in [(&v[0], End::Lo), (&v[1], End::Hi)] {
+            if !on_side(x, end) {
+                self.bad.borrow_mut().push(format!("pinned range ({lemma}): {x:?} is not a {end:?} end"));
+            }
+        }
+        // The quantity the range holds: any value in it (the claims after the pin are
+        // for all of them); the attack takes its ends and its midpoint in turn.
+        let mut k = self.turn.borrow_mut();
+        *k += 1;
+        let (lo, hi) = (rat(v[0].0), rat(v[1].0));
+        let x = match *k % 3 {
+            0 => lo,
+            1 => hi,
+            _ => match (&lo, &hi) {
+                (X::Num(a, b), X::Num(c, d)) => X::Num(a * d + c * b, b * d * 2),
+                _ => X::Undef,
+            },
+        };
+        let x = if cmp(&rat(v[0].0), &rat(v[1].0)) == Some(Ordering::Greater) { X::Undef } else { x };
+        [V(v[0].0, x.clone()), V(v[1].0, x)]
+    }
+    fn choose(&self, a: &V, _why: &'static str) -> V {
+        V(a.0, rat(a.0))
+    }
     fn pin(&self, a: &V, end: End, lemma: &'static str) -> V {
         *self.pins.borrow_mut() += 1;
         if !on_side(a, end) {
@@ -266,9 +304,26 @@ fn wild(ar: &Pair, rng: &mut ChaCha8Rng) -> (TriOf<V>, [V; 4]) {
     (tri, [a.min(b), c.min(d), a.max(b), c.max(d)].map(|x| ar.lit(x)))
 }
 
-/// Run `R`'s la2011 over the pair arithmetic on `n` drawn inputs; the ends found on the
-/// wrong side of their exact values, and the number of ends compared.
-fn attack<R: Round>(n: usize, seed: u64) -> (Vec<String>, usize, usize) {
+/// A method's tile answer over the pair arithmetic: its output ranges, by name.
+type Answer = fn(&Pair, &TriOf<V>, &[V; 4]) -> Vec<(&'static str, [V; 2])>;
+
+fn la2011<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> Vec<(&'static str, [V; 2])> {
+    let s = setup_of::<R, Pair>(ar, tri);
+    let (_, t, u, v) = tile_answer::<R, Pair>(ar, &s, tile);
+    vec![("t", t), ("u", u), ("v", v)]
+}
+
+fn nilsson<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> Vec<(&'static str, [V; 2])> {
+    use cullproof::bounds::nilsson2012_depth as m;
+    let s = m::setup_of::<R, Pair>(ar, tri);
+    let (_, z) = m::tile_answer::<R, Pair>(ar, &s, tile);
+    vec![("z", z)]
+}
+
+/// Run a method over the pair arithmetic on `n` drawn inputs; the ends found on the
+/// wrong side of their exact values, the number of ends compared, and how many of them
+/// cut (inside the domain: t in (0, 1), u, v in (-1, 1), a finite z).
+fn attack(answer: Answer, n: usize, seed: u64) -> (Vec<String>, usize, usize) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let ar = Pair::default();
     let (mut compared, mut inside) = (0, 0);
@@ -284,12 +339,14 @@ fn attack<R: Round>(n: usize, seed: u64) -> (Vec<String>, usize, usize) {
         } else {
             wild(&ar, &mut rng)
         };
-        let s = setup_of::<R, Pair>(&ar, &tri);
-        let (_, t, u, v) = tile_answer::<R, Pair>(&ar, &s, &tile);
-        for (name, r) in [("t", &t), ("u", &u), ("v", &v)] {
+        for (name, r) in answer(&ar, &tri, &tile) {
             for (k, end) in [(0, End::Lo), (1, End::Hi)] {
                 compared += 1;
-                let lim = if name == "t" { [0.0, 1.0] } else { [-1.0, 1.0] };
+                let lim = match name {
+                    "t" => [0.0, 1.0],
+                    "z" => [f32::NEG_INFINITY, f32::INFINITY],
+                    _ => [-1.0, 1.0],
+                };
                 inside += usize::from(r[k].0 > lim[0] && r[k].0 < lim[1]);
                 if !on_side(&r[k], end) {
                     ar.bad.borrow_mut().push(format!("{name} {end:?}: {:?}", r[k]));
@@ -302,18 +359,128 @@ fn attack<R: Round>(n: usize, seed: u64) -> (Vec<String>, usize, usize) {
     (bad, compared, inside)
 }
 
-/// The check's conclusion for la2011-safe, attacked in exact arithmetic: no end on the
-/// wrong side, at the outputs or at the pins. The same attack on a planted slip finds
-/// ends on the wrong side (so it can fail).
+/// The check's conclusion for each variant it covers, attacked in exact arithmetic: no
+/// end on the wrong side, at the outputs or at the pins. The same attack on the planted
+/// slips finds ends on the wrong side (so it can fail).
 #[test]
 fn the_checked_ends_enclose_their_exact_values_on_drawn_inputs() {
-    let (bad, n, inside) = attack::<Outward>(4000, 1);
-    assert!(bad.is_empty(), "{} of {n}: {:?}", bad.len(), &bad[..bad.len().min(5)]);
-    // The draws reach the interesting ends: strictly inside the domain, cut by the method.
-    assert!(inside * 20 > n, "only {inside} of {n} ends inside the domain");
-    let (bad_up, _, _) = attack::<NoUp>(4000, 1);
-    let (bad_dn, _, _) = attack::<NoDn>(4000, 1);
-    eprintln!("ends compared {n}, inside the domain {inside}; slips: {} and {} ends on the wrong side", bad_up.len(), bad_dn.len());
-    assert!(bad_up.iter().any(|b| b.contains("Hi")), "the no-up slip was not caught by the attack");
-    assert!(bad_dn.iter().any(|b| b.contains("Lo")), "the no-dn slip was not caught by the attack");
+    let methods: [(&str, Answer, Answer, Answer); 2] = [
+        ("la2011-safe", la2011::<Outward>, la2011::<NoUp>, la2011::<NoDn>),
+        ("nilsson2012-depth-safe", nilsson::<Outward>, nilsson::<NoUp>, nilsson::<NoDn>),
+    ];
+    for (id, safe, no_up, no_dn) in methods {
+        let (bad, n, inside) = attack(safe, 20_000, 1);
+        assert!(bad.is_empty(), "{id}: {} of {n}: {:?}", bad.len(), &bad[..bad.len().min(5)]);
+        // The draws reach the interesting ends: strictly inside the domain, cut.
+        assert!(inside * 20 > n, "{id}: only {inside} of {n} ends inside the domain");
+        let (bad_up, _, _) = attack(no_up, 4000, 1);
+        let (bad_dn, _, _) = attack(no_dn, 4000, 1);
+        eprintln!(
+            "{id}: ends compared {n}, inside the domain {inside}; slips: {} and {} ends on the wrong side",
+            bad_up.len(),
+            bad_dn.len()
+        );
+        assert!(bad_up.iter().any(|b| b.contains("Hi")), "{id}: the no-up slip was not caught by the attack");
+        assert!(bad_dn.iter().any(|b| b.contains("Lo")), "{id}: the no-dn slip was not caught by the attack");
+    }
+}
+
+/// The rules the check applies, and the chord lemma, are proven by z3 in real
+/// arithmetic; the same script with one rule turned the wrong way is refuted.
+#[test]
+fn the_rules_are_proven_and_a_wrong_rule_is_refuted() {
+    use cullproof::bounds::proofs::{Tool, RULES};
+    use cullproof::tools::proofs::run::{run, run_text, Verdict};
+    use std::time::Duration;
+    let limit = Duration::from_secs(120);
+    let o = run(&RULES, limit);
+    if let Verdict::Missing(m) = &o.verdict {
+        panic!("{m}");
+    }
+    assert_eq!(o.verdict, Verdict::Proven, "{:?}", o.verdict);
+    // the upper end of a quotient turned into a lower one
+    let wrong = RULES.text.replace("(>= (/ a4 b4) (/ A4 B4))", "(<= (/ a4 b4) (/ A4 B4))");
+    assert_ne!(wrong, RULES.text);
+    assert!(matches!(run_text(Tool::Z3, &wrong, limit).verdict, Verdict::Refuted(_)));
+    // the chord lemma for upper ends instead of lower ones
+    let wrong = RULES.text.replace("(=> (and (<= l0 L0) (<= l1 L1)", "(=> (and (>= l0 L0) (>= l1 L1)");
+    assert_ne!(wrong, RULES.text);
+    assert!(matches!(run_text(Tool::Z3, &wrong, limit).verdict, Verdict::Refuted(_)));
+}
+
+/// The check on small pieces of interval code: each slip the proofs must notice (a step
+/// in the wrong direction, a min where a max belongs, a step dropped, a quotient whose
+/// divisor sign the code never tested) leaves an end the check refuses.
+#[test]
+fn a_swapped_min_max_or_a_wrong_step_leaves_no_end() {
+    use cullproof::tools::proofs::enclosure::{Check, Trace, N};
+    type Piece = fn(&Trace, N, N, N) -> N;
+    // an upper end of |x| * c + d, for x in [lo, hi]: max(|lo|, |hi|) * |c| + d, rounded up
+    let good: Piece = |t, lo, hi, c| {
+        let m = t.max(&t.abs(&lo), &t.abs(&hi));
+        t.next_up(&t.add(&t.next_up(&t.mul(&m, &t.abs(&c))), &c))
+    };
+    let swapped: Piece = |t, lo, hi, c| {
+        let m = t.min(&t.abs(&lo), &t.abs(&hi));
+        t.next_up(&t.add(&t.next_up(&t.mul(&m, &t.abs(&c))), &c))
+    };
+    let wrong_step: Piece = |t, lo, hi, c| {
+        let m = t.max(&t.abs(&lo), &t.abs(&hi));
+        t.next_up(&t.add(&t.next_down(&t.mul(&m, &t.abs(&c))), &c))
+    };
+    let dropped: Piece = |t, lo, hi, c| {
+        let m = t.max(&t.abs(&lo), &t.abs(&hi));
+        t.next_up(&t.add(&t.mul(&m, &t.abs(&c)), &c))
+    };
+    // an upper end of c / x: the divisor's sign must be tested first
+    let untested: Piece = |t, lo, _hi, c| t.next_up(&t.div(&c, &lo));
+    let tested: Piece = |t, lo, hi, c| {
+        let zero = t.lit(0.0);
+        let pos = t.lt(&zero, &lo);
+        let q = t.select(&t.le(&zero, &c), &t.div(&c, &lo), &t.div(&c, &hi));
+        t.select(&pos, &t.next_up(&q), &t.lit(f32::INFINITY))
+    };
+    for (name, piece, ok) in [
+        ("good", good, true),
+        ("swapped", swapped, false),
+        ("wrong step", wrong_step, false),
+        ("dropped", dropped, false),
+        ("untested divisor", untested, false),
+        ("tested divisor", tested, true),
+    ] {
+        let t = Trace::new();
+        let (x, c) = (t.input("x"), t.input("c"));
+        // [lo, hi]: an enclosure of x (x rounded to nearest, stepped out)
+        let r = t.mul(&x, &x);
+        let (lo, hi) = (t.next_down(&r), t.next_up(&r));
+        // finite inputs (as the variants' guards establish), else no bound
+        let fin = t.and(&t.is_finite(&x), &t.is_finite(&c));
+        let out = t.select(&fin, &piece(&t, lo, hi, c), &t.lit(f32::INFINITY));
+        let o = Check::new(&t).run(&[(out, End::Hi, "out".into())]);
+        let out_ok = o.failures.iter().all(|f| f.found == "may be NaN");
+        assert_eq!(out_ok, ok, "{name}: {:?}", o.failures);
+    }
+}
+
+/// `cullproof proofs` on each checked variant passes, and fails on each planted slip that
+/// drops one side's outward steps (for la2011-safe's slips, whose template queries take
+/// minutes, the enclosure part of the command alone; tests/proofs.rs runs the rest).
+#[test]
+fn proofs_fails_on_every_planted_dropped_step() {
+    use cullproof::cli::proofs::{render, run, run_enclosure};
+    use std::time::Duration;
+    let limit = Duration::from_secs(120);
+    let r = run(&["nilsson2012-depth-safe"], limit, 100, 2, false);
+    assert!(r.ok(), "{}", render(&r));
+    assert_eq!(r.enclosure.len(), 1);
+    for id in ["broken/planted-no-up/nilsson2012-depth-safe", "broken/planted-no-dn/nilsson2012-depth-safe"] {
+        let r = run(&[id], limit, 100, 2, false);
+        assert!(!r.ok(), "{id} passed");
+        let text = render(&r);
+        assert!(text.contains("FAILED") && text.contains("SOME PROOFS FAILED"), "{text}");
+    }
+    for id in ["la2011-safe", "broken/planted-no-up/la2011-safe", "broken/planted-no-dn/la2011-safe"] {
+        let e = run_enclosure(id).expect("checked");
+        assert_eq!(e.failures.is_empty(), id == "la2011-safe", "{id}: {:?}", e.failures);
+    }
 }

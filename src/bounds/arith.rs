@@ -68,6 +68,15 @@ pub trait F32Arith {
         a.clone()
     }
 
+    /// `v`, the ends of an interval that (by the lemma named `lemma`) holds some exact
+    /// quantity (`> 0` when `positive`), taken from here on as a lower and an upper end
+    /// of that one quantity. The enclosure check verifies that `v[0]` is a lower end and
+    /// `v[1]` an upper end (each of its own exact value); every other instance returns
+    /// `v` itself.
+    fn pin_range(&self, v: &[Self::F; 2], _positive: bool, _lemma: &'static str) -> [Self::F; 2] {
+        v.clone()
+    }
+
     /// `a`, a value the code is free to choose (any f32 value would keep the method
     /// right, `why` says why), taken from here on as an exact value of its own; the
     /// enclosure check demands nothing of it. Every instance but the check returns `a`.

@@ -253,6 +253,12 @@ fn dot_dn<R: Round, A: F32Arith>(ar: &A, a: &[A::F; 3], b: &[A::F; 3]) -> A::F {
     R::dn(ar, &ar.add(&R::dn(ar, &ar.add(&m(0), &m(1))), &m(2)))
 }
 
+/// The derivation's step that puts a covered sample's w in the tile's w range.
+pub const W_RANGE: &str = "derivation: a covered sample's w lies in the tile's w range (nilsson2012_depth.rs)";
+/// The derivation's step that writes a covered sample's depth as a + c / w.
+pub const C_RANGE: &str =
+    "derivation: a covered sample's depth is a + c / w for a c in the residuals' range (nilsson2012_depth.rs)";
+
 /// Why the plane's normal may be any f32 vector (see [`F32Arith::choose`]).
 pub const NORMAL_CHOICE: &str = "the planes' offsets are bounded for the normal computed, whatever it is";
 /// Why the depth line may be any f32 line.
@@ -370,11 +376,25 @@ pub struct Setup<F, B> {
 fn c_over_w<R: Round, A: F32Arith>(ar: &A, c: &[A::F; 2], w: &[A::F; 2]) -> [A::F; 2] {
     let zero = ar.lit(0.0);
     let q = [ar.div(&c[0], &w[0]), ar.div(&c[0], &w[1]), ar.div(&c[1], &w[0]), ar.div(&c[1], &w[1])];
-    let (mut lo, mut hi) = (ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
-    for q in &q {
-        lo = min_g::<R, A>(ar, &lo, &R::dn(ar, q));
-        hi = max_g::<R, A>(ar, &hi, &R::up(ar, q));
-    }
+    let (lo, hi) = if R::GUARD {
+        // By signs (w0 > 0 here): the least quotient is c0 / w1 when c0 >= 0, else
+        // c0 / w0; the greatest c1 / w0 when c1 >= 0, else c1 / w1. Rounding and the
+        // steps are monotone, so these are the least and the greatest of the four
+        // quotients rounded outward, bit for bit; NaN when one of the four is NaN.
+        let nan = ar.any(&q.each_ref().map(|x| ar.is_nan(x)));
+        let lo = ar.select(&ar.le(&zero, &c[0]), &R::dn(ar, &q[1]), &R::dn(ar, &q[0]));
+        let hi = ar.select(&ar.le(&zero, &c[1]), &R::up(ar, &q[2]), &R::up(ar, &q[3]));
+        let none = ar.lit(f32::NAN);
+        (ar.select(&nan, &none, &lo), ar.select(&nan, &none, &hi))
+    } else {
+        // The published method: the least and greatest of the four (a NaN one skipped).
+        let (mut lo, mut hi) = (ar.lit(f32::INFINITY), ar.lit(f32::NEG_INFINITY));
+        for q in &q {
+            lo = min_g::<R, A>(ar, &lo, &R::dn(ar, q));
+            hi = max_g::<R, A>(ar, &hi, &R::up(ar, q));
+        }
+        (lo, hi)
+    };
     // w0 = 0: only the far end bounds the quotient, on the side c keeps its sign.
     let lo0 = ar.select(&ar.le(&zero, &c[0]), &R::dn(ar, &q[1]), &ar.lit(f32::NEG_INFINITY));
     let hi0 = ar.select(&ar.le(&c[1], &zero), &R::up(ar, &q[3]), &ar.lit(f32::INFINITY));
@@ -470,7 +490,11 @@ pub fn tile_answer<R: Round, A: F32Arith>(ar: &A, s: &Setup<A::F, A::B>, tile: &
         }
     }
     let empty = ar.any(&[empty, ar.is_nan(&hi), ar.le(&hi, &zero), ar.gt(&lo, &hi)]);
-    let q = c_over_w::<R, A>(ar, &s.c, &[lo, hi]);
+    // Every covered sample's w lies in [lo, hi] (the vertices' box, w > 0, the planes),
+    // and its depth is a + c / w for a c in s.c (the method's derivation, above).
+    let w = ar.pin_range(&[lo, hi], true, W_RANGE);
+    let c = ar.pin_range(&s.c, false, C_RANGE);
+    let q = c_over_w::<R, A>(ar, &c, &w);
     let (z0, z1) = (R::dn(ar, &ar.add(&s.a, &q[0])), R::up(ar, &ar.add(&s.a, &q[1])));
     let (z0, z1) = (ar.select(&ar.is_nan(&z0), &ninf, &z0), ar.select(&ar.is_nan(&z1), &inf, &z1));
     let z0 = ar.select(&s.zeta_on, &ar.max(&z0, &s.zeta_box[0]), &z0);

@@ -289,7 +289,7 @@ pub fn render(r: &Report) -> String {
                 e.seconds
             );
             for l in &e.lemmas {
-                s += &format!("      pinned by the lemma: {l}\n");
+                s += &format!("      pinned by: {l}\n");
             }
             for c in &e.choices {
                 s += &format!("      chosen freely: {c}\n");

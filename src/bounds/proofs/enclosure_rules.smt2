@@ -57,5 +57,14 @@
   (=> (and (<= l0 L0) (<= l1 L1) (<= 0.0 t8) (<= t8 1.0)
            (<= (+ (* (- 1.0 t8) L0) (* t8 L1)) 0.0))
       (<= (+ (* (- 1.0 t8) l0) (* t8 l1)) 0.0)))
-(assert (not (and sum scale prod quot_hi quot_lo minmax absmax signs chord)))
+; -- lemma "w m <= E bounds w by e_hi / m_lo for every m >= m_lo, E <= e_hi"
+;    (nilsson2012-depth's w bound from a plane): for w > 0, m >= m_lo, E <= e_hi and
+;    w m <= E: w <= e_hi / m_lo when m_lo > 0, w >= e_hi / m_lo when m_lo < 0 > e_hi.
+(declare-const w9 Real) (declare-const m9 Real) (declare-const ml9 Real)
+(declare-const E9 Real) (declare-const eh9 Real)
+(define-fun wbound () Bool
+  (=> (and (> w9 0.0) (>= m9 ml9) (<= E9 eh9) (<= (* w9 m9) E9))
+      (and (=> (> ml9 0.0) (<= w9 (/ eh9 ml9)))
+           (=> (and (< ml9 0.0) (< eh9 0.0)) (>= w9 (/ eh9 ml9))))))
+(assert (not (and sum scale prod quot_hi quot_lo minmax absmax signs chord wbound)))
 (check-sat)

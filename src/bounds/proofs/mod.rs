@@ -154,8 +154,8 @@ pub const RULES: Script = Script {
     tool: Tool::Z3,
     claim: "how ends of intervals combine (sums, products by a factor of known sign, products of \
             ends of one sign, quotients by a divisor of one strict sign, min/max, max(|lo|, |hi|), \
-            signs of ends) and the lemmas pinned in the code (la2011's chord through lower ends), \
-            in real arithmetic",
+            signs of ends) and the lemmas pinned in the code (la2011's chord through lower ends, \
+            nilsson2012-depth's w bound from a plane), in real arithmetic",
     prelude: false,
     text: include_str!("enclosure_rules.smt2"),
 };
@@ -290,10 +290,17 @@ pub const VARIANTS: &[Variant] = &[
     Variant {
         id: "nilsson2012-depth-safe",
         ranges: ALL_FINITE,
-        scripts: &["STEP"],
-        mechanical: "every rounded result stepped outward encloses the exact result (STEP)",
-        by_argument: STEPS_ARGUMENT,
-        level: Level::LemmasChecked,
+        scripts: &["STEP", "enclosure rules"],
+        mechanical: "every rounded result stepped outward encloses the exact result (STEP); the \
+                     composition over the method's own f32 code for every input: the enclosure check \
+                     traces the tile answer and finds both depth ends ends of their side of their exact \
+                     values, and NaN-free, by rules z3 proves in real arithmetic (enclosure rules, with \
+                     the lemma of the w bound from a plane)",
+        by_argument: "the real-arithmetic derivation in nilsson2012_depth.rs, at the two pins that name it \
+                      (a covered sample's w lies in the tile's w range; its depth is a + c / w for a c \
+                      in the residuals' range), and that each branch the f32 code takes on its ends is \
+                      one the exact values allow",
+        level: Level::MachineChecked,
     },
     Variant {
         id: "gdam2010-safe",
@@ -321,7 +328,7 @@ pub fn variant(id: &str) -> Option<&'static Variant> {
 pub fn strength(id: &str) -> &'static str {
     match variant(id).map(|v| v.level) {
         Some(Level::MachineChecked) => {
-            "machine-checked for all inputs in ranges (the composition over the code checked for every input; its rules and lemmas by z3)"
+            "machine-checked for all inputs in ranges (the composition over the code checked for every input, its rules and lemmas by z3; the method's derivation argued)"
         }
         Some(Level::LemmasChecked) => {
             "rounding lemmas checked, composition argued (z3/gappa check the lemmas; docs/proofs.md argues their composition)"
