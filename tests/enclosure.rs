@@ -33,11 +33,39 @@ fn the_checked_variants_pass_over_their_code() {
     assert_eq!(o.outputs, 2, "z: both ends");
     assert_eq!(o.lemmas.len(), 3, "w from a plane, the w range, the residuals' range: {:?}", o.lemmas);
     assert_eq!(o.choices.len(), 2, "the normal and the depth line: {:?}", o.choices);
+    let o = check("bbox-safe").expect("bbox-safe is checked");
+    assert!(o.failures.is_empty(), "{:?}", o.failures);
+    assert_eq!(o.outputs, 1, "the tile reject");
+    let used = |r: &str| o.rules.iter().find(|(n, _)| *n == r).map_or(0, |x| x.1);
+    assert!(used("an end a lemma proves") >= 48, "every corner's two ends: {:?}", o.rules);
+}
+
+/// bbox-safe's corners are the Gappa script's formula with the script's own constants:
+/// a pad halved or a step less in the script (or, the same, in the code) leaves the
+/// code's corners outside the lemma, and the tile reject unproven.
+#[test]
+fn a_bbox_corner_other_than_the_scripts_is_refused() {
+    use cullproof::bounds::proofs::BBOX_PAD;
+    use cullproof::tools::proofs::check::with_constant;
+    let o = check("bbox-safe").unwrap();
+    assert!(o.failures.is_empty());
+    for (name, value) in [("PAD", "1b-22"), ("STEPS", "3"), ("FLOOR", "1b-121")] {
+        let text = with_constant(&BBOX_PAD, name, value);
+        assert_ne!(text, BBOX_PAD.text);
+        let o = cullproof::tools::proofs::enclosure::check_bbox_with(&text).unwrap();
+        assert!(!o.failures.is_empty(), "{name} = {value} passed");
+    }
+    for id in ["broken/planted-no-up/bbox-safe", "broken/planted-no-dn/bbox-safe", "broken/planted-eq/bbox-safe"] {
+        let o = cullproof::tools::proofs::enclosure::check_traced(id).unwrap();
+        assert!(o.failures.iter().any(|f| f.what.contains("tile reject")), "{id}: {:?}", o.failures);
+    }
 }
 
 #[test]
 fn a_dropped_outward_step_fails_the_enclosure_check() {
     for (id, side) in [
+        ("broken/planted-no-up/bbox-safe", "tile reject"),
+        ("broken/planted-no-dn/bbox-safe", "tile reject"),
         ("broken/planted-no-up/la2011-safe", "upper"),
         ("broken/planted-no-dn/la2011-safe", "lower"),
         ("broken/planted-no-up/nilsson2012-depth-safe", "upper"),
@@ -46,7 +74,9 @@ fn a_dropped_outward_step_fails_the_enclosure_check() {
         let o = check(id).expect("a planted slip of a checked variant is checked");
         assert!(!o.failures.is_empty(), "{id} passed");
         assert!(
-            o.failures.iter().any(|f| f.what.contains(side) && f.found.contains("no end")),
+            o.failures
+                .iter()
+                .any(|f| f.what.contains(side) && (f.found.contains("no end") || f.found.contains("imply"))),
             "{id}: no {side} end found wanting: {:?}",
             o.failures
         );
@@ -151,8 +181,7 @@ impl F32Arith for Pair {
         V(a.0.mul_add(b.0, c.0), arith('+', &arith('*', &a.1, &b.1), &c.1))
     }
     fn neg(&self, a: &V) -> V {
-        V(-a.0, arith('-', &X::Num(0.into(), 1.into()), &a.1))
-            .fix_inf(&a.1, true)
+        V(-a.0, arith('-', &X::Num(0.into(), 1.into()), &a.1)).fix_inf(&a.1, true)
     }
     fn abs(&self, a: &V) -> V {
         let neg = matches!(cmp(&a.1, &X::Num(0.into(), 1.into())), Some(Ordering::Less));
@@ -275,7 +304,9 @@ fn draw(rng: &mut ChaCha8Rng, near: f32) -> f32 {
     match rng.gen_range(0..10) {
         0 => rng.gen_range(-8..=8) as f32 * 0.5,
         1 => [0.0, -0.0, 1.0, -1.0][rng.gen_range(0..4)],
-        2 => f32::from_bits(rng.gen::<u32>() & 0x7fff_ffff | if rng.gen() { 0x8000_0000 } else { 0 }).clamp(-1e30, 1e30),
+        2 => {
+            f32::from_bits(rng.gen::<u32>() & 0x7fff_ffff | if rng.gen() { 0x8000_0000 } else { 0 }).clamp(-1e30, 1e30)
+        }
         3 => near * (1.0 + rng.gen_range(-1e-6..1e-6)),
         4 => rng.gen_range(-1e6..1e6),
         _ => rng.gen_range(-4.0..4.0),
@@ -483,4 +514,65 @@ fn proofs_fails_on_every_planted_dropped_step() {
         let e = run_enclosure(id).expect("checked");
         assert_eq!(e.failures.is_empty(), id == "la2011-safe", "{id}: {:?}", e.failures);
     }
+}
+
+/// bbox-safe's box against the exact box (the hull of the exact corner values
+/// `(a -+ k c) / w`, k = 1 on the x axis), in rationals, on drawn triangles with every
+/// w > 0: no finite end on the wrong side. bbox's own box (no pad, no steps) is found on
+/// the wrong side, so the attack can fail.
+#[test]
+fn the_bbox_safe_box_holds_the_exact_box_on_drawn_inputs() {
+    use cullproof::bounds::arith::Plain;
+    use cullproof::bounds::bbox::{aabb_of, Corner, PlainCorner, SafeCorner};
+    fn wrong<C: Corner>(corner: &C, n: usize) -> (usize, usize) {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let (mut bad, mut ends) = (0, 0);
+        for i in 0..n {
+            let tri = if i % 2 == 0 {
+                TriOf::of(&physical_case(&mut rng, Regime::ALL[(i / 2) % Regime::ALL.len()]).triangle)
+            } else {
+                let base = draw(&mut rng, 1.0);
+                let mut vert = || {
+                    let mut v = [0; 4].map(|_| draw(&mut rng, base));
+                    v[3] = v[3].abs().max(f32::from_bits(1));
+                    v
+                };
+                let (q, r) = ([vert(), vert(), vert()], [vert(), vert(), vert()]);
+                let c = |rng: &mut ChaCha8Rng| [0; 3].map(|_| draw(rng, base));
+                TriOf { q, r, c0: c(&mut rng), c1: c(&mut rng), k: draw(&mut rng, 1.0) }
+            };
+            let (enabled, bx) = aabb_of(&Plain, corner, &tri);
+            if !enabled {
+                continue;
+            }
+            for axis in 0..2 {
+                let mut exact: Vec<X> = vec![];
+                for (p, c) in [(&tri.q, &tri.c0), (&tri.r, &tri.c1)] {
+                    for i in 0..3 {
+                        let s = if axis == 0 { rat(c[i]) } else { arith('*', &rat(tri.k), &rat(c[i])) };
+                        for op in ['-', '+'] {
+                            exact.push(arith('/', &arith(op, &rat(p[i][axis]), &s), &rat(p[i][3])));
+                        }
+                    }
+                }
+                let (lo, hi) = (bx[2 * axis], bx[2 * axis + 1]);
+                for e in &exact {
+                    for (v, end) in [(lo, End::Lo), (hi, End::Hi)] {
+                        if v.is_finite() {
+                            ends += 1;
+                            if !on_side(&V(v, e.clone()), end) {
+                                bad += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        (bad, ends)
+    }
+    let (bad, ends) = wrong(&SafeCorner, 20_000);
+    assert!(ends > 100_000, "only {ends} ends compared");
+    assert_eq!(bad, 0, "bbox-safe: {bad} of {ends} ends on the wrong side");
+    let (bad, _) = wrong(&PlainCorner, 20_000);
+    assert!(bad > 0, "bbox's unpadded box was never found on the wrong side");
 }

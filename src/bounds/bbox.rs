@@ -152,22 +152,30 @@ pub struct SafeCorner;
 
 impl Corner for SafeCorner {
     fn corner<A: F32Arith>(&self, ar: &A, _a: &A::F, s: &A::F, n: &A::F, w: &A::F) -> [A::F; 2] {
-        // PAD = 2^-21 = 8u and FLOOR = 2^-120 (module constants, tied to the proof)
-        let q = ar.div(n, w);
-        let sum = ar.add(&ar.add(&ar.abs(s), &ar.abs(n)), &ar.lit(FLOOR));
-        let pad = ar.mul(&ar.div(&sum, w), &ar.lit(PAD));
-        let (mut lo, mut hi) = (ar.sub(&q, &pad), ar.add(&q, &pad));
-        for _ in 0..4 {
-            lo = ar.next_down(&lo);
-            hi = ar.next_up(&hi);
-        }
-        // w = +inf is outside the error analysis (finite inputs): n / w = 0 and a pad of
-        // 0 would give a finite, culling box. NaN makes the axis never cull, as for
-        // every other non-finite input.
-        let nan = ar.lit(f32::NAN);
-        let finite = ar.is_finite(w);
-        [ar.select(&finite, &lo, &nan), ar.select(&finite, &hi, &nan)]
+        padded_corner(ar, s, n, w, [4, 4])
     }
+}
+
+/// The padded corner value with `steps[0]` steps down at the lower end and `steps[1]`
+/// up at the upper one (bbox-safe: four each; a planted slip drops one side's).
+pub(crate) fn padded_corner<A: F32Arith>(ar: &A, s: &A::F, n: &A::F, w: &A::F, steps: [usize; 2]) -> [A::F; 2] {
+    // PAD = 2^-21 = 8u and FLOOR = 2^-120 (module constants, tied to the proof)
+    let q = ar.div(n, w);
+    let sum = ar.add(&ar.add(&ar.abs(s), &ar.abs(n)), &ar.lit(FLOOR));
+    let pad = ar.mul(&ar.div(&sum, w), &ar.lit(PAD));
+    let (mut lo, mut hi) = (ar.sub(&q, &pad), ar.add(&q, &pad));
+    for _ in 0..steps[0] {
+        lo = ar.next_down(&lo);
+    }
+    for _ in 0..steps[1] {
+        hi = ar.next_up(&hi);
+    }
+    // w = +inf is outside the error analysis (finite inputs): n / w = 0 and a pad of
+    // 0 would give a finite, culling box. NaN makes the axis never cull, as for
+    // every other non-finite input.
+    let nan = ar.lit(f32::NAN);
+    let finite = ar.is_finite(w);
+    [ar.select(&finite, &lo, &nan), ar.select(&finite, &hi, &nan)]
 }
 
 /// bbox, or bbox-safe (or a planted slip of [`super::broken::planted`]): the same box

@@ -20,7 +20,7 @@
 //! from half of the operations: the kind of edit a proof of the variant must notice.
 
 use crate::bounds::arith::F32Arith;
-use crate::bounds::bbox::{BBox, Corner, SafeCorner};
+use crate::bounds::bbox::{padded_corner, BBox, Corner, SafeCorner};
 use crate::bounds::la2011::La2011;
 use crate::bounds::nilsson2012_depth::Nilsson2012Depth;
 use crate::bounds::round::Round;
@@ -53,6 +53,26 @@ impl Corner for BandSlip {
         let band = ar.and(&ar.le(&ar.lit(BAND_LO), w), &ar.lt(w, &ar.lit(BAND_HI)));
         let n = ar.select(&band, a, n);
         SafeCorner.corner(ar, a, s, &n, w)
+    }
+}
+
+/// `bbox-safe`'s corner with the outward steps of its upper end dropped (the pad kept).
+#[derive(Clone, Copy, Debug)]
+pub struct NoUpCorner;
+
+impl Corner for NoUpCorner {
+    fn corner<A: F32Arith>(&self, ar: &A, _a: &A::F, s: &A::F, n: &A::F, w: &A::F) -> [A::F; 2] {
+        padded_corner(ar, s, n, w, [4, 0])
+    }
+}
+
+/// `bbox-safe`'s corner with the outward steps of its lower end dropped.
+#[derive(Clone, Copy, Debug)]
+pub struct NoDnCorner;
+
+impl Corner for NoDnCorner {
+    fn corner<A: F32Arith>(&self, ar: &A, _a: &A::F, s: &A::F, n: &A::F, w: &A::F) -> [A::F; 2] {
+        padded_corner(ar, s, n, w, [0, 4])
     }
 }
 
@@ -144,6 +164,16 @@ pub static NO_UP_DEPTH: &dyn Method =
 pub static NO_DN_DEPTH: &dyn Method =
     &Nilsson2012Depth::<NoDn> { info: &INFO_NO_DN_DEPTH, round: std::marker::PhantomData };
 
+static INFO_NO_UP_BOX: MethodInfo =
+    slip("broken/planted-no-up/bbox-safe", "bbox-safe with the outward steps of every upper end dropped", INFO_EQ);
+static INFO_NO_DN_BOX: MethodInfo =
+    slip("broken/planted-no-dn/bbox-safe", "bbox-safe with the outward steps of every lower end dropped", INFO_EQ);
+
+/// `broken/planted-no-up/bbox-safe`.
+pub static NO_UP_BOX: &dyn Method = &BBox { info: &INFO_NO_UP_BOX, corner: NoUpCorner };
+/// `broken/planted-no-dn/bbox-safe`.
+pub static NO_DN_BOX: &dyn Method = &BBox { info: &INFO_NO_DN_BOX, corner: NoDnCorner };
+
 /// `broken/planted-eq/bbox-safe`.
 pub static EQ: &dyn Method = &BBox { info: &INFO_EQ, corner: EqSlip };
 /// `broken/planted-band/bbox-safe`.
@@ -151,5 +181,5 @@ pub static BAND: &dyn Method = &BBox { info: &INFO_BAND, corner: BandSlip };
 
 /// The planted variant with this id, if it is one.
 pub fn parse(id: &str) -> Option<&'static dyn Method> {
-    [EQ, BAND, NO_UP, NO_DN, NO_UP_DEPTH, NO_DN_DEPTH].into_iter().find(|m| m.info().id == id)
+    [EQ, BAND, NO_UP, NO_DN, NO_UP_DEPTH, NO_DN_DEPTH, NO_UP_BOX, NO_DN_BOX].into_iter().find(|m| m.info().id == id)
 }

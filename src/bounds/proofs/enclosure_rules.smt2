@@ -37,10 +37,22 @@
            (or (and (<= a4 A4) (> B4 0.0)) (and (>= a4 A4) (< B4 0.0)) (= a4 A4))
            (or (and (>= a4 0.0) (>= b4 B4)) (and (<= a4 0.0) (<= b4 B4)) (= b4 B4)))
       (<= (/ a4 b4) (/ A4 B4))))
-; -- min and max of ends of one side are ends of that side.
+; -- min and max of ends of one side are ends of that side; and a min whose exact
+;    values each have a lower end among its operands is a lower end of their min, the
+;    other operands (with those exact values) whatever they are (here b5 beside a5 <= A5).
 (declare-const a5 Real) (declare-const A5 Real) (declare-const b5 Real) (declare-const B5 Real)
+(declare-const c5 Real)
 (define-fun minmax () Bool
-  (=> (and (<= a5 A5) (<= b5 B5)) (and (<= (mn a5 b5) (mn A5 B5)) (<= (mx a5 b5) (mx A5 B5)))))
+  (and (=> (and (<= a5 A5) (<= b5 B5)) (and (<= (mn a5 b5) (mn A5 B5)) (<= (mx a5 b5) (mx A5 B5))))
+       (=> (and (<= a5 A5) (<= c5 B5)) (<= (mn (mn a5 b5) c5) (mn A5 B5)))
+       (=> (and (>= a5 A5) (>= c5 B5)) (>= (mx (mx a5 b5) c5) (mx A5 B5)))))
+; -- a comparison of an upper end below a lower end holds for the exact values: a >= A,
+;    b <= B and a < b give A < B (<= likewise); the other way round under the reverse sides.
+(declare-const a10 Real) (declare-const A10 Real) (declare-const b10 Real) (declare-const B10 Real)
+(define-fun cmp () Bool
+  (and (=> (and (>= a10 A10) (<= b10 B10) (< a10 b10)) (< A10 B10))
+       (=> (and (>= a10 A10) (<= b10 B10) (<= a10 b10)) (<= A10 B10))
+       (=> (and (<= a10 A10) (>= b10 B10) (< A10 B10)) (< a10 b10))))
 ; -- the two ends of one interval: max(|lo|, |hi|) >= |x|.
 (declare-const l6 Real) (declare-const x6 Real) (declare-const h6 Real)
 (define-fun absmax () Bool (=> (and (<= l6 x6) (<= x6 h6)) (<= (ab x6) (mx (ab l6) (ab h6)))))
@@ -66,5 +78,5 @@
   (=> (and (> w9 0.0) (>= m9 ml9) (<= E9 eh9) (<= (* w9 m9) E9))
       (and (=> (> ml9 0.0) (<= w9 (/ eh9 ml9)))
            (=> (and (< ml9 0.0) (< eh9 0.0)) (>= w9 (/ eh9 ml9))))))
-(assert (not (and sum scale prod quot_hi quot_lo minmax absmax signs chord wbound)))
+(assert (not (and sum scale prod quot_hi quot_lo minmax cmp absmax signs chord wbound)))
 (check-sat)

@@ -154,7 +154,7 @@ pub const RULES: Script = Script {
     tool: Tool::Z3,
     claim: "how ends of intervals combine (sums, products by a factor of known sign, products of \
             ends of one sign, quotients by a divisor of one strict sign, min/max, max(|lo|, |hi|), \
-            signs of ends) and the lemmas pinned in the code (la2011's chord through lower ends, \
+            signs of ends, comparisons of ends) and the lemmas pinned in the code (la2011's chord through lower ends, \
             nilsson2012-depth's w bound from a plane), in real arithmetic",
     prelude: false,
     text: include_str!("enclosure_rules.smt2"),
@@ -237,14 +237,18 @@ pub const VARIANTS: &[Variant] = &[
             Range { inputs: "vertex w at both shutter ends", range: "every finite f32 value > 0 (w <= 0: disabled)" },
             Range { inputs: "any non-finite input or intermediate", range: "that axis never culls (code inspection)" },
         ],
-        scripts: &["STEP", "GAP", "ULP", "MONO", "bbox-safe pad"],
+        scripts: &["STEP", "GAP", "ULP", "MONO", "bbox-safe pad", "enclosure rules"],
         mechanical: "the error model |RN(z) - z| <= 2^-23 |RN(z)| + 2^-149 (STEP, ULP), the four steps \
                      (STEP, GAP), and the inequality that the pad and the steps cover the corner value's \
                      error for every B = (|s| + |n|) / w >= 0 and w > 0 (bbox_safe.g, with the code's PAD, \
-                     FLOOR and step count)",
+                     FLOOR and step count); the composition over the method's own f32 code for every \
+                     input: the enclosure check traces the box and the tile reject, finds every corner \
+                     the code computes to be bbox_safe.g's formula with the script's constants (so the \
+                     lemma applies), and the reject to imply that the exact box misses the tile (enclosure \
+                     rules)",
         by_argument: "collecting the error terms into g1 B + g2 / w + g3 (docs/proofs.md); the exact box is \
-                      the hull of the exact corner values (bbox.rs derivation); tile comparisons are exact",
-        level: Level::LemmasChecked,
+                      the hull of the exact corner values (bbox.rs derivation)",
+        level: Level::MachineChecked,
     },
     Variant {
         id: "la2011-safe",

@@ -121,6 +121,9 @@ pub struct Trace {
     inputs: RefCell<Vec<String>>,
     lemmas: RefCell<Vec<&'static str>>,
     choices: RefCell<Vec<&'static str>>,
+    /// Values a lemma proves ends of an exact value: side, the exact value's node, the
+    /// value that must be > 0, the lemma.
+    known: RefCell<HashMap<N, (End, N, N, u32)>>,
 }
 
 impl Trace {
@@ -134,6 +137,16 @@ impl Trace {
         let i = ins.len() as u32 - 1;
         self.f.borrow_mut().add(Op::Input(i))
     }
+    /// Declare, by the lemma named `lemma`, `node` an end (`end`) of the exact value of
+    /// `exact`, wherever `node` is finite and `positive` is > 0. The lemma's proof must
+    /// be about exactly the operations that compute `node` (the caller builds them from
+    /// the lemma's own formula: equal operations are one node, so a code that computes
+    /// anything else never meets the declared node).
+    pub fn known_end(&self, node: N, end: End, exact: N, positive: N, lemma: &'static str) {
+        let i = self.note(&self.lemmas, lemma);
+        self.known.borrow_mut().insert(node, (end, exact, positive, i));
+    }
+
     /// How many operations the trace holds.
     pub fn len(&self) -> usize {
         self.f.borrow().nodes.len()
@@ -556,6 +569,12 @@ impl<'t> Check<'t> {
             return r;
         }
         let t = self.t;
+        let known = t.known.borrow().get(&n).copied();
+        if let Some((_, exact, _, _)) = known {
+            let r = self.real(exact);
+            self.real_memo.borrow_mut().insert(n, r);
+            return r;
+        }
         let r = match t.op(n) {
             Op::Input(_) | Op::Pin(..) | Op::Free(..) => self.rnode(Real::Var(n)),
             Op::Range(lo, hi, _, positive, _) => self.rnode(Real::Quant(lo, hi, positive)),
@@ -586,19 +605,34 @@ impl<'t> Check<'t> {
         r
     }
 
-    /// min / max of exact values, with min(+inf, x) = x and max(-inf, x) = x.
+    /// min / max of exact values, in one canonical form: the set of its terms (nested
+    /// mins flattened, each term once, sorted), without the neutral +inf (min) or -inf
+    /// (max).
     fn minmax(&self, min: bool, a: Ri, b: Ri) -> Ri {
-        if a == b {
-            return a;
+        let neutral = Real::K(if min { f32::INFINITY } else { f32::NEG_INFINITY }.to_bits());
+        let mut set: Vec<Ri> = self.terms(min, a);
+        set.extend(self.terms(min, b));
+        set.retain(|&r| self.rget(r) != neutral);
+        set.sort_unstable();
+        set.dedup();
+        match set.split_first() {
+            None => self.rnode(neutral),
+            Some((&first, rest)) => {
+                rest.iter().fold(first, |acc, &r| self.rnode(if min { Real::Min(acc, r) } else { Real::Max(acc, r) }))
+            }
         }
-        let neutral = if min { f32::INFINITY } else { f32::NEG_INFINITY }.to_bits();
-        if self.rget(a) == Real::K(neutral) {
-            return b;
+    }
+
+    /// The terms of a min (`min`) or max of exact values (itself, when it is none).
+    fn terms(&self, min: bool, r: Ri) -> Vec<Ri> {
+        match (self.rget(r), min) {
+            (Real::Min(a, b), true) | (Real::Max(a, b), false) => {
+                let mut v = self.terms(min, a);
+                v.extend(self.terms(min, b));
+                v
+            }
+            _ => vec![r],
         }
-        if self.rget(b) == Real::K(neutral) {
-            return a;
-        }
-        self.rnode(if min { Real::Min(a, b) } else { Real::Max(a, b) })
     }
 
     // --- facts --------------------------------------------------------------------
@@ -663,8 +697,25 @@ impl<'t> Check<'t> {
             (BOp::IsFinite(a), true) => {
                 f.finite.insert(a);
                 f.nan_free.insert(a);
+                // A finite select of a value and a non-finite literal took the value.
+                if let Op::Sel(c, x, y) = t.op(a) {
+                    let bad = |v: N| t.lit_of(v).is_some_and(|l| !l.is_finite());
+                    if bad(y) {
+                        self.assume(ctx, f, c, true);
+                        f.finite.insert(x);
+                        f.nan_free.insert(x);
+                    } else if bad(x) {
+                        self.assume(ctx, f, c, false);
+                        f.finite.insert(y);
+                        f.nan_free.insert(y);
+                    }
+                }
             }
-            (BOp::IsFinite(_), false) => {}
+            (BOp::IsFinite(a), false) => {
+                if f.finite.contains(&a) || self.finite(a, ctx) {
+                    f.dead = true;
+                }
+            }
             (BOp::Eq(a, b), true) => {
                 f.nan_free.insert(a);
                 f.nan_free.insert(b);
@@ -840,9 +891,7 @@ impl<'t> Check<'t> {
                 }
                 Op::Mul(a, b) => self.finite(a, ctx) && self.finite(b, ctx),
                 Op::Div(a, b) => {
-                    self.finite(a, ctx)
-                        && self.nan_free(b, ctx)
-                        && self.f_sign(b, ctx).is_some_and(|s| s.strict())
+                    self.finite(a, ctx) && self.nan_free(b, ctx) && self.f_sign(b, ctx).is_some_and(|s| s.strict())
                 }
                 Op::Fma(a, b, c) => self.finite(a, ctx) && self.finite(b, ctx) && self.finite(c, ctx),
                 Op::Neg(a) | Op::Abs(a) | Op::Up(a) | Op::Dn(a) | Op::Pin(a, ..) | Op::Free(a, _) => {
@@ -907,6 +956,14 @@ impl<'t> Check<'t> {
 
     fn dir_of(&self, n: N, ctx: usize) -> Dir {
         let t = self.t;
+        let known = t.known.borrow().get(&n).copied();
+        if let Some((end, _, positive, _)) = known {
+            if self.finite(n, ctx) && self.f_sign(positive, ctx) == Some(Sg::Pos) {
+                self.rule("an end a lemma proves");
+                return unrounded(if end == End::Lo { Pre::Lo } else { Pre::Hi });
+            }
+            return ANY;
+        }
         match t.op(n) {
             Op::Input(_) | Op::Free(..) => EXACT,
             Op::Lit(b) => unrounded(if f32::from_bits(b).is_nan() { Pre::Nan } else { Pre::Exact }),
@@ -950,14 +1007,30 @@ impl<'t> Check<'t> {
                         return unrounded(Pre::Hi);
                     }
                 }
-                let (da, db) = (self.operand(a, ctx), self.operand(b, ctx));
-                self.rule("min/max of same-sided ends");
-                unrounded(match (da, db) {
-                    (Pre::Exact, x) | (x, Pre::Exact) => x,
-                    (Pre::Lo, Pre::Lo) => Pre::Lo,
-                    (Pre::Hi, Pre::Hi) => Pre::Hi,
-                    _ => Pre::Any,
-                })
+                // The whole tree of nested mins (maxes) at once, its operands grouped by
+                // exact value. A min is a lower end when each group has a lower end (or
+                // exact) member, whatever the others are (a min over both ends of some
+                // values); an upper end when every operand is one. A max the same way
+                // round.
+                let min = matches!(t.op(n), Op::Min(..));
+                let own = if min { Pre::Lo } else { Pre::Hi };
+                let mut leaves = vec![];
+                self.leaves(n, min, &mut leaves);
+                if !leaves.iter().all(|&x| self.nan_free(x, ctx)) {
+                    return ANY;
+                }
+                let dirs: Vec<(Ri, Pre)> = leaves.iter().map(|&x| (self.real(x), self.operand(x, ctx))).collect();
+                let is = |d: Pre, side: Pre| d == side || d == Pre::Exact;
+                self.rule("min/max of ends");
+                if dirs.iter().all(|(_, d)| *d == Pre::Exact) {
+                    EXACT
+                } else if dirs.iter().all(|(r, _)| dirs.iter().any(|(r2, d)| r2 == r && is(*d, own))) {
+                    unrounded(own)
+                } else if dirs.iter().all(|(_, d)| is(*d, flip(own))) {
+                    unrounded(flip(own))
+                } else {
+                    ANY
+                }
             }
             Op::Up(a) | Op::Dn(a) => {
                 let up = matches!(t.op(n), Op::Up(_));
@@ -1000,6 +1073,17 @@ impl<'t> Check<'t> {
                 }
                 EXACT
             }
+        }
+    }
+
+    /// The operands of the tree of nested mins (`min`) or maxes at `n`.
+    fn leaves(&self, n: N, min: bool, out: &mut Vec<N>) {
+        match (self.t.op(n), min) {
+            (Op::Min(a, b), true) | (Op::Max(a, b), false) => {
+                self.leaves(a, min, out);
+                self.leaves(b, min, out);
+            }
+            _ => out.push(n),
         }
     }
 
@@ -1101,6 +1185,57 @@ impl<'t> Check<'t> {
         }
     }
 
+    /// Whether the f32 truth value `b` implies the same formula over the exact values
+    /// (`under`), or is implied by it (`!under`), in `ctx`. A comparison `a < b` implies
+    /// `A < B` when `a` is an upper end (or exact) and `b` a lower end; it is implied by it
+    /// when the sides are the other way round and neither can be NaN.
+    fn truth_holds(&self, b: Bn, under: bool, ctx: usize) -> bool {
+        let t = self.t;
+        let end = |x: N, want: Pre| {
+            let d = self.dir(x, ctx);
+            !d.rounded && (d.pre == want || d.pre == Pre::Exact)
+        };
+        match t.bop(b) {
+            BOp::Const(_) => true,
+            BOp::Not(x) => self.truth_holds(x, !under, ctx),
+            // Where the f32 conjunction holds, its first term does while the second is
+            // checked; where the disjunction's second term decides, the first is false.
+            BOp::And(x, y) if under => {
+                self.truth_holds(x, true, ctx) && self.truth_holds(y, true, self.push(ctx, x, true))
+            }
+            BOp::Or(x, y) if under => {
+                self.truth_holds(x, true, ctx) && self.truth_holds(y, true, self.push(ctx, x, false))
+            }
+            BOp::And(x, y) | BOp::Or(x, y) => self.truth_holds(x, under, ctx) && self.truth_holds(y, under, ctx),
+            BOp::Lt(x, y) | BOp::Le(x, y) if under => end(x, Pre::Hi) && end(y, Pre::Lo),
+            BOp::Lt(x, y) | BOp::Le(x, y) => {
+                end(x, Pre::Lo) && end(y, Pre::Hi) && self.nan_free(x, ctx) && self.nan_free(y, ctx)
+            }
+            BOp::Eq(x, y) => self.dir(x, ctx) == EXACT && self.dir(y, ctx) == EXACT,
+            BOp::IsNan(_) | BOp::IsFinite(_) => false,
+        }
+    }
+
+    /// [`Check::run`] with truth-valued outputs too: each must imply its formula over the
+    /// exact values (a cull the f32 code decides, the exact values decide too).
+    pub fn run_with(&self, outputs: &[(N, End, String)], culls: &[(Bn, String)]) -> Outcome {
+        for (b, name) in culls {
+            self.rule("comparisons of ends");
+            if !self.truth_holds(*b, true, ROOT) {
+                self.failures.borrow_mut().push(Failure {
+                    what: format!("output {name}"),
+                    found: format!(
+                        "does not imply its exact counterpart (a comparison of ends on the wrong sides): {}",
+                        self.culprit_truth(*b)
+                    ),
+                });
+            }
+        }
+        let mut o = self.run(outputs);
+        o.outputs += culls.len();
+        o
+    }
+
     /// Demand that each output is an end of its side (or exact) and NaN-free, and
     /// collect the outcome (pins are demanded as they are met).
     pub fn run(&self, outputs: &[(N, End, String)]) -> Outcome {
@@ -1111,9 +1246,7 @@ impl<'t> Check<'t> {
                 self.fail(format!("output {name} ({} end)", end_name(*end)), d);
             }
             if !self.nan_free(*n, ROOT) {
-                self.failures
-                    .borrow_mut()
-                    .push(Failure { what: format!("output {name}"), found: "may be NaN".into() });
+                self.failures.borrow_mut().push(Failure { what: format!("output {name}"), found: "may be NaN".into() });
             }
         }
         let mut rules: Vec<(&'static str, usize)> = self.used.borrow().iter().map(|(k, v)| (*k, *v)).collect();
@@ -1221,13 +1354,61 @@ fn nilsson<R: Round>(t: &Trace) -> Vec<(N, End, String)> {
     ends("z", &z).to_vec()
 }
 
-/// The variants whose composition the check covers. (`nilsson2012-depth-safe` is traced
-/// too, see [`check_traced`], but does not pass yet: its quotient `c / w` over two
-/// intervals takes the least of the four corner quotients, a rule the check lacks.)
-pub const CHECKED: &[&str] = &["la2011-safe", "nilsson2012-depth-safe"];
+/// `bbox-safe`'s corner as `bbox_safe.g` states it, with the script's constants: for the
+/// shear `s`, `n = a -+ s` and the depth `w`, `RN(n / w)` moved by the pad
+/// `RN(RN(RN(RN(|s| + |n|) + FLOOR) / w) * PAD)`, then `STEPS` steps outward.
+fn bbox_script_corner(t: &Trace, s: N, n: N, w: N, k: (f32, f32, usize)) -> [N; 2] {
+    let (pad, floor, steps) = k;
+    let q = t.div(&n, &w);
+    let p = t.mul(&t.div(&t.add(&t.add(&t.abs(&s), &t.abs(&n)), &t.lit(floor)), &w), &t.lit(pad));
+    let (mut lo, mut hi) = (t.sub(&q, &p), t.add(&q, &p));
+    for _ in 0..steps {
+        (lo, hi) = (t.next_down(&lo), t.next_up(&hi));
+    }
+    [lo, hi]
+}
+
+/// The lemma of `bbox_safe.g`, as the check applies it.
+pub const BBOX_LEMMA: &str = "bbox_safe.g: the padded corner encloses (a -+ k c) / w for finite inputs, w > 0 \
+     (a finite corner value has finite inputs: infinities and NaN propagate)";
+
+/// The traced box of `bbox` with `corner`: the tile reject (which must imply that the
+/// exact box misses the tile), with each corner of the script's formula declared an end
+/// of its exact value by [`BBOX_LEMMA`].
+fn bbox<C: crate::bounds::bbox::Corner>(
+    t: &Trace,
+    corner: &C,
+    script: &crate::bounds::proofs::Script,
+) -> Result<Vec<(Bn, String)>, String> {
+    use crate::bounds::bbox::{aabb_of, rejects};
+    use crate::tools::proofs::check::script_constant;
+    let (tri, tile) = inputs(t);
+    let (enabled, bx) = aabb_of(t, corner, &tri);
+    let constant = |name| script_constant(script, name).map(|v| v as f32);
+    let k = (constant("PAD")?, constant("FLOOR")?, constant("STEPS")? as usize);
+    for (p, c) in [(&tri.q, &tri.c0), (&tri.r, &tri.c1)] {
+        for i in 0..3 {
+            for axis in 0..2 {
+                let (a, w) = (p[i][axis], p[i][3]);
+                let s = if axis == 0 { c[i] } else { t.mul(&tri.k, &c[i]) };
+                for n in [t.sub(&a, &s), t.add(&a, &s)] {
+                    let [lo, hi] = bbox_script_corner(t, s, n, w, k);
+                    let exact = t.div(&n, &w);
+                    t.known_end(lo, End::Lo, exact, w, BBOX_LEMMA);
+                    t.known_end(hi, End::Hi, exact, w, BBOX_LEMMA);
+                }
+            }
+        }
+    }
+    Ok(vec![(rejects(t, &enabled, &bx, &tile), "tile reject".to_string())])
+}
+
+/// The variants whose composition the check covers.
+pub const CHECKED: &[&str] = &["bbox-safe", "la2011-safe", "nilsson2012-depth-safe"];
 
 /// Trace the tile answer of `id` (a variant of [`CHECKED`] or one of its planted slips
-/// `broken/planted-no-up/ID`, `broken/planted-no-dn/ID`) and check it.
+/// `broken/planted-no-up/ID`, `broken/planted-no-dn/ID`) and check it: its output ends
+/// (la2011-safe: t, u, v; nilsson2012-depth-safe: z) or its tile reject (bbox-safe).
 pub fn check(id: &str) -> Option<Outcome> {
     let base = id.rsplit('/').next()?;
     if !CHECKED.contains(&base) {
@@ -1236,11 +1417,46 @@ pub fn check(id: &str) -> Option<Outcome> {
     check_traced(id)
 }
 
+fn finish(t: &Trace, culls: Result<Vec<(Bn, String)>, String>) -> Outcome {
+    match culls {
+        Ok(culls) => Check::new(t).run_with(&[], &culls),
+        Err(e) => {
+            Outcome { failures: vec![Failure { what: "the lemma's constants".into(), found: e }], ..Outcome::default() }
+        }
+    }
+}
+
+/// `bbox-safe` checked against another text of its Gappa script (the lemma's formula
+/// takes that text's constants): a control that a script other than the code's is
+/// refused.
+pub fn check_bbox_with(script_text: &str) -> Option<Outcome> {
+    use crate::bounds::bbox::SafeCorner;
+    let text: &'static str = Box::leak(script_text.to_string().into_boxed_str());
+    let script = crate::bounds::proofs::Script { text, ..crate::bounds::proofs::BBOX_PAD };
+    let t = Trace::new();
+    Some(finish(&t, bbox(&t, &SafeCorner, &script)))
+}
+
 /// [`check`] for every variant that can be traced, [`CHECKED`] or not.
 pub fn check_traced(id: &str) -> Option<Outcome> {
     use crate::bounds::broken::planted::{NoDn, NoUp};
     let t = Trace::new();
     let base = id.rsplit('/').next()?;
+    use crate::bounds::bbox::SafeCorner;
+    use crate::bounds::broken::planted::{BandSlip, EqSlip};
+    use crate::bounds::broken::planted::{NoDnCorner, NoUpCorner};
+    let script = &crate::bounds::proofs::BBOX_PAD;
+    let culls = match (id.strip_suffix(base)?, base) {
+        ("", "bbox-safe") => Some(bbox(&t, &SafeCorner, script)),
+        ("broken/planted-no-up/", "bbox-safe") => Some(bbox(&t, &NoUpCorner, script)),
+        ("broken/planted-no-dn/", "bbox-safe") => Some(bbox(&t, &NoDnCorner, script)),
+        ("broken/planted-eq/", "bbox-safe") => Some(bbox(&t, &EqSlip, script)),
+        ("broken/planted-band/", "bbox-safe") => Some(bbox(&t, &BandSlip, script)),
+        _ => None,
+    };
+    if let Some(culls) = culls {
+        return Some(finish(&t, culls));
+    }
     let outs = match (id.strip_suffix(base)?, base) {
         ("", "la2011-safe") => la2011::<Outward>(&t),
         ("broken/planted-no-up/", "la2011-safe") => la2011::<NoUp>(&t),
@@ -1271,17 +1487,67 @@ impl Check<'_> {
         };
         for (k, kc) in kids {
             let dk = self.dir(k, kc);
-            if dk.pre == Pre::Any || (dk.rounded && !matches!(op, Op::Up(_) | Op::Dn(_) | Op::Sel(..) | Op::Neg(_) | Op::Abs(_))) {
+            if dk.pre == Pre::Any
+                || (dk.rounded && !matches!(op, Op::Up(_) | Op::Dn(_) | Op::Sel(..) | Op::Neg(_) | Op::Abs(_)))
+            {
                 return self.culprit_in(k, kc, depth + 1);
             }
         }
         let kid_dirs: Vec<String> = match op {
             Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Min(a, b) | Op::Max(a, b) => vec![
-                format!("{:?} {:?} sign {:?} rs {:?}", self.t.op(a), self.dir(a, ctx), self.f_sign(a, ctx), self.r_sign(self.real(a), ctx)),
-                format!("{:?} {:?} sign {:?} rs {:?} nanfree {}", self.t.op(b), self.dir(b, ctx), self.f_sign(b, ctx), self.r_sign(self.real(b), ctx), self.nan_free(b, ctx)),
+                format!(
+                    "{:?} {:?} sign {:?} rs {:?}",
+                    self.t.op(a),
+                    self.dir(a, ctx),
+                    self.f_sign(a, ctx),
+                    self.r_sign(self.real(a), ctx)
+                ),
+                format!(
+                    "{:?} {:?} sign {:?} rs {:?} nanfree {}",
+                    self.t.op(b),
+                    self.dir(b, ctx),
+                    self.f_sign(b, ctx),
+                    self.r_sign(self.real(b), ctx),
+                    self.nan_free(b, ctx)
+                ),
             ],
             _ => vec![],
         };
         format!("depth {depth} node {n} {op:?} -> {d:?} ctx {ctx}; kids {kid_dirs:?}")
+    }
+}
+
+impl Check<'_> {
+    /// Debug: the first comparison under `b` that does not hold.
+    pub fn culprit_truth(&self, b: Bn) -> String {
+        self.culprit_truth_in(b, true, ROOT)
+    }
+    fn culprit_truth_in(&self, b: Bn, under: bool, ctx: usize) -> String {
+        let t = self.t;
+        match t.bop(b) {
+            BOp::Not(x) => self.culprit_truth_in(x, !under, ctx),
+            BOp::And(x, y) | BOp::Or(x, y) => {
+                if !self.truth_holds(x, under, ctx) {
+                    return self.culprit_truth_in(x, under, ctx);
+                }
+                let c2 = match t.bop(b) {
+                    BOp::And(..) if under => self.push(ctx, x, true),
+                    BOp::Or(..) if under => self.push(ctx, x, false),
+                    _ => ctx,
+                };
+                self.culprit_truth_in(y, under, c2)
+            }
+            BOp::Lt(x, y) | BOp::Le(x, y) => format!(
+                "{:?} under={under}: x {:?} {:?}; y {:?} {:?} | {} / {}",
+                t.bop(b),
+                t.op(x),
+                self.dir(x, ctx),
+                t.op(y),
+                self.dir(y, ctx),
+                self.culprit_in(x, ctx, 0),
+                self.culprit_in(y, ctx, 0)
+            ),
+            o => format!("{o:?}"),
+        }
     }
 }
