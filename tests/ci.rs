@@ -121,7 +121,7 @@ fn junit_has_a_case_per_row_and_failures_name_a_replayable_witness() {
     assert_eq!(xml.matches("<failure ").count(), failing.len());
     // every suite states its method's strongest verdict
     assert_eq!(xml.matches("<property name=\"strength\"").count(), r.methods.len());
-    assert!(xml.contains("value=\"rounding lemmas checked, composition argued\""), "bbox-safe has a proof");
+    assert!(xml.contains("value=\"machine-checked for all inputs in ranges\""), "bbox-safe has a proof");
     assert!(xml.contains("<property name=\"strength\" value=\"violated\"/>"), "the planted slip is violated");
     // the planted slip fails with a witness file that replays as a violation
     let broken = failing.iter().find(|x| x.method == "broken/shrink/bbox-safe" && x.worst.is_some()).expect("caught");

@@ -40,7 +40,7 @@ fn gate_passes_on_a_fixed_budget() {
         assert!((c.embree_over + c.embree_under) * 1000 <= c.samples, "{c:?}");
     }
     // the summary names every method once with its strongest verdict: bbox-safe
-    // has a proof for all inputs (lemmas checked) and every case of the run proven
+    // has a proof for all inputs (machine-checked) and every case of the run proven
     let text = render(&r);
     let summary = text.split("per method, all regimes").nth(1).expect("a per-method summary");
     for m in &cfg.methods {
@@ -48,7 +48,7 @@ fn gate_passes_on_a_fixed_budget() {
     }
     assert!(
         summary.lines().any(|l| l.starts_with("bbox-safe ")
-            && l.contains("rounding lemmas checked, composition argued")
+            && l.contains("machine-checked for all inputs in ranges")
             && l.contains("all 140 cases proven")),
         "{summary}"
     );

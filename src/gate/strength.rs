@@ -183,6 +183,7 @@ mod tests {
             row("bbox-safe", 8, 0, 2),
             row("la2011", 10, 0, 0),
             row("lb2011", 9, 0, 1),
+            row("mam2012-safe", 10, 0, 0),
             row("wu2013-safe", 9, 1, 0),
         ];
         let s = of_rows(&rows);
@@ -191,15 +192,17 @@ mod tests {
             by,
             vec![
                 ("bbox", Strength::Violated),
-                ("bbox-safe", Strength::LemmasChecked),
+                ("bbox-safe", Strength::MachineChecked),
                 ("la2011", Strength::ProvenOnCases),
                 ("lb2011", Strength::Unproven),
+                ("mam2012-safe", Strength::LemmasChecked),
                 ("wu2013-safe", Strength::Violated),
             ]
         );
         assert_eq!((s[0].cases, s[0].violated_regimes, s[0].regimes), (20, 1, 2));
         assert!(s[1].text.contains("8 of 10 cases proven") && !s[1].ranges.is_empty() && !s[1].scripts.is_empty());
         assert!(s[2].text.contains("proven on 10 cases"));
-        assert!(s[4].text.contains("contradicts its proof"));
+        assert!(s[4].text.contains("rounding lemmas checked") && s[4].text.contains("all 10 cases proven"));
+        assert!(s[5].text.contains("contradicts its proof"));
     }
 }
