@@ -30,9 +30,9 @@ fn the_checked_variants_pass_over_their_code() {
     assert!(used("STEP") > 0 && used("quotient of ends, divisor of one strict sign") > 0, "{:?}", o.rules);
     let o = check("nilsson2012-depth-safe").expect("nilsson2012-depth-safe is checked");
     assert!(o.failures.is_empty(), "{:?}", o.failures);
-    assert_eq!(o.outputs, 2, "z: both ends");
+    assert_eq!(o.outputs, 3, "z: both ends, and the tile reject");
     assert_eq!(o.lemmas.len(), 3, "w from a plane, the w range, the residuals' range: {:?}", o.lemmas);
-    assert_eq!(o.choices.len(), 2, "the normal and the depth line: {:?}", o.choices);
+    assert_eq!(o.choices.len(), 3, "the normal, the depth line, using a plane: {:?}", o.choices);
     let o = check("bbox-safe").expect("bbox-safe is checked");
     assert!(o.failures.is_empty(), "{:?}", o.failures);
     assert_eq!(o.outputs, 1, "the tile reject");
@@ -575,4 +575,33 @@ fn the_bbox_safe_box_holds_the_exact_box_on_drawn_inputs() {
     assert_eq!(bad, 0, "bbox-safe: {bad} of {ends} ends on the wrong side");
     let (bad, _) = wrong(&PlainCorner, 20_000);
     assert!(bad > 0, "bbox's unpadded box was never found on the wrong side");
+}
+
+/// A cull must imply its exact counterpart: a tile edge below a lower end culls, below
+/// an upper end does not; a NaN test that can hold is no reason to cull; a condition the
+/// code chooses freely may only restrict a cull.
+#[test]
+fn a_cull_on_the_wrong_end_is_refused() {
+    use cullproof::tools::proofs::enclosure::{Bn, Check, Trace, N};
+    type Cull = fn(&Trace, N, N, N) -> Bn;
+    let below_lo: Cull = |t, lo, _, e| t.lt(&e, &lo);
+    let below_hi: Cull = |t, _, hi, e| t.lt(&e, &hi);
+    let nan_test: Cull = |t, lo, _, e| t.or(&t.is_nan(&e), &t.lt(&e, &lo));
+    let free_and: Cull = |t, lo, hi, e| t.and(&t.choose_truth(&t.lt(&e, &hi), "test"), &t.lt(&e, &lo));
+    let free_or: Cull = |t, lo, hi, e| t.or(&t.choose_truth(&t.lt(&e, &hi), "test"), &t.lt(&e, &lo));
+    for (name, cull, ok) in [
+        ("below a lower end", below_lo, true),
+        ("below an upper end", below_hi, false),
+        ("a NaN test", nan_test, false),
+        ("a free condition restricting it", free_and, true),
+        ("a free condition enabling it", free_or, false),
+    ] {
+        let t = Trace::new();
+        let (x, e) = (t.input("x"), t.input("e"));
+        let r = t.mul(&x, &x);
+        let (lo, hi) = (t.next_down(&r), t.next_up(&r));
+        let b = cull(&t, lo, hi, e);
+        let o = Check::new(&t).run_with(&[], &[(b, "cull".into())]);
+        assert_eq!(o.failures.is_empty(), ok, "{name}: {:?}", o.failures);
+    }
 }

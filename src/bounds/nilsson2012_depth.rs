@@ -259,6 +259,10 @@ pub const W_RANGE: &str = "derivation: a covered sample's w lies in the tile's w
 pub const C_RANGE: &str =
     "derivation: a covered sample's depth is a + c / w for a c in the residuals' range (nilsson2012_depth.rs)";
 
+/// Why a plane may be used or dropped on any condition.
+pub const PLANE_ON_CHOICE: &str =
+    "a plane's bound on w holds for every normal and offsets; dropping it only culls less";
+
 /// Why the plane's normal may be any f32 vector (see [`F32Arith::choose`]).
 pub const NORMAL_CHOICE: &str = "the planes' offsets are bounded for the normal computed, whatever it is";
 /// Why the depth line may be any f32 line.
@@ -303,8 +307,8 @@ impl<F: Clone, B: Clone> Plane<F, B> {
         let (lo, ho) = ext(oth, co);
         let finite = ar.all(&n.each_ref().map(|x| ar.is_finite(x)));
         Plane {
-            upper_on: ar.and(&finite, &same_sign(ar, &hb, &ho)),
-            lower_on: ar.and(&finite, &same_sign(ar, &lb, &lo)),
+            upper_on: ar.choose_truth(&ar.and(&finite, &same_sign(ar, &hb, &ho)), PLANE_ON_CHOICE),
+            lower_on: ar.choose_truth(&ar.and(&finite, &same_sign(ar, &lb, &lo)), PLANE_ON_CHOICE),
             n,
             upper: [hb, ho],
             lower: [lb, lo],

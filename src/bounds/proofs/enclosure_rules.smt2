@@ -1,4 +1,4 @@
-; The rules of the enclosure check (src/tools/proofs/enclosure.rs), in real arithmetic:
+; The rules of the enclosure check (src/tools/proofs/enclosure/check.rs), in real arithmetic:
 ; how an end (a value <= or >= the exact value it encloses) combines with others, and
 ; the lemma its pins use. f32 values are reals here; rounding is STEP's part. The
 ; script asserts that some rule fails: `unsat` proves them all. No prelude: the

@@ -1,322 +1,10 @@
-//! The enclosure check: the composition of a `-safe` variant's rounding argument,
-//! machine-checked over the method's own code for **every** input.
-//!
-//! The variant's f32 code (written once over [`F32Arith`], the description the gate runs)
-//! is run once over [`Trace`], an instance that records every operation instead of
-//! computing it: the result is the code's whole data flow for symbolic inputs, one
-//! graph. Over that graph [`Check`] assigns each value a **direction** towards its
-//! **exact value** (the same operations carried out in real arithmetic, without any
-//! rounding or outward step, along the branches the f32 code takes):
-//!
-//! - `Exact`: the f32 value is its exact value (inputs, literals, a product by 0 or ±1);
-//! - `Lo` / `Hi`: it is `<=` / `>=` its exact value;
-//! - a *rounded* direction: the f32 value is the rounding to nearest of a real that has
-//!   that direction (the result of `+ - * /` before its outward step).
-//!
-//! Directions follow fixed rules, each a lemma: rounding then stepping outward in the
-//! right direction encloses (STEP, checked by z3 in `step.smt2`); `+`, `-` combine ends
-//! of one side (a - b with a lower and b upper is lower); a product or quotient keeps or
-//! flips sides by the signs the code has established (a quotient `a / b` is an upper end
-//! of `A / B` when `a` is upper and `B > 0`, and `b` is lower when `a >= 0`, upper when
-//! `a <= 0`: the rules are listed in [`RULES`] and checked in real arithmetic by z3
-//! ([`rules_script`])); min and max of same-sided ends, of NaN-free values, keep the side;
-//! `max(|lo|, |hi|)` of one interval is an upper end of `|x|`; a select joins the
-//! directions of its two arms, each taken under its branch's condition. Conditions the
-//! code tests become facts inside their branch: the sign of a value compared with 0 (and
-//! of its exact value, when the value is an end of the right side), finiteness, NaN-free
-//! values, exact products (a factor tested equal to 0 or ±1).
-//!
-//! A value becomes unusable (`Any`) as soon as no rule applies: a rounded result used
-//! without its outward step, a step in the wrong direction, a min of a lower and an
-//! upper end, a quotient whose divisor sign is not established. The check then demands
-//! that every **output** end of the tile answer is an end of its side (or exact) and
-//! NaN-free, and that every value the code **pins** ([`F32Arith::pin`], a step whose
-//! argument is a real-arithmetic lemma, such as "a chord through lower ends lies below the
-//! exact chord") is an end of the side the lemma needs. Those lemmas are in [`LEMMAS`],
-//! each checked by z3 in real arithmetic ([`lemmas_script`]).
-//!
-//! What stays an argument: the method's derivation in real arithmetic (that the exact
-//! values bound the covered samples: the method's file), and that the branches the f32
-//! code takes on its ends are the conservative ones (a comparison of a lower end with 0
-//! that says "positive" is one the exact value agrees with). The check does not look at
-//! the tile answer's Empty flag: it is a comparison of checked ends.
+//! The directions of the traced values towards their exact values, the rules that give
+//! them, the facts that hold inside a branch, and the demands on outputs and pins.
 
-use crate::bounds::arith::{End, F32Arith};
+use super::trace::{BOp, Bn, Op, Pool, Trace, N};
+use crate::bounds::arith::End;
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
-
-/// A value of the trace (an index into its operations).
-pub type N = u32;
-/// A truth value of the trace.
-pub type Bn = u32;
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-enum Op {
-    Input(u32),
-    Lit(u32),
-    Add(N, N),
-    Sub(N, N),
-    Mul(N, N),
-    Div(N, N),
-    Fma(N, N, N),
-    Neg(N),
-    Abs(N),
-    Min(N, N),
-    Max(N, N),
-    Up(N),
-    Dn(N),
-    Sel(Bn, N, N),
-    Pin(N, End, u32),
-    /// A value the code may choose freely.
-    Free(N, u32),
-    /// One end of a pinned range `[lo, hi]`: which, whether its quantity is > 0, lemma.
-    Range(N, N, End, bool, u32),
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-enum BOp {
-    Const(bool),
-    Lt(N, N),
-    Le(N, N),
-    Eq(N, N),
-    IsNan(N),
-    IsFinite(N),
-    And(Bn, Bn),
-    Or(Bn, Bn),
-    Not(Bn),
-}
-
-/// Interned nodes.
-struct Pool<T> {
-    nodes: Vec<T>,
-    index: HashMap<T, u32>,
-}
-
-impl<T> Default for Pool<T> {
-    fn default() -> Self {
-        Pool { nodes: vec![], index: HashMap::new() }
-    }
-}
-
-impl<T: Copy + Eq + std::hash::Hash> Pool<T> {
-    fn add(&mut self, t: T) -> u32 {
-        if let Some(&i) = self.index.get(&t) {
-            return i;
-        }
-        let i = self.nodes.len() as u32;
-        self.nodes.push(t);
-        self.index.insert(t, i);
-        i
-    }
-}
-
-/// The recording instance of [`F32Arith`]: every operation becomes a node of one graph
-/// (equal operations on equal operands are one node). Truth values with a constant
-/// operand are folded, so that code paths the arithmetic rules out at compile time (a
-/// factor 1 of the x axis) leave no branch behind.
-#[derive(Default)]
-pub struct Trace {
-    f: RefCell<Pool<Op>>,
-    b: RefCell<Pool<BOp>>,
-    inputs: RefCell<Vec<String>>,
-    lemmas: RefCell<Vec<&'static str>>,
-    choices: RefCell<Vec<&'static str>>,
-    /// Values a lemma proves ends of an exact value: side, the exact value's node, the
-    /// value that must be > 0, the lemma.
-    known: RefCell<HashMap<N, (End, N, N, u32)>>,
-}
-
-impl Trace {
-    pub fn new() -> Self {
-        Self::default()
-    }
-    /// A fresh input named `name` (any f32 value).
-    pub fn input(&self, name: &str) -> N {
-        let mut ins = self.inputs.borrow_mut();
-        ins.push(name.to_string());
-        let i = ins.len() as u32 - 1;
-        self.f.borrow_mut().add(Op::Input(i))
-    }
-    /// Declare, by the lemma named `lemma`, `node` an end (`end`) of the exact value of
-    /// `exact`, wherever `node` is finite and `positive` is > 0. The lemma's proof must
-    /// be about exactly the operations that compute `node` (the caller builds them from
-    /// the lemma's own formula: equal operations are one node, so a code that computes
-    /// anything else never meets the declared node).
-    pub fn known_end(&self, node: N, end: End, exact: N, positive: N, lemma: &'static str) {
-        let i = self.note(&self.lemmas, lemma);
-        self.known.borrow_mut().insert(node, (end, exact, positive, i));
-    }
-
-    /// How many operations the trace holds.
-    pub fn len(&self) -> usize {
-        self.f.borrow().nodes.len()
-    }
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-    fn op(&self, n: N) -> Op {
-        self.f.borrow().nodes[n as usize]
-    }
-    fn bop(&self, b: Bn) -> BOp {
-        self.b.borrow().nodes[b as usize]
-    }
-    fn node(&self, o: Op) -> N {
-        self.f.borrow_mut().add(o)
-    }
-    fn bnode(&self, o: BOp) -> Bn {
-        self.b.borrow_mut().add(o)
-    }
-    fn note(&self, list: &RefCell<Vec<&'static str>>, text: &'static str) -> u32 {
-        let mut ls = list.borrow_mut();
-        match ls.iter().position(|l| *l == text) {
-            Some(i) => i as u32,
-            None => {
-                ls.push(text);
-                ls.len() as u32 - 1
-            }
-        }
-    }
-    fn lit_of(&self, n: N) -> Option<f32> {
-        match self.op(n) {
-            Op::Lit(b) => Some(f32::from_bits(b)),
-            _ => None,
-        }
-    }
-    fn const_of(&self, b: Bn) -> Option<bool> {
-        match self.bop(b) {
-            BOp::Const(v) => Some(v),
-            _ => None,
-        }
-    }
-}
-
-impl F32Arith for Trace {
-    type F = N;
-    type B = Bn;
-
-    fn lit(&self, v: f32) -> N {
-        // One NaN: every NaN literal means "no value".
-        let v = if v.is_nan() { f32::NAN } else { v };
-        self.node(Op::Lit(v.to_bits()))
-    }
-    fn add(&self, a: &N, b: &N) -> N {
-        self.node(Op::Add(*a, *b))
-    }
-    fn sub(&self, a: &N, b: &N) -> N {
-        self.node(Op::Sub(*a, *b))
-    }
-    fn mul(&self, a: &N, b: &N) -> N {
-        self.node(Op::Mul(*a, *b))
-    }
-    fn div(&self, a: &N, b: &N) -> N {
-        self.node(Op::Div(*a, *b))
-    }
-    fn fma(&self, a: &N, b: &N, c: &N) -> N {
-        self.node(Op::Fma(*a, *b, *c))
-    }
-    fn neg(&self, a: &N) -> N {
-        match self.lit_of(*a) {
-            Some(v) => self.lit(-v),
-            None => self.node(Op::Neg(*a)),
-        }
-    }
-    fn abs(&self, a: &N) -> N {
-        match self.lit_of(*a) {
-            Some(v) => self.lit(v.abs()),
-            None => self.node(Op::Abs(*a)),
-        }
-    }
-    fn min(&self, a: &N, b: &N) -> N {
-        self.node(Op::Min(*a, *b))
-    }
-    fn max(&self, a: &N, b: &N) -> N {
-        self.node(Op::Max(*a, *b))
-    }
-    fn next_up(&self, a: &N) -> N {
-        self.node(Op::Up(*a))
-    }
-    fn next_down(&self, a: &N) -> N {
-        self.node(Op::Dn(*a))
-    }
-    fn lt(&self, a: &N, b: &N) -> Bn {
-        match (self.lit_of(*a), self.lit_of(*b)) {
-            (Some(x), Some(y)) => self.truth(x < y),
-            _ => self.bnode(BOp::Lt(*a, *b)),
-        }
-    }
-    fn le(&self, a: &N, b: &N) -> Bn {
-        match (self.lit_of(*a), self.lit_of(*b)) {
-            (Some(x), Some(y)) => self.truth(x <= y),
-            _ => self.bnode(BOp::Le(*a, *b)),
-        }
-    }
-    fn eq(&self, a: &N, b: &N) -> Bn {
-        match (self.lit_of(*a), self.lit_of(*b)) {
-            (Some(x), Some(y)) => self.truth(x == y),
-            _ => self.bnode(BOp::Eq(*a, *b)),
-        }
-    }
-    fn is_nan(&self, a: &N) -> Bn {
-        match self.lit_of(*a) {
-            Some(x) => self.truth(x.is_nan()),
-            None => self.bnode(BOp::IsNan(*a)),
-        }
-    }
-    fn is_finite(&self, a: &N) -> Bn {
-        match self.lit_of(*a) {
-            Some(x) => self.truth(x.is_finite()),
-            None => self.bnode(BOp::IsFinite(*a)),
-        }
-    }
-    fn truth(&self, b: bool) -> Bn {
-        self.bnode(BOp::Const(b))
-    }
-    fn and(&self, a: &Bn, b: &Bn) -> Bn {
-        match (self.const_of(*a), self.const_of(*b)) {
-            (Some(false), _) | (_, Some(false)) => self.truth(false),
-            (Some(true), _) => *b,
-            (_, Some(true)) => *a,
-            _ if a == b => *a,
-            _ => self.bnode(BOp::And(*a, *b)),
-        }
-    }
-    fn or(&self, a: &Bn, b: &Bn) -> Bn {
-        match (self.const_of(*a), self.const_of(*b)) {
-            (Some(true), _) | (_, Some(true)) => self.truth(true),
-            (Some(false), _) => *b,
-            (_, Some(false)) => *a,
-            _ if a == b => *a,
-            _ => self.bnode(BOp::Or(*a, *b)),
-        }
-    }
-    fn not(&self, a: &Bn) -> Bn {
-        match self.bop(*a) {
-            BOp::Const(v) => self.truth(!v),
-            BOp::Not(x) => x,
-            _ => self.bnode(BOp::Not(*a)),
-        }
-    }
-    fn select(&self, c: &Bn, a: &N, b: &N) -> N {
-        match self.const_of(*c) {
-            Some(true) => *a,
-            Some(false) => *b,
-            None if a == b => *a,
-            None => self.node(Op::Sel(*c, *a, *b)),
-        }
-    }
-    fn pin(&self, a: &N, end: End, lemma: &'static str) -> N {
-        let i = self.note(&self.lemmas, lemma);
-        self.node(Op::Pin(*a, end, i))
-    }
-    fn pin_range(&self, v: &[N; 2], positive: bool, lemma: &'static str) -> [N; 2] {
-        let i = self.note(&self.lemmas, lemma);
-        [End::Lo, End::Hi].map(|e| self.node(Op::Range(v[0], v[1], e, positive, i)))
-    }
-    fn choose(&self, a: &N, why: &'static str) -> N {
-        let i = self.note(&self.choices, why);
-        self.node(Op::Free(*a, i))
-    }
-}
 
 // ---------------------------------------------------------------------------------
 // Exact values.
@@ -667,6 +355,7 @@ impl<'t> Check<'t> {
                 }
             }
             (BOp::Not(x), v) => self.assume(ctx, f, x, !v),
+            (BOp::Free(x, _), v) => self.assume(ctx, f, x, v),
             (BOp::And(x, y), true) | (BOp::Or(x, y), false) => {
                 self.assume(ctx, f, x, v);
                 self.assume(ctx, f, y, v);
@@ -1190,6 +879,12 @@ impl<'t> Check<'t> {
     /// `A < B` when `a` is an upper end (or exact) and `b` a lower end; it is implied by it
     /// when the sides are the other way round and neither can be NaN.
     fn truth_holds(&self, b: Bn, under: bool, ctx: usize) -> bool {
+        self.truth_in(b, under, false, ctx)
+    }
+
+    /// [`Check::truth_holds`]; `conj`: `b` is a term of a conjunction that must imply its
+    /// counterpart (where a free condition may stand: it only restricts).
+    fn truth_in(&self, b: Bn, under: bool, conj: bool, ctx: usize) -> bool {
         let t = self.t;
         let end = |x: N, want: Pre| {
             let d = self.dir(x, ctx);
@@ -1197,22 +892,34 @@ impl<'t> Check<'t> {
         };
         match t.bop(b) {
             BOp::Const(_) => true,
-            BOp::Not(x) => self.truth_holds(x, !under, ctx),
+            BOp::Not(x) => self.truth_in(x, !under, false, ctx),
+            // A free condition only ever restricts a cull: allowed as a term of a
+            // conjunction that implies its counterpart, nowhere else.
+            BOp::Free(..) => under && conj,
             // Where the f32 conjunction holds, its first term does while the second is
             // checked; where the disjunction's second term decides, the first is false.
             BOp::And(x, y) if under => {
-                self.truth_holds(x, true, ctx) && self.truth_holds(y, true, self.push(ctx, x, true))
+                self.truth_in(x, true, true, ctx) && self.truth_in(y, true, true, self.push(ctx, x, true))
             }
             BOp::Or(x, y) if under => {
-                self.truth_holds(x, true, ctx) && self.truth_holds(y, true, self.push(ctx, x, false))
+                self.truth_in(x, true, false, ctx) && self.truth_in(y, true, false, self.push(ctx, x, false))
             }
-            BOp::And(x, y) | BOp::Or(x, y) => self.truth_holds(x, under, ctx) && self.truth_holds(y, under, ctx),
+            // Where the exact disjunction must bring the f32 one about, the f32 first term
+            // is false while the second is checked.
+            BOp::Or(x, y) => {
+                self.truth_in(x, false, false, ctx) && self.truth_in(y, false, false, self.push(ctx, x, false))
+            }
+            BOp::And(x, y) => self.truth_in(x, false, false, ctx) && self.truth_in(y, false, false, ctx),
             BOp::Lt(x, y) | BOp::Le(x, y) if under => end(x, Pre::Hi) && end(y, Pre::Lo),
             BOp::Lt(x, y) | BOp::Le(x, y) => {
                 end(x, Pre::Lo) && end(y, Pre::Hi) && self.nan_free(x, ctx) && self.nan_free(y, ctx)
             }
             BOp::Eq(x, y) => self.dir(x, ctx) == EXACT && self.dir(y, ctx) == EXACT,
-            BOp::IsNan(_) | BOp::IsFinite(_) => false,
+            // Exact values are real numbers: never NaN, always finite. So a NaN test
+            // implies its counterpart only where it cannot hold, and a finiteness test is
+            // implied by its counterpart only where the value is finite.
+            BOp::IsNan(x) => !under || self.nan_free(x, ctx),
+            BOp::IsFinite(x) => under || self.finite(x, ctx),
         }
     }
 
@@ -1311,164 +1018,6 @@ fn mul_sign(a: Option<Sg>, b: Option<Sg>) -> Option<Sg> {
     })
 }
 
-// ---------------------------------------------------------------------------------
-// The variants checked.
-
-use crate::bounds::arith::TriOf;
-use crate::bounds::round::{Outward, Round};
-
-/// A triangle and a tile of fresh inputs.
-fn inputs(t: &Trace) -> (TriOf<N>, [N; 4]) {
-    let v = |p: &str, i: usize| ["x", "y", "z", "w"].map(|c| t.input(&format!("{p}{i}.{c}")));
-    let tri = TriOf {
-        q: [0, 1, 2].map(|i| v("q", i)),
-        r: [0, 1, 2].map(|i| v("r", i)),
-        c0: [0, 1, 2].map(|i| t.input(&format!("c0.{i}"))),
-        c1: [0, 1, 2].map(|i| t.input(&format!("c1.{i}"))),
-        k: t.input("k"),
-    };
-    let tile = ["x0", "y0", "x1", "y1"].map(|n| t.input(n));
-    (tri, tile)
-}
-
-fn ends(name: &str, v: &[N; 2]) -> [(N, End, String); 2] {
-    [(v[0], End::Lo, format!("{name} lower")), (v[1], End::Hi, format!("{name} upper"))]
-}
-
-/// The traced tile answer of `la2011` written with the arithmetic `R`: its outputs.
-fn la2011<R: Round>(t: &Trace) -> Vec<(N, End, String)> {
-    use crate::bounds::la2011::{setup_of, tile_answer};
-    let (tri, tile) = inputs(t);
-    let s = setup_of::<R, Trace>(t, &tri);
-    let (_, tt, u, v) = tile_answer::<R, Trace>(t, &s, &tile);
-    [ends("t", &tt), ends("u", &u), ends("v", &v)].concat()
-}
-
-/// The traced tile answer of `nilsson2012-depth` written with the arithmetic `R`: the
-/// depth range's ends.
-fn nilsson<R: Round>(t: &Trace) -> Vec<(N, End, String)> {
-    use crate::bounds::nilsson2012_depth::{setup_of, tile_answer};
-    let (tri, tile) = inputs(t);
-    let s = setup_of::<R, Trace>(t, &tri);
-    let (_, z) = tile_answer::<R, Trace>(t, &s, &tile);
-    ends("z", &z).to_vec()
-}
-
-/// `bbox-safe`'s corner as `bbox_safe.g` states it, with the script's constants: for the
-/// shear `s`, `n = a -+ s` and the depth `w`, `RN(n / w)` moved by the pad
-/// `RN(RN(RN(RN(|s| + |n|) + FLOOR) / w) * PAD)`, then `STEPS` steps outward.
-fn bbox_script_corner(t: &Trace, s: N, n: N, w: N, k: (f32, f32, usize)) -> [N; 2] {
-    let (pad, floor, steps) = k;
-    let q = t.div(&n, &w);
-    let p = t.mul(&t.div(&t.add(&t.add(&t.abs(&s), &t.abs(&n)), &t.lit(floor)), &w), &t.lit(pad));
-    let (mut lo, mut hi) = (t.sub(&q, &p), t.add(&q, &p));
-    for _ in 0..steps {
-        (lo, hi) = (t.next_down(&lo), t.next_up(&hi));
-    }
-    [lo, hi]
-}
-
-/// The lemma of `bbox_safe.g`, as the check applies it.
-pub const BBOX_LEMMA: &str = "bbox_safe.g: the padded corner encloses (a -+ k c) / w for finite inputs, w > 0 \
-     (a finite corner value has finite inputs: infinities and NaN propagate)";
-
-/// The traced box of `bbox` with `corner`: the tile reject (which must imply that the
-/// exact box misses the tile), with each corner of the script's formula declared an end
-/// of its exact value by [`BBOX_LEMMA`].
-fn bbox<C: crate::bounds::bbox::Corner>(
-    t: &Trace,
-    corner: &C,
-    script: &crate::bounds::proofs::Script,
-) -> Result<Vec<(Bn, String)>, String> {
-    use crate::bounds::bbox::{aabb_of, rejects};
-    use crate::tools::proofs::check::script_constant;
-    let (tri, tile) = inputs(t);
-    let (enabled, bx) = aabb_of(t, corner, &tri);
-    let constant = |name| script_constant(script, name).map(|v| v as f32);
-    let k = (constant("PAD")?, constant("FLOOR")?, constant("STEPS")? as usize);
-    for (p, c) in [(&tri.q, &tri.c0), (&tri.r, &tri.c1)] {
-        for i in 0..3 {
-            for axis in 0..2 {
-                let (a, w) = (p[i][axis], p[i][3]);
-                let s = if axis == 0 { c[i] } else { t.mul(&tri.k, &c[i]) };
-                for n in [t.sub(&a, &s), t.add(&a, &s)] {
-                    let [lo, hi] = bbox_script_corner(t, s, n, w, k);
-                    let exact = t.div(&n, &w);
-                    t.known_end(lo, End::Lo, exact, w, BBOX_LEMMA);
-                    t.known_end(hi, End::Hi, exact, w, BBOX_LEMMA);
-                }
-            }
-        }
-    }
-    Ok(vec![(rejects(t, &enabled, &bx, &tile), "tile reject".to_string())])
-}
-
-/// The variants whose composition the check covers.
-pub const CHECKED: &[&str] = &["bbox-safe", "la2011-safe", "nilsson2012-depth-safe"];
-
-/// Trace the tile answer of `id` (a variant of [`CHECKED`] or one of its planted slips
-/// `broken/planted-no-up/ID`, `broken/planted-no-dn/ID`) and check it: its output ends
-/// (la2011-safe: t, u, v; nilsson2012-depth-safe: z) or its tile reject (bbox-safe).
-pub fn check(id: &str) -> Option<Outcome> {
-    let base = id.rsplit('/').next()?;
-    if !CHECKED.contains(&base) {
-        return None;
-    }
-    check_traced(id)
-}
-
-fn finish(t: &Trace, culls: Result<Vec<(Bn, String)>, String>) -> Outcome {
-    match culls {
-        Ok(culls) => Check::new(t).run_with(&[], &culls),
-        Err(e) => {
-            Outcome { failures: vec![Failure { what: "the lemma's constants".into(), found: e }], ..Outcome::default() }
-        }
-    }
-}
-
-/// `bbox-safe` checked against another text of its Gappa script (the lemma's formula
-/// takes that text's constants): a control that a script other than the code's is
-/// refused.
-pub fn check_bbox_with(script_text: &str) -> Option<Outcome> {
-    use crate::bounds::bbox::SafeCorner;
-    let text: &'static str = Box::leak(script_text.to_string().into_boxed_str());
-    let script = crate::bounds::proofs::Script { text, ..crate::bounds::proofs::BBOX_PAD };
-    let t = Trace::new();
-    Some(finish(&t, bbox(&t, &SafeCorner, &script)))
-}
-
-/// [`check`] for every variant that can be traced, [`CHECKED`] or not.
-pub fn check_traced(id: &str) -> Option<Outcome> {
-    use crate::bounds::broken::planted::{NoDn, NoUp};
-    let t = Trace::new();
-    let base = id.rsplit('/').next()?;
-    use crate::bounds::bbox::SafeCorner;
-    use crate::bounds::broken::planted::{BandSlip, EqSlip};
-    use crate::bounds::broken::planted::{NoDnCorner, NoUpCorner};
-    let script = &crate::bounds::proofs::BBOX_PAD;
-    let culls = match (id.strip_suffix(base)?, base) {
-        ("", "bbox-safe") => Some(bbox(&t, &SafeCorner, script)),
-        ("broken/planted-no-up/", "bbox-safe") => Some(bbox(&t, &NoUpCorner, script)),
-        ("broken/planted-no-dn/", "bbox-safe") => Some(bbox(&t, &NoDnCorner, script)),
-        ("broken/planted-eq/", "bbox-safe") => Some(bbox(&t, &EqSlip, script)),
-        ("broken/planted-band/", "bbox-safe") => Some(bbox(&t, &BandSlip, script)),
-        _ => None,
-    };
-    if let Some(culls) = culls {
-        return Some(finish(&t, culls));
-    }
-    let outs = match (id.strip_suffix(base)?, base) {
-        ("", "la2011-safe") => la2011::<Outward>(&t),
-        ("broken/planted-no-up/", "la2011-safe") => la2011::<NoUp>(&t),
-        ("broken/planted-no-dn/", "la2011-safe") => la2011::<NoDn>(&t),
-        ("", "nilsson2012-depth-safe") => nilsson::<Outward>(&t),
-        ("broken/planted-no-up/", "nilsson2012-depth-safe") => nilsson::<NoUp>(&t),
-        ("broken/planted-no-dn/", "nilsson2012-depth-safe") => nilsson::<NoDn>(&t),
-        _ => return None,
-    };
-    Some(Check::new(&t).run(&outs))
-}
-
 impl Check<'_> {
     /// Debug: the first operation (deepest) that is `Any` under `n` at the root.
     pub fn culprit(&self, n: N) -> String {
@@ -1532,7 +1081,7 @@ impl Check<'_> {
                 }
                 let c2 = match t.bop(b) {
                     BOp::And(..) if under => self.push(ctx, x, true),
-                    BOp::Or(..) if under => self.push(ctx, x, false),
+                    BOp::Or(..) => self.push(ctx, x, false),
                     _ => ctx,
                 };
                 self.culprit_truth_in(y, under, c2)

@@ -1,0 +1,168 @@
+//! The variants the enclosure check traces, and what each must show.
+
+use super::check::{Check, Failure, Outcome};
+use super::trace::{Bn, Trace, N};
+use crate::bounds::arith::{End, F32Arith};
+// ---------------------------------------------------------------------------------
+// The variants checked.
+
+use crate::bounds::arith::TriOf;
+use crate::bounds::round::{Outward, Round};
+
+/// A triangle and a tile of fresh inputs.
+fn inputs(t: &Trace) -> (TriOf<N>, [N; 4]) {
+    let v = |p: &str, i: usize| ["x", "y", "z", "w"].map(|c| t.input(&format!("{p}{i}.{c}")));
+    let tri = TriOf {
+        q: [0, 1, 2].map(|i| v("q", i)),
+        r: [0, 1, 2].map(|i| v("r", i)),
+        c0: [0, 1, 2].map(|i| t.input(&format!("c0.{i}"))),
+        c1: [0, 1, 2].map(|i| t.input(&format!("c1.{i}"))),
+        k: t.input("k"),
+    };
+    let tile = ["x0", "y0", "x1", "y1"].map(|n| t.input(n));
+    (tri, tile)
+}
+
+/// What a traced tile answer must show: its output ends (each of its side), and its
+/// culls (each implying its exact counterpart).
+type Demands = (Vec<(N, End, String)>, Vec<(Bn, String)>);
+
+fn ends(name: &str, v: &[N; 2]) -> [(N, End, String); 2] {
+    [(v[0], End::Lo, format!("{name} lower")), (v[1], End::Hi, format!("{name} upper"))]
+}
+
+/// The traced tile answer of `la2011` written with the arithmetic `R`: its outputs.
+fn la2011<R: Round>(t: &Trace) -> Demands {
+    use crate::bounds::la2011::{setup_of, tile_answer};
+    let (tri, tile) = inputs(t);
+    let s = setup_of::<R, Trace>(t, &tri);
+    // (Its Empty flag is not among the demands: the class flags of its lens shears enter
+    // it in both directions, which needs case reasoning the check does not do.)
+    let (_, tt, u, v) = tile_answer::<R, Trace>(t, &s, &tile);
+    ([ends("t", &tt), ends("u", &u), ends("v", &v)].concat(), vec![])
+}
+
+/// The traced tile answer of `nilsson2012-depth` written with the arithmetic `R`: the
+/// depth range's ends.
+fn nilsson<R: Round>(t: &Trace) -> Demands {
+    use crate::bounds::nilsson2012_depth::{setup_of, tile_answer};
+    let (tri, tile) = inputs(t);
+    let s = setup_of::<R, Trace>(t, &tri);
+    let (nonempty, z) = tile_answer::<R, Trace>(t, &s, &tile);
+    (ends("z", &z).to_vec(), vec![(t.not(&nonempty), "tile reject".into())])
+}
+
+/// `bbox-safe`'s corner as `bbox_safe.g` states it, with the script's constants: for the
+/// shear `s`, `n = a -+ s` and the depth `w`, `RN(n / w)` moved by the pad
+/// `RN(RN(RN(RN(|s| + |n|) + FLOOR) / w) * PAD)`, then `STEPS` steps outward.
+fn bbox_script_corner(t: &Trace, s: N, n: N, w: N, k: (f32, f32, usize)) -> [N; 2] {
+    let (pad, floor, steps) = k;
+    let q = t.div(&n, &w);
+    let p = t.mul(&t.div(&t.add(&t.add(&t.abs(&s), &t.abs(&n)), &t.lit(floor)), &w), &t.lit(pad));
+    let (mut lo, mut hi) = (t.sub(&q, &p), t.add(&q, &p));
+    for _ in 0..steps {
+        (lo, hi) = (t.next_down(&lo), t.next_up(&hi));
+    }
+    [lo, hi]
+}
+
+/// The lemma of `bbox_safe.g`, as the check applies it.
+pub const BBOX_LEMMA: &str = "bbox_safe.g: the padded corner encloses (a -+ k c) / w for finite inputs, w > 0 \
+     (a finite corner value has finite inputs: infinities and NaN propagate)";
+
+/// The traced box of `bbox` with `corner`: the tile reject (which must imply that the
+/// exact box misses the tile), with each corner of the script's formula declared an end
+/// of its exact value by [`BBOX_LEMMA`].
+fn bbox<C: crate::bounds::bbox::Corner>(
+    t: &Trace,
+    corner: &C,
+    script: &crate::bounds::proofs::Script,
+) -> Result<Vec<(Bn, String)>, String> {
+    use crate::bounds::bbox::{aabb_of, rejects};
+    use crate::tools::proofs::check::script_constant;
+    let (tri, tile) = inputs(t);
+    let (enabled, bx) = aabb_of(t, corner, &tri);
+    let constant = |name| script_constant(script, name).map(|v| v as f32);
+    let k = (constant("PAD")?, constant("FLOOR")?, constant("STEPS")? as usize);
+    for (p, c) in [(&tri.q, &tri.c0), (&tri.r, &tri.c1)] {
+        for i in 0..3 {
+            for axis in 0..2 {
+                let (a, w) = (p[i][axis], p[i][3]);
+                let s = if axis == 0 { c[i] } else { t.mul(&tri.k, &c[i]) };
+                for n in [t.sub(&a, &s), t.add(&a, &s)] {
+                    let [lo, hi] = bbox_script_corner(t, s, n, w, k);
+                    let exact = t.div(&n, &w);
+                    t.known_end(lo, End::Lo, exact, w, BBOX_LEMMA);
+                    t.known_end(hi, End::Hi, exact, w, BBOX_LEMMA);
+                }
+            }
+        }
+    }
+    Ok(vec![(rejects(t, &enabled, &bx, &tile), "tile reject".to_string())])
+}
+
+/// The variants whose composition the check covers.
+pub const CHECKED: &[&str] = &["bbox-safe", "la2011-safe", "nilsson2012-depth-safe"];
+
+/// Trace the tile answer of `id` (a variant of [`CHECKED`] or one of its planted slips
+/// `broken/planted-no-up/ID`, `broken/planted-no-dn/ID`) and check it: its output ends
+/// (la2011-safe: t, u, v; nilsson2012-depth-safe: z) or its tile reject (bbox-safe).
+pub fn check(id: &str) -> Option<Outcome> {
+    let base = id.rsplit('/').next()?;
+    if !CHECKED.contains(&base) {
+        return None;
+    }
+    check_traced(id)
+}
+
+fn finish(t: &Trace, culls: Result<Vec<(Bn, String)>, String>) -> Outcome {
+    match culls {
+        Ok(culls) => Check::new(t).run_with(&[], &culls),
+        Err(e) => {
+            Outcome { failures: vec![Failure { what: "the lemma's constants".into(), found: e }], ..Outcome::default() }
+        }
+    }
+}
+
+/// `bbox-safe` checked against another text of its Gappa script (the lemma's formula
+/// takes that text's constants): a control that a script other than the code's is
+/// refused.
+pub fn check_bbox_with(script_text: &str) -> Option<Outcome> {
+    use crate::bounds::bbox::SafeCorner;
+    let text: &'static str = Box::leak(script_text.to_string().into_boxed_str());
+    let script = crate::bounds::proofs::Script { text, ..crate::bounds::proofs::BBOX_PAD };
+    let t = Trace::new();
+    Some(finish(&t, bbox(&t, &SafeCorner, &script)))
+}
+
+/// [`check`] for every variant that can be traced, [`CHECKED`] or not.
+pub fn check_traced(id: &str) -> Option<Outcome> {
+    use crate::bounds::broken::planted::{NoDn, NoUp};
+    let t = Trace::new();
+    let base = id.rsplit('/').next()?;
+    use crate::bounds::bbox::SafeCorner;
+    use crate::bounds::broken::planted::{BandSlip, EqSlip};
+    use crate::bounds::broken::planted::{NoDnCorner, NoUpCorner};
+    let script = &crate::bounds::proofs::BBOX_PAD;
+    let culls = match (id.strip_suffix(base)?, base) {
+        ("", "bbox-safe") => Some(bbox(&t, &SafeCorner, script)),
+        ("broken/planted-no-up/", "bbox-safe") => Some(bbox(&t, &NoUpCorner, script)),
+        ("broken/planted-no-dn/", "bbox-safe") => Some(bbox(&t, &NoDnCorner, script)),
+        ("broken/planted-eq/", "bbox-safe") => Some(bbox(&t, &EqSlip, script)),
+        ("broken/planted-band/", "bbox-safe") => Some(bbox(&t, &BandSlip, script)),
+        _ => None,
+    };
+    if let Some(culls) = culls {
+        return Some(finish(&t, culls));
+    }
+    let outs = match (id.strip_suffix(base)?, base) {
+        ("", "la2011-safe") => la2011::<Outward>(&t),
+        ("broken/planted-no-up/", "la2011-safe") => la2011::<NoUp>(&t),
+        ("broken/planted-no-dn/", "la2011-safe") => la2011::<NoDn>(&t),
+        ("", "nilsson2012-depth-safe") => nilsson::<Outward>(&t),
+        ("broken/planted-no-up/", "nilsson2012-depth-safe") => nilsson::<NoUp>(&t),
+        ("broken/planted-no-dn/", "nilsson2012-depth-safe") => nilsson::<NoDn>(&t),
+        _ => return None,
+    };
+    Some(Check::new(&t).run_with(&outs.0, &outs.1))
+}
