@@ -24,7 +24,7 @@ use std::cmp::Ordering;
 fn the_checked_variants_pass_over_their_code() {
     let o = check("la2011-safe").expect("la2011-safe is checked");
     assert!(o.failures.is_empty(), "{:?}", o.failures);
-    assert_eq!(o.outputs, 6, "t, u, v: both ends each");
+    assert_eq!(o.outputs, 7, "t, u, v: both ends each, and the tile reject");
     assert!(o.pins > 0 && o.lemmas.len() == 1, "the chord's pins: {} {:?}", o.pins, o.lemmas);
     let used = |r: &str| o.rules.iter().find(|(n, _)| *n == r).map_or(0, |x| x.1);
     assert!(used("STEP") > 0 && used("quotient of ends, divisor of one strict sign") > 0, "{:?}", o.rules);
@@ -139,6 +139,9 @@ fn arith(op: char, a: &X, b: &X) -> X {
     }
 }
 
+/// A truth value of the pair arithmetic.
+type T = (bool, Option<bool>);
+
 /// An f32 value and its exact value.
 #[derive(Clone, Debug)]
 struct V(f32, X);
@@ -161,7 +164,9 @@ fn on_side(v: &V, end: End) -> bool {
 
 impl F32Arith for Pair {
     type F = V;
-    type B = bool;
+    /// A truth value: the f32 one, and its counterpart over the exact values (None where
+    /// an exact value is undefined).
+    type B = (bool, Option<bool>);
     fn lit(&self, v: f32) -> V {
         V(v, rat(v))
     }
@@ -215,35 +220,50 @@ impl F32Arith for Pair {
     fn next_down(&self, a: &V) -> V {
         V(a.0.next_down(), a.1.clone())
     }
-    fn lt(&self, a: &V, b: &V) -> bool {
-        a.0 < b.0
+    fn lt(&self, a: &V, b: &V) -> T {
+        (a.0 < b.0, cmp(&a.1, &b.1).map(|o| o == Ordering::Less))
     }
-    fn le(&self, a: &V, b: &V) -> bool {
-        a.0 <= b.0
+    fn le(&self, a: &V, b: &V) -> T {
+        (a.0 <= b.0, cmp(&a.1, &b.1).map(|o| o != Ordering::Greater))
     }
-    fn eq(&self, a: &V, b: &V) -> bool {
-        a.0 == b.0
+    fn eq(&self, a: &V, b: &V) -> T {
+        (a.0 == b.0, cmp(&a.1, &b.1).map(|o| o == Ordering::Equal))
     }
-    fn is_nan(&self, a: &V) -> bool {
-        a.0.is_nan()
+    // Exact values are never NaN and always finite.
+    fn is_nan(&self, a: &V) -> T {
+        (a.0.is_nan(), Some(false))
     }
-    fn is_finite(&self, a: &V) -> bool {
-        a.0.is_finite()
+    fn is_finite(&self, a: &V) -> T {
+        (a.0.is_finite(), Some(true))
     }
-    fn truth(&self, b: bool) -> bool {
-        b
+    fn truth(&self, b: bool) -> T {
+        (b, Some(b))
     }
-    fn and(&self, a: &bool, b: &bool) -> bool {
-        *a && *b
+    fn and(&self, a: &T, b: &T) -> T {
+        let x = match (a.1, b.1) {
+            (Some(false), _) | (_, Some(false)) => Some(false),
+            (Some(true), Some(true)) => Some(true),
+            _ => None,
+        };
+        (a.0 && b.0, x)
     }
-    fn or(&self, a: &bool, b: &bool) -> bool {
-        *a || *b
+    fn or(&self, a: &T, b: &T) -> T {
+        let x = match (a.1, b.1) {
+            (Some(true), _) | (_, Some(true)) => Some(true),
+            (Some(false), Some(false)) => Some(false),
+            _ => None,
+        };
+        (a.0 || b.0, x)
     }
-    fn not(&self, a: &bool) -> bool {
-        !a
+    fn not(&self, a: &T) -> T {
+        (!a.0, a.1.map(|x| !x))
     }
-    fn select(&self, c: &bool, a: &V, b: &V) -> V {
-        if *c {
+    // A free condition only restricts a cull: its counterpart is "true".
+    fn choose_truth(&self, b: &T, _why: &'static str) -> T {
+        (b.0, Some(true))
+    }
+    fn select(&self, c: &T, a: &V, b: &V) -> V {
+        if c.0 {
             a.clone()
         } else {
             b.clone()
@@ -336,28 +356,29 @@ fn wild(ar: &Pair, rng: &mut ChaCha8Rng) -> (TriOf<V>, [V; 4]) {
 }
 
 /// A method's tile answer over the pair arithmetic: its output ranges, by name.
-type Answer = fn(&Pair, &TriOf<V>, &[V; 4]) -> Vec<(&'static str, [V; 2])>;
+type Answer = fn(&Pair, &TriOf<V>, &[V; 4]) -> (Vec<(&'static str, [V; 2])>, T);
 
-fn la2011<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> Vec<(&'static str, [V; 2])> {
+fn la2011<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, T) {
     let s = setup_of::<R, Pair>(ar, tri);
-    let (_, t, u, v) = tile_answer::<R, Pair>(ar, &s, tile);
-    vec![("t", t), ("u", u), ("v", v)]
+    let (nonempty, t, u, v) = tile_answer::<R, Pair>(ar, &s, tile);
+    (vec![("t", t), ("u", u), ("v", v)], ar.not(&nonempty))
 }
 
-fn nilsson<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> Vec<(&'static str, [V; 2])> {
+fn nilsson<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, T) {
     use cullproof::bounds::nilsson2012_depth as m;
     let s = m::setup_of::<R, Pair>(ar, tri);
-    let (_, z) = m::tile_answer::<R, Pair>(ar, &s, tile);
-    vec![("z", z)]
+    let (nonempty, z) = m::tile_answer::<R, Pair>(ar, &s, tile);
+    (vec![("z", z)], ar.not(&nonempty))
 }
 
 /// Run a method over the pair arithmetic on `n` drawn inputs; the ends found on the
-/// wrong side of their exact values, the number of ends compared, and how many of them
-/// cut (inside the domain: t in (0, 1), u, v in (-1, 1), a finite z).
-fn attack(answer: Answer, n: usize, seed: u64) -> (Vec<String>, usize, usize) {
+/// wrong side of their exact values (and the culls whose exact counterpart is false),
+/// the number of ends compared, how many of them cut (inside the domain: t in (0, 1),
+/// u, v in (-1, 1), a finite z), and the number of tiles culled.
+fn attack(answer: Answer, n: usize, seed: u64) -> (Vec<String>, usize, usize, usize) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let ar = Pair::default();
-    let (mut compared, mut inside) = (0, 0);
+    let (mut compared, mut inside, mut culls) = (0, 0, 0);
     for i in 0..n {
         // Half the draws are the gate's cases with a tile on the footprint's boundary
         // (every regime), half are wild values that reach the special branches.
@@ -365,12 +386,20 @@ fn attack(answer: Answer, n: usize, seed: u64) -> (Vec<String>, usize, usize) {
             let case = physical_case(&mut rng, Regime::ALL[(i / 2) % Regime::ALL.len()]);
             let size = [1.0, 4.0, 16.0, 64.0][rng.gen_range(0..4)];
             let tile = boundary_tile(&case, &mut rng, size);
+            // the boundary tile, or one moved 1-4 tiles off it (where culls happen)
+            let k = [0.0, 1.0, 2.0, 4.0][rng.gen_range(0..4)] * size * if rng.gen() { 1.0 } else { -1.0 };
+            let (dx, dy) = if rng.gen() { (k, 0.0) } else { (0.0, k) };
             let tri = TriOf::of(&case.triangle).map(|x| ar.lit(*x));
-            (tri, [tile.x0, tile.y0, tile.x1, tile.y1].map(|x| ar.lit(x)))
+            (tri, [tile.x0 + dx, tile.y0 + dy, tile.x1 + dx, tile.y1 + dy].map(|x| ar.lit(x)))
         } else {
             wild(&ar, &mut rng)
         };
-        for (name, r) in answer(&ar, &tri, &tile) {
+        let (ranges, cull) = answer(&ar, &tri, &tile);
+        culls += usize::from(cull.0 && cull.1 == Some(true));
+        if cull.0 && cull.1 == Some(false) {
+            ar.bad.borrow_mut().push(format!("tile reject: culled, its exact counterpart false ({tri:?})"));
+        }
+        for (name, r) in ranges {
             for (k, end) in [(0, End::Lo), (1, End::Hi)] {
                 compared += 1;
                 let lim = match name {
@@ -386,8 +415,9 @@ fn attack(answer: Answer, n: usize, seed: u64) -> (Vec<String>, usize, usize) {
         }
     }
     assert!(*ar.pins.borrow() > 0, "the pins were never reached");
+    assert!(culls > 0, "no tile was culled with its exact counterpart decided");
     let bad = ar.bad.borrow().clone();
-    (bad, compared, inside)
+    (bad, compared, inside, culls)
 }
 
 /// The check's conclusion for each variant it covers, attacked in exact arithmetic: no
@@ -400,14 +430,15 @@ fn the_checked_ends_enclose_their_exact_values_on_drawn_inputs() {
         ("nilsson2012-depth-safe", nilsson::<Outward>, nilsson::<NoUp>, nilsson::<NoDn>),
     ];
     for (id, safe, no_up, no_dn) in methods {
-        let (bad, n, inside) = attack(safe, 20_000, 1);
+        let (bad, n, inside, culls) = attack(safe, 20_000, 1);
         assert!(bad.is_empty(), "{id}: {} of {n}: {:?}", bad.len(), &bad[..bad.len().min(5)]);
         // The draws reach the interesting ends: strictly inside the domain, cut.
         assert!(inside * 20 > n, "{id}: only {inside} of {n} ends inside the domain");
-        let (bad_up, _, _) = attack(no_up, 4000, 1);
-        let (bad_dn, _, _) = attack(no_dn, 4000, 1);
+        assert!(culls >= 100, "{id}: only {culls} tiles culled");
+        let (bad_up, _, _, _) = attack(no_up, 4000, 1);
+        let (bad_dn, _, _, _) = attack(no_dn, 4000, 1);
         eprintln!(
-            "{id}: ends compared {n}, inside the domain {inside}; slips: {} and {} ends on the wrong side",
+            "{id}: ends compared {n}, inside the domain {inside}, tiles culled (exact counterpart true) {culls}; slips: {} and {} ends on the wrong side",
             bad_up.len(),
             bad_dn.len()
         );

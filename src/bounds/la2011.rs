@@ -411,8 +411,9 @@ fn neg_hull<R: Round, A: F32Arith>(
     let neg_ok = ar.and(&class.neg, &ar.not(&ar.or(&R::bad(ar, &ba), &R::bad(ar, &bb))));
     let bad_d = [R::bad(ar, &d[0][0]), R::bad(ar, &d[0][1]), R::bad(ar, &d[1][0]), R::bad(ar, &d[1][1])];
     let zero_some = ar.any(&[ar.lt(&d[0][0], &zero), ar.lt(&d[1][0], &zero), ar.any(&bad_d)]);
-    let cross = ar.not(&ar.any(&[class.pos.clone(), class.neg.clone(), class.zero.clone()]));
-    let some = ar.any(&[class.pos.clone(), class.neg.clone(), cross, ar.and(&class.zero, &zero_some)]);
+    // Some u qualifies unless the shear is exactly 0 and no d is < 0 (pos, neg and the
+    // crossing class all have some; zero excludes pos and neg).
+    let some = ar.or(&ar.not(&class.zero), &zero_some);
     let lo = ar.select(&neg_ok, &ar.min(&ba, &bb), &ar.lit(f32::NEG_INFINITY));
     let hi = ar.select(&pos_ok, &ar.max(&ta, &tb), &ar.lit(f32::INFINITY));
     (some, [lo, hi])

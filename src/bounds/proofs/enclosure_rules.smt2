@@ -60,7 +60,10 @@
 (declare-const a7 Real) (declare-const A7 Real)
 (define-fun signs () Bool
   (and (=> (and (<= a7 A7) (> a7 0.0)) (> A7 0.0)) (=> (and (<= a7 A7) (>= a7 0.0)) (>= A7 0.0))
-       (=> (and (>= a7 A7) (< a7 0.0)) (< A7 0.0)) (=> (and (>= a7 A7) (<= a7 0.0)) (<= A7 0.0))))
+       (=> (and (>= a7 A7) (< a7 0.0)) (< A7 0.0)) (=> (and (>= a7 A7) (<= a7 0.0)) (<= A7 0.0))
+       ; a lower end 0 of a value known <= 0 (an upper end 0 of one >= 0): the value is 0
+       (=> (and (<= a7 A7) (= a7 0.0) (<= A7 0.0)) (= A7 0.0))
+       (=> (and (>= a7 A7) (= a7 0.0) (>= A7 0.0)) (= A7 0.0))))
 ; -- lemma "a chord through lower ends keeps every t the exact chord keeps" (la2011's
 ;    time bound): where the exact chord is <= 0, the chord through lower ends is too.
 (declare-const l0 Real) (declare-const l1 Real) (declare-const L0 Real) (declare-const L1 Real)

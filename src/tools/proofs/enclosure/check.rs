@@ -147,6 +147,10 @@ impl Sg {
             Sg::Zero => Sg::Zero,
         }
     }
+    /// Whether two facts about one number contradict each other.
+    fn clash(a: Sg, b: Sg) -> bool {
+        (a == Sg::Pos && b.le0()) || (a == Sg::Neg && b.ge0()) || (b == Sg::Pos && a.le0()) || (b == Sg::Neg && a.ge0())
+    }
     /// The stronger of two facts about one number.
     fn meet(a: Option<Sg>, b: Option<Sg>) -> Option<Sg> {
         match (a, b) {
@@ -455,6 +459,11 @@ impl<'t> Check<'t> {
     fn sign_fact(&self, ctx: usize, f: &mut Facts, a: N, s: Sg, sure: bool) {
         let sure = sure || f.nan_free.contains(&a) || self.nan_free(a, ctx);
         let old = f.f_sign.get(&a).copied();
+        if let Some((o, true)) = old {
+            if sure && Sg::clash(o, s) {
+                f.dead = true;
+            }
+        }
         let new = match old {
             Some((o, os)) if os == sure => (Sg::meet(Some(o), Some(s)).unwrap_or(s), sure),
             Some((o, true)) => (o, true),
@@ -487,6 +496,9 @@ impl<'t> Check<'t> {
             _ => None,
         };
         if let Some(rs) = rs {
+            if f.r_sign.get(&r).is_some_and(|&o| Sg::clash(o, rs)) {
+                f.dead = true;
+            }
             let m = Sg::meet(f.r_sign.get(&r).copied(), Some(rs)).unwrap_or(rs);
             f.r_sign.insert(r, m);
         }
@@ -886,9 +898,13 @@ impl<'t> Check<'t> {
     /// counterpart (where a free condition may stand: it only restricts).
     fn truth_in(&self, b: Bn, under: bool, conj: bool, ctx: usize) -> bool {
         let t = self.t;
+        if self.facts(ctx).dead {
+            return true;
+        }
+        // (A NaN operand makes an f32 comparison false: nothing to imply.)
         let end = |x: N, want: Pre| {
             let d = self.dir(x, ctx);
-            !d.rounded && (d.pre == want || d.pre == Pre::Exact)
+            !d.rounded && (d.pre == want || d.pre == Pre::Exact || (under && d.pre == Pre::Nan))
         };
         match t.bop(b) {
             BOp::Const(_) => true,
@@ -898,8 +914,15 @@ impl<'t> Check<'t> {
             BOp::Free(..) => under && conj,
             // Where the f32 conjunction holds, its first term does while the second is
             // checked; where the disjunction's second term decides, the first is false.
-            BOp::And(x, y) if under => {
-                self.truth_in(x, true, true, ctx) && self.truth_in(y, true, true, self.push(ctx, x, true))
+            // Where the f32 conjunction holds, all its terms do: each is checked with the
+            // others as facts.
+            BOp::And(..) if under => {
+                let mut terms = vec![];
+                self.conjuncts(b, &mut terms);
+                (0..terms.len()).all(|i| {
+                    let c = terms.iter().enumerate().filter(|(j, _)| *j != i).fold(ctx, |c, (_, &o)| self.push(c, o, true));
+                    self.truth_in(terms[i], true, true, c)
+                })
             }
             BOp::Or(x, y) if under => {
                 self.truth_in(x, true, false, ctx) && self.truth_in(y, true, false, self.push(ctx, x, false))
@@ -911,8 +934,38 @@ impl<'t> Check<'t> {
             }
             BOp::And(x, y) => self.truth_in(x, false, false, ctx) && self.truth_in(y, false, false, ctx),
             BOp::Lt(x, y) | BOp::Le(x, y) if under => end(x, Pre::Hi) && end(y, Pre::Lo),
+            // Implied by its counterpart: from ends the other way round, or because the
+            // branch's facts make the exact comparison false (x < 0 with X known >= 0).
             BOp::Lt(x, y) | BOp::Le(x, y) => {
-                end(x, Pre::Lo) && end(y, Pre::Hi) && self.nan_free(x, ctx) && self.nan_free(y, ctx)
+                let strict = matches!(t.bop(b), BOp::Lt(..));
+                let never = |v: N, s: Option<Sg>, lower: bool| {
+                    t.lit_of(v) == Some(0.0)
+                        && s.is_some_and(|s| if lower == strict { s.le0() } else { matches!(s, Sg::Neg) })
+                };
+                let (rx, ry) = (self.r_sign(self.real(x), ctx), self.r_sign(self.real(y), ctx));
+                // 0 < Y false when Y <= 0; 0 <= Y false when Y < 0; X < 0 false when
+                // X >= 0; X <= 0 false when X > 0.
+                let exact_false = never(x, ry, true) || (t.lit_of(y) == Some(0.0) && rx.is_some_and(|s| if strict { s.ge0() } else { s == Sg::Pos }));
+                exact_false || (end(x, Pre::Lo) && end(y, Pre::Hi) && self.nan_free(x, ctx) && self.nan_free(y, ctx))
+            }
+            // x == 0 for an end x: exact when x is exact, or when the facts put its exact
+            // value on the end's own side of 0 too (a lower end 0 of a value <= 0).
+            BOp::Eq(x, y) if under => {
+                let zero_end = |v: N, k: N| {
+                    if t.lit_of(k) != Some(0.0) {
+                        return false;
+                    }
+                    let d = self.dir(v, ctx);
+                    let rs = self.r_sign(self.real(v), ctx);
+                    !d.rounded
+                        && match d.pre {
+                            Pre::Exact => true,
+                            Pre::Lo => rs.is_some_and(Sg::le0),
+                            Pre::Hi => rs.is_some_and(Sg::ge0),
+                            _ => false,
+                        }
+                };
+                (self.dir(x, ctx) == EXACT && self.dir(y, ctx) == EXACT) || zero_end(x, y) || zero_end(y, x)
             }
             BOp::Eq(x, y) => self.dir(x, ctx) == EXACT && self.dir(y, ctx) == EXACT,
             // Exact values are real numbers: never NaN, always finite. So a NaN test
@@ -923,18 +976,27 @@ impl<'t> Check<'t> {
         }
     }
 
+    /// The terms of a conjunction.
+    fn conjuncts(&self, b: Bn, out: &mut Vec<Bn>) {
+        match self.t.bop(b) {
+            BOp::And(x, y) => {
+                self.conjuncts(x, out);
+                self.conjuncts(y, out);
+            }
+            _ => out.push(b),
+        }
+    }
+
     /// [`Check::run`] with truth-valued outputs too: each must imply its formula over the
     /// exact values (a cull the f32 code decides, the exact values decide too).
     pub fn run_with(&self, outputs: &[(N, End, String)], culls: &[(Bn, String)]) -> Outcome {
         for (b, name) in culls {
             self.rule("comparisons of ends");
             if !self.truth_holds(*b, true, ROOT) {
+                let at = self.culprit_truth(*b);
                 self.failures.borrow_mut().push(Failure {
                     what: format!("output {name}"),
-                    found: format!(
-                        "does not imply its exact counterpart (a comparison of ends on the wrong sides): {}",
-                        self.culprit_truth(*b)
-                    ),
+                    found: format!("does not imply its exact counterpart (a comparison of ends on the wrong sides): {at}"),
                 });
             }
         }
@@ -1075,6 +1137,17 @@ impl Check<'_> {
         let t = self.t;
         match t.bop(b) {
             BOp::Not(x) => self.culprit_truth_in(x, !under, ctx),
+            BOp::And(..) if under => {
+                let mut terms = vec![];
+                self.conjuncts(b, &mut terms);
+                for i in 0..terms.len() {
+                    let c = terms.iter().enumerate().filter(|(j, _)| *j != i).fold(ctx, |c, (_, &o)| self.push(c, o, true));
+                    if !self.truth_in(terms[i], true, true, c) {
+                        return self.culprit_truth_in(terms[i], true, c);
+                    }
+                }
+                "none".into()
+            }
             BOp::And(x, y) | BOp::Or(x, y) => {
                 if !self.truth_holds(x, under, ctx) {
                     return self.culprit_truth_in(x, under, ctx);
@@ -1095,6 +1168,15 @@ impl Check<'_> {
                 self.dir(y, ctx),
                 self.culprit_in(x, ctx, 0),
                 self.culprit_in(y, ctx, 0)
+            ),
+            BOp::Eq(x, y) => format!(
+                "{:?} under={under}: x {:?} {:?} rs {:?}; y {:?} {:?}",
+                t.bop(b),
+                t.op(x),
+                self.dir(x, ctx),
+                self.r_sign(self.real(x), ctx),
+                t.op(y),
+                self.dir(y, ctx)
             ),
             o => format!("{o:?}"),
         }

@@ -36,10 +36,8 @@ fn la2011<R: Round>(t: &Trace) -> Demands {
     use crate::bounds::la2011::{setup_of, tile_answer};
     let (tri, tile) = inputs(t);
     let s = setup_of::<R, Trace>(t, &tri);
-    // (Its Empty flag is not among the demands: the class flags of its lens shears enter
-    // it in both directions, which needs case reasoning the check does not do.)
-    let (_, tt, u, v) = tile_answer::<R, Trace>(t, &s, &tile);
-    ([ends("t", &tt), ends("u", &u), ends("v", &v)].concat(), vec![])
+    let (nonempty, tt, u, v) = tile_answer::<R, Trace>(t, &s, &tile);
+    ([ends("t", &tt), ends("u", &u), ends("v", &v)].concat(), vec![(t.not(&nonempty), "tile reject".into())])
 }
 
 /// The traced tile answer of `nilsson2012-depth` written with the arithmetic `R`: the
