@@ -920,7 +920,8 @@ impl<'t> Check<'t> {
                 let mut terms = vec![];
                 self.conjuncts(b, &mut terms);
                 (0..terms.len()).all(|i| {
-                    let c = terms.iter().enumerate().filter(|(j, _)| *j != i).fold(ctx, |c, (_, &o)| self.push(c, o, true));
+                    let c =
+                        terms.iter().enumerate().filter(|(j, _)| *j != i).fold(ctx, |c, (_, &o)| self.push(c, o, true));
                     self.truth_in(terms[i], true, true, c)
                 })
             }
@@ -945,7 +946,8 @@ impl<'t> Check<'t> {
                 let (rx, ry) = (self.r_sign(self.real(x), ctx), self.r_sign(self.real(y), ctx));
                 // 0 < Y false when Y <= 0; 0 <= Y false when Y < 0; X < 0 false when
                 // X >= 0; X <= 0 false when X > 0.
-                let exact_false = never(x, ry, true) || (t.lit_of(y) == Some(0.0) && rx.is_some_and(|s| if strict { s.ge0() } else { s == Sg::Pos }));
+                let exact_false = never(x, ry, true)
+                    || (t.lit_of(y) == Some(0.0) && rx.is_some_and(|s| if strict { s.ge0() } else { s == Sg::Pos }));
                 exact_false || (end(x, Pre::Lo) && end(y, Pre::Hi) && self.nan_free(x, ctx) && self.nan_free(y, ctx))
             }
             // x == 0 for an end x: exact when x is exact, or when the facts put its exact
@@ -996,7 +998,9 @@ impl<'t> Check<'t> {
                 let at = self.culprit_truth(*b);
                 self.failures.borrow_mut().push(Failure {
                     what: format!("output {name}"),
-                    found: format!("does not imply its exact counterpart (a comparison of ends on the wrong sides): {at}"),
+                    found: format!(
+                        "does not imply its exact counterpart (a comparison of ends on the wrong sides): {at}"
+                    ),
                 });
             }
         }
@@ -1141,7 +1145,8 @@ impl Check<'_> {
                 let mut terms = vec![];
                 self.conjuncts(b, &mut terms);
                 for i in 0..terms.len() {
-                    let c = terms.iter().enumerate().filter(|(j, _)| *j != i).fold(ctx, |c, (_, &o)| self.push(c, o, true));
+                    let c =
+                        terms.iter().enumerate().filter(|(j, _)| *j != i).fold(ctx, |c, (_, &o)| self.push(c, o, true));
                     if !self.truth_in(terms[i], true, true, c) {
                         return self.culprit_truth_in(terms[i], true, c);
                     }
