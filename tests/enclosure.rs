@@ -470,6 +470,14 @@ fn the_rules_are_proven_and_a_wrong_rule_is_refuted() {
     assert!(matches!(run_text(Tool::Z3, &wrong, limit).verdict, Verdict::Refuted(_)));
 }
 
+/// Two inputs `x`, `c` of a fresh trace, and `[lo, hi]`, an enclosure of `x x` (rounded
+/// to nearest, stepped out).
+fn square_and_input(t: &cullproof::tools::proofs::enclosure::Trace) -> (u32, u32, u32, u32) {
+    let (x, c) = (t.input("x"), t.input("c"));
+    let r = t.mul(&x, &x);
+    (x, c, t.next_down(&r), t.next_up(&r))
+}
+
 /// The check on small pieces of interval code: each slip the proofs must notice (a step
 /// in the wrong direction, a min where a max belongs, a step dropped, a quotient whose
 /// divisor sign the code never tested) leaves an end the check refuses.
@@ -511,10 +519,7 @@ fn a_swapped_min_max_or_a_wrong_step_leaves_no_end() {
         ("tested divisor", tested, true),
     ] {
         let t = Trace::new();
-        let (x, c) = (t.input("x"), t.input("c"));
-        // [lo, hi]: an enclosure of x (x rounded to nearest, stepped out)
-        let r = t.mul(&x, &x);
-        let (lo, hi) = (t.next_down(&r), t.next_up(&r));
+        let (x, c, lo, hi) = square_and_input(&t);
         // finite inputs (as the variants' guards establish), else no bound
         let fin = t.and(&t.is_finite(&x), &t.is_finite(&c));
         let out = t.select(&fin, &piece(&t, lo, hi, c), &t.lit(f32::INFINITY));
@@ -628,9 +633,7 @@ fn a_cull_on_the_wrong_end_is_refused() {
         ("a free condition enabling it", free_or, false),
     ] {
         let t = Trace::new();
-        let (x, e) = (t.input("x"), t.input("e"));
-        let r = t.mul(&x, &x);
-        let (lo, hi) = (t.next_down(&r), t.next_up(&r));
+        let (_, e, lo, hi) = square_and_input(&t);
         let b = cull(&t, lo, hi, e);
         let o = Check::new(&t).run_with(&[], &[(b, "cull".into())]);
         assert_eq!(o.failures.is_empty(), ok, "{name}: {:?}", o.failures);

@@ -280,7 +280,7 @@ pub fn render(r: &Report) -> String {
               end of its side of its exact value by the rules of `enclosure rules`):\n";
         for e in &r.enclosure {
             s += &format!(
-                "  {:<8} {:<34} {} ends, {} pins, {} operations {:>8.2}\n",
+                "  {:<8} {:<34} {} outputs (ends and culls), {} pins, {} operations {:>8.2}\n",
                 if e.failures.is_empty() { "checked" } else { "FAILED" },
                 e.method,
                 e.outputs,
@@ -289,7 +289,7 @@ pub fn render(r: &Report) -> String {
                 e.seconds
             );
             for l in &e.lemmas {
-                s += &format!("      pinned by: {l}\n");
+                s += &format!("      lemma: {l}\n");
             }
             for c in &e.choices {
                 s += &format!("      chosen freely: {c}\n");

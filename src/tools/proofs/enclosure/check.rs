@@ -366,7 +366,7 @@ impl<'t> Check<'t> {
             }
             (BOp::Or(..), true) => {
                 let mut ds = vec![];
-                self.disjuncts(c, &mut ds);
+                self.terms_of(c, false, &mut ds);
                 // Disjuncts this branch refutes drop out (a NaN test of a NaN-free value).
                 let open: Vec<Bn> = ds
                     .into_iter()
@@ -444,11 +444,12 @@ impl<'t> Check<'t> {
         }
     }
 
-    fn disjuncts(&self, c: Bn, out: &mut Vec<Bn>) {
-        match self.t.bop(c) {
-            BOp::Or(x, y) => {
-                self.disjuncts(x, out);
-                self.disjuncts(y, out);
+    /// The terms of a disjunction (`and`: of a conjunction).
+    fn terms_of(&self, c: Bn, and: bool, out: &mut Vec<Bn>) {
+        match (self.t.bop(c), and) {
+            (BOp::Or(x, y), false) | (BOp::And(x, y), true) => {
+                self.terms_of(x, and, out);
+                self.terms_of(y, and, out);
             }
             _ => out.push(c),
         }
@@ -918,7 +919,7 @@ impl<'t> Check<'t> {
             // others as facts.
             BOp::And(..) if under => {
                 let mut terms = vec![];
-                self.conjuncts(b, &mut terms);
+                self.terms_of(b, true, &mut terms);
                 (0..terms.len()).all(|i| {
                     let c =
                         terms.iter().enumerate().filter(|(j, _)| *j != i).fold(ctx, |c, (_, &o)| self.push(c, o, true));
@@ -978,17 +979,6 @@ impl<'t> Check<'t> {
         }
     }
 
-    /// The terms of a conjunction.
-    fn conjuncts(&self, b: Bn, out: &mut Vec<Bn>) {
-        match self.t.bop(b) {
-            BOp::And(x, y) => {
-                self.conjuncts(x, out);
-                self.conjuncts(y, out);
-            }
-            _ => out.push(b),
-        }
-    }
-
     /// [`Check::run`] with truth-valued outputs too: each must imply its formula over the
     /// exact values (a cull the f32 code decides, the exact values decide too).
     pub fn run_with(&self, outputs: &[(N, End, String)], culls: &[(Bn, String)]) -> Outcome {
@@ -1016,7 +1006,11 @@ impl<'t> Check<'t> {
             let d = self.dir(*n, ROOT);
             let want = if *end == End::Lo { Pre::Lo } else { Pre::Hi };
             if d.rounded || !(d.pre == want || d.pre == Pre::Exact) {
-                self.fail(format!("output {name} ({} end)", end_name(*end)), d);
+                let at = self.culprit(*n);
+                self.failures.borrow_mut().push(Failure {
+                    what: format!("output {name} ({} end)", end_name(*end)),
+                    found: format!("{}; first operation without a rule: {at}", describe(d)),
+                });
             }
             if !self.nan_free(*n, ROOT) {
                 self.failures.borrow_mut().push(Failure { what: format!("output {name}"), found: "may be NaN".into() });
@@ -1085,8 +1079,9 @@ fn mul_sign(a: Option<Sg>, b: Option<Sg>) -> Option<Sg> {
 }
 
 impl Check<'_> {
-    /// Debug: the first operation (deepest) that is `Any` under `n` at the root.
-    pub fn culprit(&self, n: N) -> String {
+    /// Where a value's direction is lost: the deepest operation under `n` (at the root)
+    /// whose operands have directions but which no rule covers, with its operands.
+    fn culprit(&self, n: N) -> String {
         self.culprit_in(n, ROOT, 0)
     }
     fn culprit_in(&self, n: N, ctx: usize, depth: usize) -> String {
@@ -1133,8 +1128,9 @@ impl Check<'_> {
 }
 
 impl Check<'_> {
-    /// Debug: the first comparison under `b` that does not hold.
-    pub fn culprit_truth(&self, b: Bn) -> String {
+    /// Where a cull fails: the first comparison or test under `b` that does not imply its
+    /// counterpart, with its operands.
+    fn culprit_truth(&self, b: Bn) -> String {
         self.culprit_truth_in(b, true, ROOT)
     }
     fn culprit_truth_in(&self, b: Bn, under: bool, ctx: usize) -> String {
@@ -1143,7 +1139,7 @@ impl Check<'_> {
             BOp::Not(x) => self.culprit_truth_in(x, !under, ctx),
             BOp::And(..) if under => {
                 let mut terms = vec![];
-                self.conjuncts(b, &mut terms);
+                self.terms_of(b, true, &mut terms);
                 for i in 0..terms.len() {
                     let c =
                         terms.iter().enumerate().filter(|(j, _)| *j != i).fold(ctx, |c, (_, &o)| self.push(c, o, true));
