@@ -276,8 +276,9 @@ pub fn render(r: &Report) -> String {
         }
     }
     if !r.enclosure.is_empty() {
-        s += "\nComposition over the code, for every input (the enclosure check: the tile answer traced, every \
-              end of its side of its exact value by the rules of `enclosure rules`):\n";
+        s += "\nComposition over the code, for every input (the enclosure check: the tile answer traced; every \
+              end on its side of its exact value and every cull implying its exact counterpart, by the rules of \
+              `enclosure rules`):\n";
         for e in &r.enclosure {
             s += &format!(
                 "  {:<8} {:<34} {} outputs (ends and culls), {} pins, {} operations {:>8.2}\n",
