@@ -217,14 +217,14 @@ pub fn w_from<R: Round, A: F32Arith>(ar: &A, m_lo: &A::F, e_hi: &A::F) -> WBound
     let (zero, inf) = (ar.lit(0.0), ar.lit(f32::INFINITY));
     let fin = ar.and(&ar.is_finite(m_lo), &ar.is_finite(e_hi));
     let pos = ar.and(&fin, &ar.gt(m_lo, &zero));
-    let neg = ar.all(&[fin, ar.not(&ar.gt(m_lo, &zero)), ar.lt(e_hi, &zero)]);
+    let below = ar.and(&fin, &ar.lt(e_hi, &zero));
     // m_lo > 0: e_hi <= 0 is no hit; else w <= e_hi / m_lo. m_lo <= 0 > e_hi: a hit
-    // needs m < 0 (none when m_lo = 0), and then w >= e_hi / m_lo.
-    let empty = ar.or(&ar.and(&pos, &ar.le(e_hi, &zero)), &ar.and(&neg, &ar.eq(m_lo, &zero)));
+    // needs m < 0, none when m_lo = 0 (Empty; the lower end is then left at 0), and
+    // with m_lo < 0, w >= e_hi / m_lo.
+    let neg = ar.and(&below, &ar.lt(m_lo, &zero));
+    let empty = ar.or(&ar.and(&pos, &ar.le(e_hi, &zero)), &ar.and(&below, &ar.eq(m_lo, &zero)));
     let q = ar.div(e_hi, m_lo);
-    // (m_lo = 0 with a hit needing m < 0 is Empty; its lower end is left at 0.)
-    let neg_strict = ar.and(&neg, &ar.lt(m_lo, &zero));
-    WBound { empty, lo: ar.select(&neg_strict, &R::dn(ar, &q), &zero), hi: ar.select(&pos, &R::up(ar, &q), &inf) }
+    WBound { empty, lo: ar.select(&neg, &R::dn(ar, &q), &zero), hi: ar.select(&pos, &R::up(ar, &q), &inf) }
 }
 
 /// The lemma of the pins of [`w_from`]: for `w > 0`, `m >= m_lo` and `E <= e_hi`,
