@@ -18,6 +18,9 @@
 //! upper ends' (each upper end is the value rounded to nearest, as in the published
 //! method), `broken/planted-no-dn/M-safe` the reverse. Each is one outward step dropped
 //! from half of the operations: the kind of edit a proof of the variant must notice.
+//! `bbox-safe` has the same two (`broken/planted-no-up/bbox-safe`,
+//! `broken/planted-no-dn/bbox-safe`): its corner's four steps on one side dropped, the
+//! pad kept.
 
 use crate::bounds::arith::F32Arith;
 use crate::bounds::bbox::{padded_corner, BBox, Corner, SafeCorner};
