@@ -7,9 +7,11 @@
 //! 1. **violated**: some case of this run has a witness confirmed exactly. A violation
 //!    outranks everything, a proof included (a proven variant that is violated means
 //!    the proof and the code have parted, and the gate says so).
-//! 2. **machine-checked for all inputs in ranges**: the method has a proof whose every
-//!    step, the composition over the method's code included, z3 and Gappa check
-//!    (`cullproof proofs` re-runs them), and no case of this run contradicts it.
+//! 2. **machine-checked for all inputs in ranges**: the method has a proof whose rounding
+//!    lemmas z3 and Gappa check and whose composition over the method's code a machine
+//!    checks for every input (the enclosure check; `cullproof proofs` re-runs it all),
+//!    and no case of this run contradicts it. The method's real-arithmetic derivation
+//!    stays an argument.
 //! 3. **rounding lemmas checked, composition argued**: the method has a proof for all
 //!    inputs in its ranges whose rounding lemmas z3 and Gappa check, while how the
 //!    method's code composes them is an argument (`docs/proofs.md`, the method's file)

@@ -10,8 +10,13 @@
 //!   theory; extended to every real by the argument of `docs/proofs.md`);
 //! - `bbox_safe.g`: Gappa, `bbox-safe`'s pad against the error of its corner value;
 //! - `wu2013_safe.g`: Gappa, `wu2013-safe`'s line pad against the error of the line's
-//!   per-sample evaluation.
+//!   per-sample evaluation;
+//! - `enclosure_rules.smt2`: z3 in real arithmetic, the rules of the enclosure check and
+//!   the lemmas the code pins.
 //!
+//! - [`crate::tools::proofs::enclosure`] (with the command): for `bbox-safe`,
+//!   `la2011-safe` and `nilsson2012-depth-safe`, the composition over the method's own
+//!   f32 code, for every input.
 //! - [`crate::tools::proofs::composition`] (with the command, built on the symbolic search):
 //!   for `la2011-safe`, the composition over the method's own f32 code, as SMT queries
 //!   on a template's ranges.

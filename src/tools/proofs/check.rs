@@ -20,13 +20,17 @@ use crate::model::{Sample, Triangle};
 /// A constant as a script declares it (`NAME = value;` at the start of a line), parsed
 /// as a Gappa number (`4`, `1b-21` = 2^-21, `0.5`).
 pub fn script_constant(script: &Script, name: &str) -> Result<f64, String> {
-    let line = script
-        .text
+    constant_in(script.file, script.text, name)
+}
+
+/// [`script_constant`] in the text `text` of the script named `file`.
+pub fn constant_in(file: &str, text: &str, name: &str) -> Result<f64, String> {
+    let line = text
         .lines()
         .find(|l| l.split('=').next().is_some_and(|n| n.trim() == name) && !l.trim_start().starts_with('#'))
-        .ok_or_else(|| format!("{}: no line `{name} = ...;`", script.file))?;
+        .ok_or_else(|| format!("{file}: no line `{name} = ...;`"))?;
     let value = line.split_once('=').map(|(_, v)| v.trim().trim_end_matches(';').trim()).unwrap_or("");
-    parse_gappa_number(value).ok_or_else(|| format!("{}: `{name} = {value}`: not a number", script.file))
+    parse_gappa_number(value).ok_or_else(|| format!("{file}: `{name} = {value}`: not a number"))
 }
 
 /// `m`, `mbe` (m 2^e) or a decimal.

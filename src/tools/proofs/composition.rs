@@ -13,8 +13,9 @@
 //! and is found (`tests/proofs.rs` plants such slips). It covers the template only: a
 //! static triangle with one edge on the x axis, vertex `a` on the axis, half-width
 //! `c` of its circle of confusion, depth `w` and tile offset `t` in the ranges of
-//! [`TEMPLATE_RANGES`]. Over every f32 input the variants' composition stays an
-//! argument (`docs/proofs.md`); on wide ranges the solvers time out (measured: four
+//! [`TEMPLATE_RANGES`]. Over every f32 input the composition is checked by the
+//! enclosure check ([`super::enclosure`]); this query is a second, independent check of
+//! it on the template. On wide ranges the solvers time out (measured: four
 //! 200 s timeouts for `la2011-safe` on the family's default ranges). `bbox-safe` has the
 //! same encoding but its template queries time out even on these ranges (both sides at
 //! 600 s, about 190 s of CPU per solver, 2026-12-05), so it has no obligation here.

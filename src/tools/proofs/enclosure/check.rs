@@ -195,7 +195,7 @@ pub struct Outcome {
     pub ops: usize,
     /// Output ends checked.
     pub outputs: usize,
-    /// Pinned ends checked (occurrences, under their branches).
+    /// Pinned values checked (each under every branch it is reached in).
     pub pins: usize,
     /// The lemmas the pins use, by name.
     pub lemmas: Vec<&'static str>,
@@ -218,7 +218,8 @@ pub struct Check<'t> {
     nan_memo: RefCell<HashMap<(N, usize), bool>>,
     fin_memo: RefCell<HashMap<(N, usize), bool>>,
     failures: RefCell<Vec<Failure>>,
-    pins: RefCell<usize>,
+    /// The pinned values met (each once, whatever branches it was checked under).
+    pins: RefCell<HashSet<N>>,
     used: RefCell<HashMap<&'static str, usize>>,
 }
 
@@ -236,7 +237,7 @@ impl<'t> Check<'t> {
             nan_memo: RefCell::new(HashMap::new()),
             fin_memo: RefCell::new(HashMap::new()),
             failures: RefCell::new(vec![]),
-            pins: RefCell::new(0),
+            pins: RefCell::new(HashSet::new()),
             used: RefCell::new(HashMap::new()),
         }
     }
@@ -753,7 +754,7 @@ impl<'t> Check<'t> {
             }
             Op::Sel(c, a, b) => join(self.dir(a, self.push(ctx, c, true)), self.dir(b, self.push(ctx, c, false))),
             Op::Range(lo, hi, end, _, lemma) => {
-                *self.pins.borrow_mut() += 1;
+                self.pins.borrow_mut().insert(n);
                 let name = t.lemmas.borrow()[lemma as usize];
                 for (x, e) in [(lo, End::Lo), (hi, End::Hi)] {
                     let d = self.dir(x, ctx);
@@ -765,7 +766,7 @@ impl<'t> Check<'t> {
                 unrounded(if end == End::Lo { Pre::Lo } else { Pre::Hi })
             }
             Op::Pin(a, end, lemma) => {
-                *self.pins.borrow_mut() += 1;
+                self.pins.borrow_mut().insert(n);
                 let d = self.dir(a, ctx);
                 let want = if end == End::Lo { Pre::Lo } else { Pre::Hi };
                 let ok = !d.rounded && (d.pre == want || d.pre == Pre::Exact);
@@ -1021,7 +1022,7 @@ impl<'t> Check<'t> {
         Outcome {
             ops: self.t.len(),
             outputs: outputs.len(),
-            pins: *self.pins.borrow(),
+            pins: self.pins.borrow().len(),
             lemmas: self.t.lemmas.borrow().clone(),
             choices: self.t.choices.borrow().clone(),
             failures: self.failures.borrow().clone(),
@@ -1082,9 +1083,9 @@ impl Check<'_> {
     /// Where a value's direction is lost: the deepest operation under `n` (at the root)
     /// whose operands have directions but which no rule covers, with its operands.
     fn culprit(&self, n: N) -> String {
-        self.culprit_in(n, ROOT, 0)
+        self.culprit_in(n, ROOT)
     }
-    fn culprit_in(&self, n: N, ctx: usize, depth: usize) -> String {
+    fn culprit_in(&self, n: N, ctx: usize) -> String {
         let d = self.dir(n, ctx);
         let op = self.t.op(n);
         let kids: Vec<(N, usize)> = match op {
@@ -1095,39 +1096,55 @@ impl Check<'_> {
             Op::Sel(c, a, b) => vec![(a, self.push(ctx, c, true)), (b, self.push(ctx, c, false))],
             _ => vec![],
         };
-        for (k, kc) in kids {
+        for &(k, kc) in &kids {
             let dk = self.dir(k, kc);
             if dk.pre == Pre::Any
                 || (dk.rounded && !matches!(op, Op::Up(_) | Op::Dn(_) | Op::Sel(..) | Op::Neg(_) | Op::Abs(_)))
             {
-                return self.culprit_in(k, kc, depth + 1);
+                return self.culprit_in(k, kc);
             }
         }
-        let kid_dirs: Vec<String> = match op {
-            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Min(a, b) | Op::Max(a, b) => vec![
-                format!(
-                    "{:?} {:?} sign {:?} rs {:?}",
-                    self.t.op(a),
-                    self.dir(a, ctx),
-                    self.f_sign(a, ctx),
-                    self.r_sign(self.real(a), ctx)
-                ),
-                format!(
-                    "{:?} {:?} sign {:?} rs {:?} nanfree {}",
-                    self.t.op(b),
-                    self.dir(b, ctx),
-                    self.f_sign(b, ctx),
-                    self.r_sign(self.real(b), ctx),
-                    self.nan_free(b, ctx)
-                ),
-            ],
-            _ => vec![],
-        };
-        format!("depth {depth} node {n} {op:?} -> {d:?} ctx {ctx}; kids {kid_dirs:?}")
+        let of: Vec<String> = kids.iter().map(|&(k, kc)| self.show(k, kc)).collect();
+        format!("{} is {} (of {})", self.name(n), describe(d), of.join("; "))
     }
-}
 
-impl Check<'_> {
+    /// A value in words: its name, its direction, and its sign where known.
+    fn show(&self, n: N, ctx: usize) -> String {
+        let sign = match self.f_sign(n, ctx) {
+            Some(Sg::Pos) => ", > 0",
+            Some(Sg::Neg) => ", < 0",
+            Some(Sg::NonNeg) => ", >= 0",
+            Some(Sg::NonPos) => ", <= 0",
+            Some(Sg::Zero) => ", = 0",
+            None => "",
+        };
+        let nan = if self.nan_free(n, ctx) { "" } else { ", may be NaN" };
+        format!("{}: {}{sign}{nan}", self.name(n), describe(self.dir(n, ctx)))
+    }
+
+    /// What a value is, in words (an input by its name).
+    fn name(&self, n: N) -> String {
+        match self.t.op(n) {
+            Op::Input(i) => format!("input {}", self.t.inputs.borrow()[i as usize]),
+            Op::Lit(b) => format!("{}", f32::from_bits(b)),
+            Op::Add(..) => "a sum".into(),
+            Op::Sub(..) => "a difference".into(),
+            Op::Mul(..) => "a product".into(),
+            Op::Div(..) => "a quotient".into(),
+            Op::Fma(..) => "a fused multiply-add".into(),
+            Op::Neg(..) => "a negation".into(),
+            Op::Abs(..) => "an absolute value".into(),
+            Op::Min(..) => "a min".into(),
+            Op::Max(..) => "a max".into(),
+            Op::Up(..) => "a step up".into(),
+            Op::Dn(..) => "a step down".into(),
+            Op::Sel(..) => "a select".into(),
+            Op::Pin(..) => "a pinned value".into(),
+            Op::Free(..) => "a value chosen freely".into(),
+            Op::Range(..) => "an end of a pinned range".into(),
+        }
+    }
+
     /// Where a cull fails: the first comparison or test under `b` that does not imply its
     /// counterpart, with its operands.
     fn culprit_truth(&self, b: Bn) -> String {
@@ -1160,26 +1177,39 @@ impl Check<'_> {
                 };
                 self.culprit_truth_in(y, under, c2)
             }
-            BOp::Lt(x, y) | BOp::Le(x, y) => format!(
-                "{:?} under={under}: x {:?} {:?}; y {:?} {:?} | {} / {}",
-                t.bop(b),
-                t.op(x),
-                self.dir(x, ctx),
-                t.op(y),
-                self.dir(y, ctx),
-                self.culprit_in(x, ctx, 0),
-                self.culprit_in(y, ctx, 0)
-            ),
-            BOp::Eq(x, y) => format!(
-                "{:?} under={under}: x {:?} {:?} rs {:?}; y {:?} {:?}",
-                t.bop(b),
-                t.op(x),
-                self.dir(x, ctx),
-                self.r_sign(self.real(x), ctx),
-                t.op(y),
-                self.dir(y, ctx)
-            ),
-            o => format!("{o:?}"),
+            BOp::Lt(x, y) | BOp::Le(x, y) | BOp::Eq(x, y) => {
+                let sym = match t.bop(b) {
+                    BOp::Lt(..) => "<",
+                    BOp::Le(..) => "<=",
+                    _ => "==",
+                };
+                let need = match (t.bop(b), under) {
+                    (BOp::Eq(..), _) => "exact values, or an end 0 of a value the facts put at 0",
+                    (_, true) => "an upper end on the left and a lower end on the right",
+                    (_, false) => "a lower end on the left and an upper end on the right, NaN-free",
+                };
+                let lost = |v: N| {
+                    let d = self.dir(v, ctx);
+                    if d.pre == Pre::Any || d.rounded {
+                        format!("; {}", self.culprit_in(v, ctx))
+                    } else {
+                        String::new()
+                    }
+                };
+                format!(
+                    "`{} {sym} {}` needs {need}: {} and {}{}{}",
+                    self.name(x),
+                    self.name(y),
+                    self.show(x, ctx),
+                    self.show(y, ctx),
+                    lost(x),
+                    lost(y)
+                )
+            }
+            BOp::IsNan(x) => format!("a NaN test of {} that can hold", self.show(x, ctx)),
+            BOp::IsFinite(x) => format!("a finiteness test of {} that can fail", self.show(x, ctx)),
+            BOp::Free(..) => "a condition chosen freely, where it could enable a cull".into(),
+            BOp::Const(_) => "a constant".into(),
         }
     }
 }

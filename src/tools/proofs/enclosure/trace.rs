@@ -79,7 +79,7 @@ impl<T: Copy + Eq + std::hash::Hash> Pool<T> {
 pub struct Trace {
     f: RefCell<Pool<Op>>,
     b: RefCell<Pool<BOp>>,
-    inputs: RefCell<Vec<String>>,
+    pub(super) inputs: RefCell<Vec<String>>,
     pub(super) lemmas: RefCell<Vec<&'static str>>,
     pub(super) choices: RefCell<Vec<&'static str>>,
     /// Values a lemma proves ends of an exact value: side, the exact value's node, the

@@ -3,6 +3,7 @@
 use super::check::{Check, Failure, Outcome};
 use super::trace::{Bn, Trace, N};
 use crate::bounds::arith::{End, F32Arith};
+use crate::bounds::proofs::BBOX_PAD;
 // ---------------------------------------------------------------------------------
 // The variants checked.
 
@@ -71,16 +72,12 @@ pub const BBOX_LEMMA: &str = "bbox_safe.g: the padded corner encloses (a -+ k c)
 /// The traced box of `bbox` with `corner`: the tile reject (which must imply that the
 /// exact box misses the tile), with each corner of the script's formula declared an end
 /// of its exact value by [`BBOX_LEMMA`].
-fn bbox<C: crate::bounds::bbox::Corner>(
-    t: &Trace,
-    corner: &C,
-    script: &crate::bounds::proofs::Script,
-) -> Result<Vec<(Bn, String)>, String> {
+fn bbox<C: crate::bounds::bbox::Corner>(t: &Trace, corner: &C, script_text: &str) -> Result<Vec<(Bn, String)>, String> {
     use crate::bounds::bbox::{aabb_of, rejects};
-    use crate::tools::proofs::check::script_constant;
+    use crate::tools::proofs::check::constant_in;
     let (tri, tile) = inputs(t);
     let (enabled, bx) = aabb_of(t, corner, &tri);
-    let constant = |name| script_constant(script, name).map(|v| v as f32);
+    let constant = |name| constant_in(BBOX_PAD.file, script_text, name).map(|v| v as f32);
     let k = (constant("PAD")?, constant("FLOOR")?, constant("STEPS")? as usize);
     for (p, c) in [(&tri.q, &tri.c0), (&tri.r, &tri.c1)] {
         for i in 0..3 {
@@ -127,10 +124,8 @@ fn finish(t: &Trace, culls: Result<Vec<(Bn, String)>, String>) -> Outcome {
 /// refused.
 pub fn check_bbox_with(script_text: &str) -> Option<Outcome> {
     use crate::bounds::bbox::SafeCorner;
-    let text: &'static str = Box::leak(script_text.to_string().into_boxed_str());
-    let script = crate::bounds::proofs::Script { text, ..crate::bounds::proofs::BBOX_PAD };
     let t = Trace::new();
-    Some(finish(&t, bbox(&t, &SafeCorner, &script)))
+    Some(finish(&t, bbox(&t, &SafeCorner, script_text)))
 }
 
 /// [`check`] for every variant that can be traced, [`CHECKED`] or not.
@@ -141,7 +136,7 @@ pub fn check_traced(id: &str) -> Option<Outcome> {
     use crate::bounds::bbox::SafeCorner;
     use crate::bounds::broken::planted::{BandSlip, EqSlip};
     use crate::bounds::broken::planted::{NoDnCorner, NoUpCorner};
-    let script = &crate::bounds::proofs::BBOX_PAD;
+    let script = BBOX_PAD.text;
     let culls = match (id.strip_suffix(base)?, base) {
         ("", "bbox-safe") => Some(bbox(&t, &SafeCorner, script)),
         ("broken/planted-no-up/", "bbox-safe") => Some(bbox(&t, &NoUpCorner, script)),
