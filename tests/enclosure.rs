@@ -33,6 +33,19 @@ fn the_checked_variants_pass_over_their_code() {
     assert_eq!(o.outputs, 3, "z: both ends, and the tile reject");
     assert_eq!(o.lemmas.len(), 3, "w from a plane, the w range, the residuals' range: {:?}", o.lemmas);
     assert_eq!(o.choices.len(), 3, "the normal, the depth line, using a plane: {:?}", o.choices);
+    let o = check("mam2012-safe").expect("mam2012-safe is checked");
+    assert!(o.failures.is_empty(), "{:?}", o.failures);
+    assert_eq!(o.outputs, 9, "u, v: both ends each, the tile reject and the four lines' culls");
+    assert_eq!(o.lemmas.len(), 5, "domain, corners, columns, either corner, lines: {:?}", o.lemmas);
+    let used = |r: &str| o.rules.iter().find(|(n, _)| *n == r).map_or(0, |x| x.1);
+    for r in [
+        "min (max) of the four end products or quotients",
+        "an end moved outward (MONO)",
+        "a rounded end compared with 0 (MONO)",
+        "a comparison of one exact value with itself",
+    ] {
+        assert!(used(r) > 0, "{r}: {:?}", o.rules);
+    }
     let o = check("bbox-safe").expect("bbox-safe is checked");
     assert!(o.failures.is_empty(), "{:?}", o.failures);
     assert_eq!(o.outputs, 1, "the tile reject");
@@ -70,6 +83,8 @@ fn a_dropped_outward_step_fails_the_enclosure_check() {
         ("broken/planted-no-dn/la2011-safe", "lower"),
         ("broken/planted-no-up/nilsson2012-depth-safe", "upper"),
         ("broken/planted-no-dn/nilsson2012-depth-safe", "lower"),
+        ("broken/planted-no-up/mam2012-safe", "line"),
+        ("broken/planted-no-dn/mam2012-safe", "line"),
     ] {
         let o = check(id).expect("a planted slip of a checked variant is checked");
         assert!(!o.failures.is_empty(), "{id} passed");
@@ -83,6 +98,7 @@ fn a_dropped_outward_step_fails_the_enclosure_check() {
     }
     assert!(check("la2011").is_none(), "the published method has no enclosure claim");
     assert!(check("nilsson2012-depth").is_none(), "the published method has no enclosure claim");
+    assert!(check("mam2012").is_none(), "the published method has no enclosure claim");
 }
 
 /// An extended exact value.
@@ -151,6 +167,8 @@ struct V(f32, X);
 struct Pair {
     bad: RefCell<Vec<String>>,
     pins: RefCell<usize>,
+    /// Per-sample culls made whose exact counterpart holds.
+    sample_culls: RefCell<usize>,
     turn: RefCell<usize>,
 }
 
@@ -295,6 +313,27 @@ impl F32Arith for Pair {
     fn choose(&self, a: &V, _why: &'static str) -> V {
         V(a.0, rat(a.0))
     }
+    /// The lemma's equation is checked too, in exact arithmetic: `v`'s exact value must
+    /// be `like`'s (where both are defined).
+    fn pin_same(&self, v: &[V; 2], like: &V, lemma: &'static str) -> [V; 2] {
+        *self.pins.borrow_mut() += 1;
+        for (x, end) in [(&v[0], End::Lo), (&v[1], End::Hi)] {
+            if !on_side(x, end) {
+                self.bad.borrow_mut().push(format!("pinned same value ({lemma}): {x:?} is not a {end:?} end"));
+            }
+        }
+        if cmp(&v[0].1, &like.1).is_some_and(|o| o != Ordering::Equal) {
+            self.bad.borrow_mut().push(format!("{lemma}: {:?} and {:?} differ", v[0].1, like.1));
+        }
+        [V(v[0].0, like.1.clone()), V(v[1].0, like.1.clone())]
+    }
+    fn moved_out(&self, moved: &V, from: &V, end: End) -> V {
+        let m = V(moved.0, from.1.clone());
+        if !on_side(&m, end) {
+            self.bad.borrow_mut().push(format!("moved out: {m:?} is not a {end:?} end"));
+        }
+        m
+    }
     fn pin(&self, a: &V, end: End, lemma: &'static str) -> V {
         *self.pins.borrow_mut() += 1;
         if !on_side(a, end) {
@@ -355,20 +394,61 @@ fn wild(ar: &Pair, rng: &mut ChaCha8Rng) -> (TriOf<V>, [V; 4]) {
     (tri, [a.min(b), c.min(d), a.max(b), c.max(d)].map(|x| ar.lit(x)))
 }
 
-/// A method's tile answer over the pair arithmetic: its output ranges, by name.
-type Answer = fn(&Pair, &TriOf<V>, &[V; 4]) -> (Vec<(&'static str, [V; 2])>, T);
+/// A method's tile answer over the pair arithmetic: its output ranges, by name, and its
+/// culls (the tile reject first).
+type Answer = fn(&Pair, &TriOf<V>, &[V; 4]) -> (Vec<(&'static str, [V; 2])>, Vec<T>);
 
-fn la2011<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, T) {
+fn la2011<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, Vec<T>) {
     let s = setup_of::<R, Pair>(ar, tri);
     let (nonempty, t, u, v) = tile_answer::<R, Pair>(ar, &s, tile);
-    (vec![("t", t), ("u", u), ("v", v)], ar.not(&nonempty))
+    (vec![("t", t), ("u", u), ("v", v)], vec![ar.not(&nonempty)])
 }
 
-fn nilsson<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, T) {
+fn nilsson<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, Vec<T>) {
     use cullproof::bounds::nilsson2012_depth as m;
     let s = m::setup_of::<R, Pair>(ar, tri);
     let (nonempty, z) = m::tile_answer::<R, Pair>(ar, &s, tile);
-    (vec![("z", z)], ar.not(&nonempty))
+    (vec![("z", z)], vec![ar.not(&nonempty)])
+}
+
+/// mam2012-safe: the u and v ranges, the tile reject, and each line's cull at samples
+/// drawn next to the line (the lens coordinate one to three f32 steps either side of the
+/// line's f32 value at t in {0, 1/4, 1/2, 1} and at the ends of the shutter).
+fn mam2012<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, Vec<T>) {
+    use cullproof::bounds::mam2012::{answer_of, line_eval, setup_safe_of};
+    let (why, axes) = setup_safe_of::<R, Pair>(ar, tri);
+    let enabled = ar.not(&ar.any(&why));
+    let [au, av] = [(0, 0, 2), (1, 1, 3)].map(|(a, lo, hi)| answer_of::<R, Pair>(ar, &axes[a], &tile[lo], &tile[hi]));
+    let reject = ar.all(&[enabled, ar.not(&au.full), ar.or(&au.empty, &ar.and(&ar.not(&av.full), &av.empty))]);
+    let mut culls = vec![reject];
+    let mut ranges = vec![];
+    for (name, a) in [("u", &au), ("v", &av)] {
+        let kept = ar.and(&enabled, &ar.not(&a.full));
+        ranges.push((name, [0, 1].map(|k| ar.select(&kept, &a.range[k], &ar.lit([-1.0, 1.0][k])))));
+        for (upper, (ok, la, lb)) in [false, true].into_iter().zip(&a.lines) {
+            if !(kept.0 && ok.0) {
+                continue;
+            }
+            for tv in [0.0f32, 0.25, 0.5, 1.0] {
+                let line = la.0 * tv + lb.0;
+                let mut w = line;
+                for step in 0..7 {
+                    let t = ar.lit(tv);
+                    let g = line_eval::<R, Pair>(ar, upper, la, lb, &t, &ar.lit(w));
+                    culls.push(ar.all(&[kept, *ok, ar.lt(&g, &ar.lit(0.0))]));
+                    // one to three steps below the line's value, then above it
+                    w = if step < 3 {
+                        w.next_down()
+                    } else if step == 3 {
+                        line.next_up()
+                    } else {
+                        w.next_up()
+                    };
+                }
+            }
+        }
+    }
+    (ranges, culls)
 }
 
 /// Run a method over the pair arithmetic on `n` drawn inputs; the ends found on the
@@ -394,10 +474,18 @@ fn attack(answer: Answer, n: usize, seed: u64) -> (Vec<String>, usize, usize, us
         } else {
             wild(&ar, &mut rng)
         };
-        let (ranges, cull) = answer(&ar, &tri, &tile);
-        culls += usize::from(cull.0 && cull.1 == Some(true));
-        if cull.0 && cull.1 == Some(false) {
-            ar.bad.borrow_mut().push(format!("tile reject: culled, its exact counterpart false ({tri:?})"));
+        let (ranges, cull_list) = answer(&ar, &tri, &tile);
+        for (k, cull) in cull_list.iter().enumerate() {
+            let held = usize::from(cull.0 && cull.1 == Some(true));
+            if k == 0 {
+                culls += held;
+            } else {
+                *ar.sample_culls.borrow_mut() += held;
+            }
+            if cull.0 && cull.1 == Some(false) {
+                let what = if k == 0 { "tile reject" } else { "per-sample cull" };
+                ar.bad.borrow_mut().push(format!("{what}: culled, its exact counterpart false ({tri:?})"));
+            }
         }
         for (name, r) in ranges {
             for (k, end) in [(0, End::Lo), (1, End::Hi)] {
@@ -417,6 +505,10 @@ fn attack(answer: Answer, n: usize, seed: u64) -> (Vec<String>, usize, usize, us
     assert!(*ar.pins.borrow() > 0, "the pins were never reached");
     assert!(culls > 0, "no tile was culled with its exact counterpart decided");
     let bad = ar.bad.borrow().clone();
+    let samples = *ar.sample_culls.borrow();
+    if samples > 0 {
+        eprintln!("per-sample culls made (exact counterpart true): {samples}");
+    }
     (bad, compared, inside, culls)
 }
 
@@ -425,9 +517,10 @@ fn attack(answer: Answer, n: usize, seed: u64) -> (Vec<String>, usize, usize, us
 /// slips finds ends on the wrong side (so it can fail).
 #[test]
 fn the_checked_ends_enclose_their_exact_values_on_drawn_inputs() {
-    let methods: [(&str, Answer, Answer, Answer); 2] = [
+    let methods: [(&str, Answer, Answer, Answer); 3] = [
         ("la2011-safe", la2011::<Outward>, la2011::<NoUp>, la2011::<NoDn>),
         ("nilsson2012-depth-safe", nilsson::<Outward>, nilsson::<NoUp>, nilsson::<NoDn>),
+        ("mam2012-safe", mam2012::<Outward>, mam2012::<NoUp>, mam2012::<NoDn>),
     ];
     for (id, safe, no_up, no_dn) in methods {
         let (bad, n, inside, culls) = attack(safe, 20_000, 1);
@@ -546,9 +639,16 @@ fn proofs_fails_on_every_planted_dropped_step() {
         let text = render(&r);
         assert!(text.contains("FAILED") && text.contains("SOME PROOFS FAILED"), "{text}");
     }
-    for id in ["la2011-safe", "broken/planted-no-up/la2011-safe", "broken/planted-no-dn/la2011-safe"] {
+    for id in [
+        "la2011-safe",
+        "broken/planted-no-up/la2011-safe",
+        "broken/planted-no-dn/la2011-safe",
+        "mam2012-safe",
+        "broken/planted-no-up/mam2012-safe",
+        "broken/planted-no-dn/mam2012-safe",
+    ] {
         let e = run_enclosure(id).expect("checked");
-        assert_eq!(e.failures.is_empty(), id == "la2011-safe", "{id}: {:?}", e.failures);
+        assert_eq!(e.failures.is_empty(), !id.starts_with("broken/"), "{id}: {:?}", e.failures);
     }
 }
 

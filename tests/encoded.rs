@@ -11,6 +11,8 @@ mod hyperplane_old;
 mod la2011_old;
 #[path = "encoded/mam2012_old.rs"]
 mod mam2012_old;
+#[path = "encoded/mam2012_safe_old.rs"]
+mod mam2012_safe_old;
 #[path = "encoded/nilsson2012_depth_old.rs"]
 mod nilsson2012_depth_old;
 
@@ -58,6 +60,13 @@ fn la2011_safe_is_its_old_code_bit_for_bit() {
 #[test]
 fn mam2012_is_its_old_code_bit_for_bit() {
     let (tiles, culled) = compare("mam2012", N, mam2012_old::answer);
+    assert_eq!(tiles, 2 * N);
+    assert!(culled > N / 20, "only {culled} of {tiles} tiles culled: the reject went untested");
+}
+
+#[test]
+fn mam2012_safe_is_its_old_code_bit_for_bit() {
+    let (tiles, culled) = compare("mam2012-safe", N, mam2012_safe_old::answer);
     assert_eq!(tiles, 2 * N);
     assert!(culled > N / 20, "only {culled} of {tiles} tiles culled: the reject went untested");
 }

@@ -77,6 +77,25 @@ pub trait F32Arith {
         v.clone()
     }
 
+    /// `v`, an interval whose ends enclose their own exact value, which by the lemma
+    /// named `lemma` equals the exact value of `like` (one quantity written two ways):
+    /// from here on a lower and an upper end of `like`'s exact value. The enclosure check
+    /// verifies that `v[0]` is a lower end and `v[1]` an upper end (of `v`'s own exact
+    /// value); every other instance returns `v` itself.
+    fn pin_same(&self, v: &[Self::F; 2], _like: &Self::F, _lemma: &'static str) -> [Self::F; 2] {
+        v.clone()
+    }
+
+    /// `moved`, a value the code computed from the end `from` by moving it outward
+    /// (below it when `end` is `Lo`): from here on an end of `from`'s exact value. The
+    /// enclosure check verifies that `from` is such an end and that `moved` cannot cross
+    /// it (`from` less a literal `>= 0` for a lower end, plus one for an upper end: the
+    /// rounding of a real beyond an f32 value stays beyond it); every other instance
+    /// returns `moved` itself.
+    fn moved_out(&self, moved: &Self::F, _from: &Self::F, _end: End) -> Self::F {
+        moved.clone()
+    }
+
     /// `a`, a value the code is free to choose (any f32 value would keep the method
     /// right, `why` says why), taken from here on as an exact value of its own; the
     /// enclosure check demands nothing of it. Every instance but the check returns `a`.
@@ -92,6 +111,17 @@ pub trait F32Arith {
         b.clone()
     }
 
+    /// `min(a, b)`, NaN when either is NaN (where [`F32Arith::min`] drops a NaN first
+    /// operand).
+    fn min_nan(&self, a: &Self::F, b: &Self::F) -> Self::F {
+        let nan = self.or(&self.is_nan(a), &self.is_nan(b));
+        self.select(&nan, &self.lit(f32::NAN), &self.min(a, b))
+    }
+    /// `max(a, b)`, NaN when either is NaN.
+    fn max_nan(&self, a: &Self::F, b: &Self::F) -> Self::F {
+        let nan = self.or(&self.is_nan(a), &self.is_nan(b));
+        self.select(&nan, &self.lit(f32::NAN), &self.max(a, b))
+    }
     /// `a > b`.
     fn gt(&self, a: &Self::F, b: &Self::F) -> Self::B {
         self.lt(b, a)
@@ -152,11 +182,15 @@ impl F32Arith for Plain {
             *a
         }
     }
+    // The steps as selects (the same bits as `f32::next_up` / `next_down`), so that a
+    // loop over many values runs them side by side.
+    #[inline(always)]
     fn next_up(&self, a: &f32) -> f32 {
-        a.next_up()
+        crate::bounds::step::up(*a)
     }
+    #[inline(always)]
     fn next_down(&self, a: &f32) -> f32 {
-        a.next_down()
+        crate::bounds::step::dn(*a)
     }
     fn lt(&self, a: &f32, b: &f32) -> bool {
         a < b

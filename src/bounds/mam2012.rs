@@ -204,12 +204,13 @@ use super::*;
 use crate::bounds::arith::{tile_of, F32Arith, Plain, TriOf};
 
 mod safe;
+pub use safe::{answer_of, line_eval, setup_safe_of, SafeAxis, SafeAxisAnswerOf, SafeSetupOf};
 pub use safe::{Mam2012Safe, METHOD_SAFE};
 
 /// The bilinear ut / vt test of Munkberg and Akenine-Möller 2012, §2.1.
 pub struct Mam2012;
 
-static INFO: MethodInfo = MethodInfo {
+pub(crate) static INFO: MethodInfo = MethodInfo {
     id: "mam2012",
     source: "Munkberg & Akenine-Möller 2012, Hyperplane Culling for Stochastic Rasterization, §2.1 (Eq. 1, Fig. 3, Fig. 5) and Appendix A",
     reconstruction: false,
@@ -450,11 +451,6 @@ pub fn setup_of<A: F32Arith>(ar: &A, tri: &TriOf<A::F>, literal_fig5: bool) -> S
     let u = axis(ar, [&px, &w, &cu], &xa, &xb, literal_fig5);
     let v = axis(ar, [&py, &w, &cv], &ya, &yb, literal_fig5);
     ([c, m, b, ar.not(&ar.and(&okx, &oky))], Setup { u, v })
-}
-
-/// The reason the test cannot run on this triangle (f32), if any (the extent aside).
-fn why_disabled_f32(tri: &Triangle) -> Option<&'static str> {
-    why_disabled(&Plain, &TriOf::of(tri)).iter().position(|&w| w).map(|k| WHY[k])
 }
 
 /// The f32 setup, or the reason the test is disabled.

@@ -185,7 +185,7 @@ mod tests {
             row("bbox-safe", 8, 0, 2),
             row("la2011", 10, 0, 0),
             row("lb2011", 9, 0, 1),
-            row("mam2012-safe", 10, 0, 0),
+            row("gdam2010-safe", 10, 0, 0),
             row("wu2013-safe", 9, 1, 0),
         ];
         let s = of_rows(&rows);
@@ -197,7 +197,7 @@ mod tests {
                 ("bbox-safe", Strength::MachineChecked),
                 ("la2011", Strength::ProvenOnCases),
                 ("lb2011", Strength::Unproven),
-                ("mam2012-safe", Strength::LemmasChecked),
+                ("gdam2010-safe", Strength::LemmasChecked),
                 ("wu2013-safe", Strength::Violated),
             ]
         );

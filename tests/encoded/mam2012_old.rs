@@ -43,12 +43,15 @@ struct Prep(Result<Setup, &'static str>);
 
 /// The arithmetic of the formulas `mam2012` (plain f32) and `mam2012-safe` (f32
 /// intervals rounded outward, [`Iv`]) share: written once, evaluated in either.
-trait Arith: Copy + From<f32> + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> {}
+pub(crate) trait Arith:
+    Copy + From<f32> + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
+{
+}
 impl<T: Copy + From<f32> + Add<Output = T> + Sub<Output = T> + Mul<Output = T> + Div<Output = T>> Arith for T {}
 
 /// The values at t = 0 and t = 1 of the chord and of the tangent at 1/2 (or, with
 /// `literal_fig5`, of Figure 5's printed line) of `f(t) = N(t) / C(t)`.
-fn fig5_lines<T: Arith>(n: [T; 2], c: [T; 2], literal_fig5: bool) -> ([T; 2], [T; 2]) {
+pub(crate) fn fig5_lines<T: Arith>(n: [T; 2], c: [T; 2], literal_fig5: bool) -> ([T; 2], [T; 2]) {
     let half = T::from(0.5);
     let chord = [n[0] / c[0], n[1] / c[1]];
     let ch = half * (c[0] + c[1]);
@@ -59,12 +62,12 @@ fn fig5_lines<T: Arith>(n: [T; 2], c: [T; 2], literal_fig5: bool) -> ([T; 2], [T
 }
 
 /// `N(t) = X w_j(t) - x_j(t)` at t = 0, 1 for the column `x`.
-fn numerators<T: Arith>(x: T, w: [T; 2], pos: [T; 2]) -> [T; 2] {
+pub(crate) fn numerators<T: Arith>(x: T, w: [T; 2], pos: [T; 2]) -> [T; 2] {
     [x * w[0] - pos[0], x * w[1] - pos[1]]
 }
 
 /// Vertex j's screen position seen from the lens edge `s = +-1`: `(p + s (kf c)) / w`.
-fn projected<T: Arith>(p: T, s: f32, kf: T, c: T, w: T) -> T {
+pub(crate) fn projected<T: Arith>(p: T, s: f32, kf: T, c: T, w: T) -> T {
     (p + T::from(s) * (kf * c)) / w
 }
 
@@ -140,7 +143,7 @@ fn extent(tri: &Triangle, ax: usize) -> Option<(f32, f32)> {
 }
 
 /// The reason the test cannot run on this triangle, if any.
-fn why_disabled(tri: &Triangle) -> Option<&'static str> {
+pub(crate) fn why_disabled(tri: &Triangle) -> Option<&'static str> {
     for j in 0..3 {
         let (a, b) = (tri.c0[j], tri.c1[j]);
         if a == 0.0 || b == 0.0 || (a > 0.0) != (b > 0.0) {
@@ -175,11 +178,11 @@ fn setup(tri: &Triangle, literal_fig5: bool) -> Result<Setup, &'static str> {
 /// One of the four per-sample lines: `g = s.u - (a t + b)` (lower) or `(a t + b) - s.u`
 /// (upper), with v in place of u for the vt lines.
 #[derive(Debug, Clone, Copy)]
-struct Line {
-    is_v: bool,
-    upper: bool,
-    a: f32,
-    b: f32,
+pub(crate) struct Line {
+    pub(crate) is_v: bool,
+    pub(crate) upper: bool,
+    pub(crate) a: f32,
+    pub(crate) b: f32,
 }
 
 fn abs_max(i: Interval) -> f64 {

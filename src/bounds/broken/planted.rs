@@ -12,7 +12,8 @@
 //!   narrow band `2 <= w < 2 + 2^-14` (a term wrong in a band of relative width 2^-15).
 //!
 //! And two slips in the arithmetic of each variant written with the shared rounding
-//! discipline ([`crate::bounds::round`]: `la2011-safe`, `nilsson2012-depth-safe`), for
+//! discipline ([`crate::bounds::round`]: `la2011-safe`, `nilsson2012-depth-safe`,
+//! `mam2012-safe`), for
 //! the proofs tied to the code ([`crate::bounds::proofs`]):
 //! `broken/planted-no-up/M-safe` keeps every lower end's outward step but drops the
 //! upper ends' (each upper end is the value rounded to nearest, as in the published
@@ -25,6 +26,7 @@
 use crate::bounds::arith::F32Arith;
 use crate::bounds::bbox::{padded_corner, BBox, Corner, SafeCorner};
 use crate::bounds::la2011::La2011;
+use crate::bounds::mam2012::Mam2012Safe;
 use crate::bounds::nilsson2012_depth::Nilsson2012Depth;
 use crate::bounds::round::Round;
 use crate::bounds::{Method, MethodInfo, Outputs};
@@ -167,6 +169,22 @@ pub static NO_UP_DEPTH: &dyn Method =
 pub static NO_DN_DEPTH: &dyn Method =
     &Nilsson2012Depth::<NoDn> { info: &INFO_NO_DN_DEPTH, round: std::marker::PhantomData };
 
+static INFO_NO_UP_MAM: MethodInfo = slip(
+    "broken/planted-no-up/mam2012-safe",
+    "mam2012-safe with the outward step of every upper end dropped",
+    crate::bounds::mam2012::INFO,
+);
+static INFO_NO_DN_MAM: MethodInfo = slip(
+    "broken/planted-no-dn/mam2012-safe",
+    "mam2012-safe with the outward step of every lower end dropped",
+    crate::bounds::mam2012::INFO,
+);
+
+/// `broken/planted-no-up/mam2012-safe`.
+pub static NO_UP_MAM: &dyn Method = &Mam2012Safe::<NoUp> { info: &INFO_NO_UP_MAM, round: std::marker::PhantomData };
+/// `broken/planted-no-dn/mam2012-safe`.
+pub static NO_DN_MAM: &dyn Method = &Mam2012Safe::<NoDn> { info: &INFO_NO_DN_MAM, round: std::marker::PhantomData };
+
 static INFO_NO_UP_BOX: MethodInfo =
     slip("broken/planted-no-up/bbox-safe", "bbox-safe with the outward steps of every upper end dropped", INFO_EQ);
 static INFO_NO_DN_BOX: MethodInfo =
@@ -184,5 +202,7 @@ pub static BAND: &dyn Method = &BBox { info: &INFO_BAND, corner: BandSlip };
 
 /// The planted variant with this id, if it is one.
 pub fn parse(id: &str) -> Option<&'static dyn Method> {
-    [EQ, BAND, NO_UP, NO_DN, NO_UP_DEPTH, NO_DN_DEPTH, NO_UP_BOX, NO_DN_BOX].into_iter().find(|m| m.info().id == id)
+    [EQ, BAND, NO_UP, NO_DN, NO_UP_DEPTH, NO_DN_DEPTH, NO_UP_MAM, NO_DN_MAM, NO_UP_BOX, NO_DN_BOX]
+        .into_iter()
+        .find(|m| m.info().id == id)
 }

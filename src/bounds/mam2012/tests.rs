@@ -3,6 +3,7 @@
 use super::super::testkit::{assert_keeps_covered, covered, near_miss_check, random_sample, spot_check};
 use super::safe::*;
 use super::*;
+use crate::bounds::round::Outward;
 use crate::model::ThinLens;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -551,20 +552,22 @@ fn intervals_enclose() {
         let m: f32 = rng.gen_range(-1.0..1.0);
         m * 2f32.powi(rng.gen_range(-150..128))
     };
+    let o = IvOps::<Plain, Outward>::new(&Plain);
+    let usable = |r: &[f32; 2]| o.usable(r);
     for _ in 0..100_000 {
         let (a, b) = (pick(), pick());
-        let (x, y) = (Iv::from(a), Iv::from(b));
+        let (x, y) = ([a, a], [b, b]);
         let (a6, b6) = (a as f64, b as f64);
-        for (r, e) in [(x + y, a6 + b6), (x - y, a6 - b6), (x * y, a6 * b6)] {
-            assert!(!r.usable() || (r.lo as f64 <= e && e <= r.hi as f64), "{a} {b} {r:?} {e}");
+        for (r, e) in [(o.add(&x, &y), a6 + b6), (o.sub(&x, &y), a6 - b6), (o.mul(&x, &y), a6 * b6)] {
+            assert!(!usable(&r) || (r[0] as f64 <= e && e <= r[1] as f64), "{a} {b} {r:?} {e}");
         }
-        let q = x / y;
+        let q = o.div(&x, &y);
         let e = a6 / b6;
-        assert!(!q.usable() || (q.lo as f64) < e && e < (q.hi as f64) || a == 0.0, "{a} / {b}: {q:?} {e}");
+        assert!(!usable(&q) || (q[0] as f64) < e && e < (q[1] as f64) || a == 0.0, "{a} / {b}: {q:?} {e}");
     }
-    assert!(!(Iv::from(1.0) / Iv { lo: -1.0, hi: 1.0 }).usable());
-    assert!(!(Iv::from(f32::NAN) + Iv::from(1.0)).usable());
-    assert!(!(Iv::from(f32::MAX) * Iv::from(2.0)).usable());
+    assert!(!usable(&o.div(&[1.0, 1.0], &[-1.0, 1.0])));
+    assert!(!usable(&o.add(&[f32::NAN; 2], &[1.0, 1.0])));
+    assert!(!usable(&o.mul(&[f32::MAX; 2], &[2.0, 2.0])));
 }
 
 /// A safe line's `eval` is never negative where the exact `u - (a t + b)` (lower) or
@@ -584,13 +587,13 @@ fn safe_line_eval_is_outward_and_enclosed() {
         // The exact value in f64 intervals: a t is exact, the sums outward.
         let l = Interval::point(line.a as f64 * s.t as f64) + Interval::point(line.b as f64);
         let g = if line.upper { l - Interval::point(w as f64) } else { Interval::point(w as f64) - l };
-        let e = SafeLine(line).eval(&s);
+        let e = SafeLine::<Outward>::new(line).eval(&s);
         if g.lo >= 0.0 {
             assert!(e >= 0.0, "{line:?} {s:?}: {e} {g:?}");
         }
         let p = |x: f32| Interval::point(x as f64);
         let bx = SampleBox { x: p(0.0), y: p(0.0), u: p(s.u), v: p(s.v), t: p(s.t) };
-        assert!(SafeLine(line).eval_box(&bx).contains(e as f64), "{line:?} {s:?}");
+        assert!(SafeLine::<Outward>::new(line).eval_box(&bx).contains(e as f64), "{line:?} {s:?}");
     }
     let (tri, tile) = near_w0();
     let TileResult::Bounds(b) = METHOD_SAFE.setup(&tri).tile(&tile) else { panic!("empty") };

@@ -81,5 +81,57 @@
   (=> (and (> w9 0.0) (>= m9 ml9) (<= E9 eh9) (<= (* w9 m9) E9))
       (and (=> (> ml9 0.0) (<= w9 (/ eh9 ml9)))
            (=> (and (< ml9 0.0) (< eh9 0.0)) (>= w9 (/ eh9 ml9))))))
-(assert (not (and sum scale prod quot_hi quot_lo minmax cmp absmax signs chord wbound)))
+; -- the corner rule: A in [a0, a1] and B in [b0, b1] put A B between the least and the
+;    greatest of the four end products, and A / B (b0 > 0 or b1 < 0) between the least
+;    and the greatest of the four end quotients.
+(declare-const a11 Real) (declare-const a12 Real) (declare-const A11 Real)
+(declare-const b11 Real) (declare-const b12 Real) (declare-const B11 Real)
+(define-fun in11 () Bool (and (<= a11 A11) (<= A11 a12) (<= b11 B11) (<= B11 b12)))
+(define-fun corners () Bool
+  (=> in11
+      (and (<= (mn (mn (* a11 b11) (* a11 b12)) (mn (* a12 b11) (* a12 b12))) (* A11 B11))
+           (>= (mx (mx (* a11 b11) (* a11 b12)) (mx (* a12 b11) (* a12 b12))) (* A11 B11))
+           (=> (or (> b11 0.0) (< b12 0.0))
+               (and (<= (mn (mn (/ a11 b11) (/ a11 b12)) (mn (/ a12 b11) (/ a12 b12))) (/ A11 B11))
+                    (>= (mx (mx (/ a11 b11) (/ a11 b12)) (mx (/ a12 b11) (/ a12 b12))) (/ A11 B11)))))))
+; -- lemma "mam2012-safe corners": the bilinear patch through corner values at or below
+;    the exact ones is at or below the exact patch at every (s, t) of the unit square.
+(declare-const l00 Real) (declare-const l10 Real) (declare-const l01 Real) (declare-const l11 Real)
+(declare-const L00 Real) (declare-const L10 Real) (declare-const L01 Real) (declare-const L11 Real)
+(declare-const s12 Real) (declare-const t12 Real)
+(define-fun bilerp ((p00 Real) (p10 Real) (p01 Real) (p11 Real)) Real
+  (+ (* (- 1.0 s12) (- 1.0 t12) p00) (* s12 (- 1.0 t12) p10) (* (- 1.0 s12) t12 p01) (* s12 t12 p11)))
+(define-fun mcorners () Bool
+  (=> (and (<= l00 L00) (<= l10 L10) (<= l01 L01) (<= l11 L11)
+           (<= 0.0 s12) (<= s12 1.0) (<= 0.0 t12) (<= t12 1.0))
+      (<= (bilerp l00 l10 l01 l11) (bilerp L00 L10 L01 L11))))
+; -- lemmas "mam2012-safe domain" and "mam2012-safe columns": a covered column x lies in
+;    the exact extent [E0, E1]; so xa <= E0 <= x <= E1 <= xb, and a column of the tile
+;    [t0, t1] lies in [x0, x1] for x0 <= max(t0, E0), x1 >= min(t1, E1).
+(declare-const x13 Real) (declare-const E0 Real) (declare-const E1 Real)
+(declare-const xa13 Real) (declare-const xb13 Real) (declare-const t0 Real) (declare-const t1 Real)
+(declare-const x0 Real) (declare-const x1 Real)
+(define-fun mcolumns () Bool
+  (=> (and (<= E0 x13) (<= x13 E1))
+      (and (=> (and (<= xa13 E0) (>= xb13 E1)) (and (<= xa13 x13) (<= x13 xb13)))
+           (=> (and (<= t0 x13) (<= x13 t1) (<= x0 (mx t0 E0)) (>= x1 (mn t1 E1)))
+               (and (<= x0 x13) (<= x13 x1))))))
+; -- lemma "mam2012-safe patch from either corner": the affine patch through (d0, p0),
+;    (d1, p1) read from either corner is one value; with one column (slope 0) both
+;    corners are p0.
+(declare-const d0 Real) (declare-const d1 Real) (declare-const p0 Real) (declare-const p1 Real)
+(declare-const x14 Real)
+(define-fun msame () Bool
+  (and (=> (> d1 d0)
+           (= (+ p0 (* (- x14 d0) (/ (- p1 p0) (- d1 d0)))) (+ p1 (* (- x14 d1) (/ (- p1 p0) (- d1 d0))))))
+       (= (+ p0 (* (- x14 d0) 0.0)) (+ p0 (* (- x14 d1) 0.0)))))
+; -- lemma "mam2012-safe lines": the line b + a t with b = l0, a = l1 - l0 through lower
+;    ends l0 <= L0, l1 <= L1 is at or below the exact line for t in [0, 1].
+(declare-const m0 Real) (declare-const m1 Real) (declare-const M0 Real) (declare-const M1 Real)
+(declare-const t15 Real)
+(define-fun mline () Bool
+  (=> (and (<= m0 M0) (<= m1 M1) (<= 0.0 t15) (<= t15 1.0))
+      (<= (+ (* (- m1 m0) t15) m0) (+ (* (- 1.0 t15) M0) (* t15 M1)))))
+(assert (not (and sum scale prod quot_hi quot_lo minmax cmp absmax signs chord wbound
+                 corners mcorners mcolumns msame mline)))
 (check-sat)

@@ -273,11 +273,22 @@ pub const VARIANTS: &[Variant] = &[
     Variant {
         id: "mam2012-safe",
         ranges: ALL_FINITE,
-        scripts: &["STEP", "MONO"],
-        mechanical: "STEP for every interval operation; MONO for the lines (b = RN(l0 - pad) <= l0) and \
-                     for the per-sample value (an f32 difference of ordered values is >= 0)",
-        by_argument: STEPS_ARGUMENT,
-        level: Level::LemmasChecked,
+        scripts: &["STEP", "MONO", "enclosure rules"],
+        mechanical: "every rounded result stepped outward encloses the exact result (STEP), rounding is \
+                     monotone (MONO: a line's intercept moved out by its pad, the sign of a line's last \
+                     rounded difference); the composition over the method's own f32 code for every \
+                     input: the enclosure check traces the setup and the tile answer and finds every end \
+                     of u and v an end of its side of its exact value, and NaN-free, the tile reject to \
+                     imply its exact counterpart, and each per-sample line's cull (for t in [0, 1]) to put \
+                     the sample beyond the line through its ends' exact values, by rules z3 proves in real \
+                     arithmetic (enclosure rules: the four end products or quotients, and the lemmas of the \
+                     patch domain, its corners, the tile's columns, the patch read from either corner and \
+                     the lines that its pins use)",
+        by_argument: "the real-arithmetic derivation in mam2012.rs (Figure 5's lines bound each u_j, the \
+                      bilinear patch through corner values below them bounds every covered u over the \
+                      screen extent), and that each branch the f32 code takes on its ends is one the \
+                      exact values allow (fallbacks give the full domain)",
+        level: Level::MachineChecked,
     },
     Variant {
         id: "wu2013-safe",

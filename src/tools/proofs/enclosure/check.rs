@@ -214,6 +214,10 @@ pub struct Check<'t> {
     real_memo: RefCell<HashMap<N, Ri>>,
     ctxs: RefCell<Vec<Facts>>,
     ctx_index: RefCell<HashMap<(usize, Bn, bool), usize>>,
+    /// The conditions each context assumes (sorted), and the context of each such set:
+    /// a branch reached along two paths is one context.
+    assumed: RefCell<Vec<Vec<(Bn, bool)>>>,
+    by_assumed: RefCell<HashMap<Vec<(Bn, bool)>, usize>>,
     dir_memo: RefCell<HashMap<(N, usize), Dir>>,
     nan_memo: RefCell<HashMap<(N, usize), bool>>,
     fin_memo: RefCell<HashMap<(N, usize), bool>>,
@@ -233,6 +237,8 @@ impl<'t> Check<'t> {
             real_memo: RefCell::new(HashMap::new()),
             ctxs: RefCell::new(vec![Facts::default()]),
             ctx_index: RefCell::new(HashMap::new()),
+            assumed: RefCell::new(vec![vec![]]),
+            by_assumed: RefCell::new(HashMap::from([(vec![], ROOT)])),
             dir_memo: RefCell::new(HashMap::new()),
             nan_memo: RefCell::new(HashMap::new()),
             fin_memo: RefCell::new(HashMap::new()),
@@ -271,6 +277,8 @@ impl<'t> Check<'t> {
         let r = match t.op(n) {
             Op::Input(_) | Op::Pin(..) | Op::Free(..) => self.rnode(Real::Var(n)),
             Op::Range(lo, hi, _, positive, _) => self.rnode(Real::Quant(lo, hi, positive)),
+            Op::Same(_, like, ..) => self.real(like),
+            Op::Out(_, from, _) => self.real(from),
             Op::Lit(b) => self.rnode(Real::K(b)),
             Op::Add(a, b) => self.rnode(Real::Add(self.real(a), self.real(b))),
             Op::Sub(a, b) => self.rnode(Real::Sub(self.real(a), self.real(b))),
@@ -282,8 +290,8 @@ impl<'t> Check<'t> {
             }
             Op::Neg(a) => self.rnode(Real::Neg(self.real(a))),
             Op::Abs(a) => self.rnode(Real::Abs(self.real(a))),
-            Op::Min(a, b) => self.minmax(true, self.real(a), self.real(b)),
-            Op::Max(a, b) => self.minmax(false, self.real(a), self.real(b)),
+            Op::Min(a, b) | Op::MinN(a, b) => self.minmax(true, self.real(a), self.real(b)),
+            Op::Max(a, b) | Op::MaxN(a, b) => self.minmax(false, self.real(a), self.real(b)),
             Op::Up(a) | Op::Dn(a) => self.real(a),
             Op::Sel(c, a, b) => {
                 let (ra, rb) = (self.real(a), self.real(b));
@@ -339,12 +347,28 @@ impl<'t> Check<'t> {
         if let Some(&i) = self.ctx_index.borrow().get(&(ctx, c, v)) {
             return i;
         }
-        let mut f = self.facts(ctx).clone();
-        self.assume(ctx, &mut f, c, v);
-        let mut cs = self.ctxs.borrow_mut();
-        cs.push(f);
-        let i = cs.len() - 1;
-        drop(cs);
+        let mut set = self.assumed.borrow()[ctx].clone();
+        let i = match set.binary_search(&(c, v)) {
+            Ok(_) => ctx,
+            Err(at) => {
+                set.insert(at, (c, v));
+                let known = self.by_assumed.borrow().get(&set).copied();
+                match known {
+                    Some(i) => i,
+                    None => {
+                        let mut f = self.facts(ctx).clone();
+                        self.assume(ctx, &mut f, c, v);
+                        let mut cs = self.ctxs.borrow_mut();
+                        cs.push(f);
+                        let i = cs.len() - 1;
+                        drop(cs);
+                        self.assumed.borrow_mut().push(set.clone());
+                        self.by_assumed.borrow_mut().insert(set, i);
+                        i
+                    }
+                }
+            }
+        };
         self.ctx_index.borrow_mut().insert((ctx, c, v), i);
         i
     }
@@ -512,9 +536,17 @@ impl<'t> Check<'t> {
         if let Some(v) = self.t.lit_of(n) {
             return Sg::of(v);
         }
-        if let Some(&(s, _)) = self.facts(ctx).f_sign.get(&n) {
-            return Some(s);
+        // A fact that is not strict (x <= 0 from a failed test x > 0) may be sharpened by
+        // what the value is (an upper end of a value < 0).
+        let fact = self.facts(ctx).f_sign.get(&n).map(|&(s, _)| s);
+        if fact.is_some_and(|s| s.strict() || s == Sg::Zero) {
+            return fact;
         }
+        Sg::meet(fact, self.f_sign_own(n, ctx))
+    }
+
+    /// [`Check::f_sign`] from what the value is, facts about it aside.
+    fn f_sign_own(&self, n: N, ctx: usize) -> Option<Sg> {
         match self.t.op(n) {
             Op::Abs(_) => return Some(Sg::NonNeg),
             Op::Neg(a) => {
@@ -563,9 +595,13 @@ impl<'t> Check<'t> {
         let v = known
             || match t.op(n) {
                 Op::Lit(b) => f32::from_bits(b).is_finite(),
-                Op::Neg(a) | Op::Abs(a) | Op::Pin(a, ..) | Op::Free(a, _) => self.finite(a, ctx),
+                Op::Neg(a) | Op::Abs(a) | Op::Pin(a, ..) | Op::Free(a, _) | Op::Same(a, ..) | Op::Out(a, ..) => {
+                    self.finite(a, ctx)
+                }
                 Op::Range(lo, _, End::Lo, ..) | Op::Range(_, lo, End::Hi, ..) => self.finite(lo, ctx),
-                Op::Min(a, b) | Op::Max(a, b) => self.finite(a, ctx) && self.finite(b, ctx),
+                Op::Min(a, b) | Op::Max(a, b) | Op::MinN(a, b) | Op::MaxN(a, b) => {
+                    self.finite(a, ctx) && self.finite(b, ctx)
+                }
                 Op::Sel(c, a, b) => self.finite(a, self.push(ctx, c, true)) && self.finite(b, self.push(ctx, c, false)),
                 _ => false,
             };
@@ -597,11 +633,18 @@ impl<'t> Check<'t> {
                     self.finite(a, ctx) && self.nan_free(b, ctx) && self.f_sign(b, ctx).is_some_and(|s| s.strict())
                 }
                 Op::Fma(a, b, c) => self.finite(a, ctx) && self.finite(b, ctx) && self.finite(c, ctx),
-                Op::Neg(a) | Op::Abs(a) | Op::Up(a) | Op::Dn(a) | Op::Pin(a, ..) | Op::Free(a, _) => {
-                    self.nan_free(a, ctx)
-                }
+                Op::Neg(a)
+                | Op::Abs(a)
+                | Op::Up(a)
+                | Op::Dn(a)
+                | Op::Pin(a, ..)
+                | Op::Free(a, _)
+                | Op::Same(a, ..)
+                | Op::Out(a, ..) => self.nan_free(a, ctx),
                 Op::Range(a, _, End::Lo, ..) | Op::Range(_, a, End::Hi, ..) => self.nan_free(a, ctx),
-                Op::Min(a, b) | Op::Max(a, b) => self.nan_free(a, ctx) && self.nan_free(b, ctx),
+                Op::Min(a, b) | Op::Max(a, b) | Op::MinN(a, b) | Op::MaxN(a, b) => {
+                    self.nan_free(a, ctx) && self.nan_free(b, ctx)
+                }
                 Op::Sel(c, a, b) => {
                     self.nan_free(a, self.push(ctx, c, true)) && self.nan_free(b, self.push(ctx, c, false))
                 }
@@ -700,8 +743,11 @@ impl<'t> Check<'t> {
                     ANY
                 }
             }
-            Op::Min(a, b) | Op::Max(a, b) => {
-                if !(self.nan_free(a, ctx) && self.nan_free(b, ctx)) {
+            Op::Min(a, b) | Op::Max(a, b) | Op::MinN(a, b) | Op::MaxN(a, b) => {
+                // A min that gives NaN on a NaN operand needs no NaN-free operands: its
+                // value is NaN ("no value") or the min of them all.
+                let propagate = matches!(t.op(n), Op::MinN(..) | Op::MaxN(..));
+                if !(propagate || self.nan_free(a, ctx) && self.nan_free(b, ctx)) {
                     return ANY;
                 }
                 if let (Op::Max(..), Op::Abs(x), Op::Abs(y)) = (t.op(n), t.op(a), t.op(b)) {
@@ -715,12 +761,16 @@ impl<'t> Check<'t> {
                 // exact) member, whatever the others are (a min over both ends of some
                 // values); an upper end when every operand is one. A max the same way
                 // round.
-                let min = matches!(t.op(n), Op::Min(..));
+                let min = matches!(t.op(n), Op::Min(..) | Op::MinN(..));
                 let own = if min { Pre::Lo } else { Pre::Hi };
                 let mut leaves = vec![];
                 self.leaves(n, min, &mut leaves);
-                if !leaves.iter().all(|&x| self.nan_free(x, ctx)) {
+                if !propagate && !leaves.iter().all(|&x| self.nan_free(x, ctx)) {
                     return ANY;
+                }
+                if let Some(d) = self.corners(min, propagate, &leaves, ctx) {
+                    self.rule("min (max) of the four end products or quotients");
+                    return d;
                 }
                 let dirs: Vec<(Ri, Pre)> = leaves.iter().map(|&x| (self.real(x), self.operand(x, ctx))).collect();
                 let is = |d: Pre, side: Pre| d == side || d == Pre::Exact;
@@ -765,6 +815,36 @@ impl<'t> Check<'t> {
                 }
                 unrounded(if end == End::Lo { Pre::Lo } else { Pre::Hi })
             }
+            Op::Same(x, _, end, lemma) => {
+                self.pins.borrow_mut().insert(n);
+                let d = self.dir(x, ctx);
+                let want = if end == End::Lo { Pre::Lo } else { Pre::Hi };
+                if d.rounded || !(d.pre == want || d.pre == Pre::Exact || d.pre == Pre::Nan) {
+                    let name = t.lemmas.borrow()[lemma as usize];
+                    self.fail(format!("{} end of a value the lemma `{name}` equates", end_name(end)), d);
+                }
+                unrounded(want)
+            }
+            Op::Out(m, from, end) => {
+                // `from - k` (k >= 0) rounds to a value <= from: from is an f32 value and
+                // rounding is monotone (MONO); `from + k` mirrors for an upper end.
+                let lo = end == End::Lo;
+                let beyond = match t.op(m) {
+                    Op::Sub(f, k) => f == from && t.lit_of(k).is_some_and(|k| if lo { k >= 0.0 } else { k <= 0.0 }),
+                    Op::Add(f, k) => f == from && t.lit_of(k).is_some_and(|k| if lo { k <= 0.0 } else { k >= 0.0 }),
+                    Op::Dn(f) => f == from && lo,
+                    Op::Up(f) => f == from && !lo,
+                    _ => false,
+                };
+                let want = if lo { Pre::Lo } else { Pre::Hi };
+                let d = self.dir(from, ctx);
+                if beyond && !d.rounded && (d.pre == want || d.pre == Pre::Exact || d.pre == Pre::Nan) {
+                    self.rule("an end moved outward (MONO)");
+                    unrounded(want)
+                } else {
+                    ANY
+                }
+            }
             Op::Pin(a, end, lemma) => {
                 self.pins.borrow_mut().insert(n);
                 let d = self.dir(a, ctx);
@@ -779,15 +859,72 @@ impl<'t> Check<'t> {
         }
     }
 
-    /// The operands of the tree of nested mins (`min`) or maxes at `n`.
+    /// The operands of the tree of nested mins (`min`) or maxes at `n` (of one kind:
+    /// NaN-propagating or not).
     fn leaves(&self, n: N, min: bool, out: &mut Vec<N>) {
+        let kind = |x: N| matches!(self.t.op(x), Op::MinN(..) | Op::MaxN(..));
         match (self.t.op(n), min) {
-            (Op::Min(a, b), true) | (Op::Max(a, b), false) => {
-                self.leaves(a, min, out);
-                self.leaves(b, min, out);
+            (Op::Min(a, b), true) | (Op::Max(a, b), false) | (Op::MinN(a, b), true) | (Op::MaxN(a, b), false) => {
+                let k = kind(n);
+                for x in [a, b] {
+                    if kind(x) == k {
+                        self.leaves(x, min, out);
+                    } else {
+                        out.push(x);
+                    }
+                }
             }
             _ => out.push(n),
         }
+    }
+    /// The corner rule: `leaves` (of a min when `min`, else of a max) are the rounded
+    /// products (or quotients) of the ends of two intervals, every combination of an end
+    /// of the first with an end of the second present (an interval of one exact value
+    /// counts as its one end), each NaN-free (or the min NaN-propagating: `propagate`),
+    /// and for quotients every divisor end of one strict sign. The exact product (quotient) of the two exact values lies between
+    /// the least and the greatest combination, so the min is the rounding of a real at or
+    /// below it (a lower end before its step) and the max one at or above it.
+    fn corners(&self, min: bool, propagate: bool, leaves: &[N], ctx: usize) -> Option<Dir> {
+        let t = self.t;
+        let mut combos = vec![];
+        let mut quotient = None;
+        for &l in leaves {
+            let (x, y, q) = match t.op(l) {
+                Op::Mul(x, y) => (x, y, false),
+                Op::Div(x, y) => (x, y, true),
+                _ => return None,
+            };
+            if quotient.is_some_and(|v| v != q) || !(propagate || self.nan_free(l, ctx)) {
+                return None;
+            }
+            quotient = Some(q);
+            combos.push((x, y));
+        }
+        let quotient = quotient?;
+        let set = |f: fn(&(N, N)) -> N| {
+            let mut v: Vec<N> = combos.iter().map(f).collect();
+            v.sort_unstable();
+            v.dedup();
+            v
+        };
+        let (xs, ys) = (set(|c| c.0), set(|c| c.1));
+        let one = |v: &[N]| match v {
+            [x] => Some(self.operand(*x, ctx) == Pre::Exact),
+            [x, y] => self.pair(*x, *y, ctx).then_some(false),
+            _ => None,
+        };
+        let (ex, ey) = (one(&xs)?, one(&ys)?);
+        if !xs.iter().all(|x| ys.iter().all(|y| combos.contains(&(*x, *y)))) {
+            return None;
+        }
+        if quotient {
+            let signs: Vec<Option<Sg>> = ys.iter().map(|&y| self.f_sign(y, ctx)).collect();
+            let strict = |s: &Option<Sg>| s.is_some_and(Sg::strict);
+            if !(signs.iter().all(strict) && signs.iter().all(|s| *s == signs[0])) {
+                return None;
+            }
+        }
+        Some(if ex && ey { rounded(Pre::Exact) } else { rounded(if min { Pre::Lo } else { Pre::Hi }) })
     }
 
     /// `x`, `y` are the two ends of one interval: one lower and one upper, the same
@@ -916,16 +1053,13 @@ impl<'t> Check<'t> {
             BOp::Free(..) => under && conj,
             // Where the f32 conjunction holds, its first term does while the second is
             // checked; where the disjunction's second term decides, the first is false.
-            // Where the f32 conjunction holds, all its terms do: each is checked with the
-            // others as facts.
+            // Where the f32 conjunction holds, all its terms do: each is checked with all
+            // of them as facts (facts about f32 values that hold there).
             BOp::And(..) if under => {
                 let mut terms = vec![];
                 self.terms_of(b, true, &mut terms);
-                (0..terms.len()).all(|i| {
-                    let c =
-                        terms.iter().enumerate().filter(|(j, _)| *j != i).fold(ctx, |c, (_, &o)| self.push(c, o, true));
-                    self.truth_in(terms[i], true, true, c)
-                })
+                let c = terms.iter().fold(ctx, |c, &o| self.push(c, o, true));
+                terms.iter().all(|&x| self.truth_in(x, true, true, c))
             }
             BOp::Or(x, y) if under => {
                 self.truth_in(x, true, false, ctx) && self.truth_in(y, true, false, self.push(ctx, x, false))
@@ -936,7 +1070,14 @@ impl<'t> Check<'t> {
                 self.truth_in(x, false, false, ctx) && self.truth_in(y, false, false, self.push(ctx, x, false))
             }
             BOp::And(x, y) => self.truth_in(x, false, false, ctx) && self.truth_in(y, false, false, ctx),
-            BOp::Lt(x, y) | BOp::Le(x, y) if under => end(x, Pre::Hi) && end(y, Pre::Lo),
+            // X <= X holds whatever the ends are.
+            BOp::Le(x, y) if under && self.real(x) == self.real(y) => {
+                self.rule("a comparison of one exact value with itself");
+                true
+            }
+            BOp::Lt(x, y) | BOp::Le(x, y) if under => {
+                end(x, Pre::Hi) && end(y, Pre::Lo) || (matches!(t.bop(b), BOp::Lt(..)) && self.rounded_sign(x, y, ctx))
+            }
             // Implied by its counterpart: from ends the other way round, or because the
             // branch's facts make the exact comparison false (x < 0 with X known >= 0).
             BOp::Lt(x, y) | BOp::Le(x, y) => {
@@ -980,6 +1121,23 @@ impl<'t> Check<'t> {
         }
     }
 
+    /// `x < y` with one side the literal 0 and the other a rounding to nearest of a real
+    /// on the right side of its exact value (an upper end or exact on the left, a lower
+    /// end or exact on the right): rounding is monotone and keeps 0 (MONO), so
+    /// `RN(z) < 0` needs `z < 0`, and `0 < RN(z)` needs `0 < z`.
+    fn rounded_sign(&self, x: N, y: N, ctx: usize) -> bool {
+        let t = self.t;
+        let side = |v: N, want: Pre| {
+            let d = self.dir(v, ctx);
+            d.rounded && (d.pre == want || d.pre == Pre::Exact)
+        };
+        let ok = (t.lit_of(y) == Some(0.0) && side(x, Pre::Hi)) || (t.lit_of(x) == Some(0.0) && side(y, Pre::Lo));
+        if ok {
+            self.rule("a rounded end compared with 0 (MONO)");
+        }
+        ok
+    }
+
     /// [`Check::run`] with truth-valued outputs too: each must imply its formula over the
     /// exact values (a cull the f32 code decides, the exact values decide too).
     pub fn run_with(&self, outputs: &[(N, End, String)], culls: &[(Bn, String)]) -> Outcome {
@@ -1016,6 +1174,9 @@ impl<'t> Check<'t> {
             if !self.nan_free(*n, ROOT) {
                 self.failures.borrow_mut().push(Failure { what: format!("output {name}"), found: "may be NaN".into() });
             }
+        }
+        if std::env::var("ENC_DEBUG").is_ok() {
+            eprintln!("contexts {} dirs {}", self.ctxs.borrow().len(), self.dir_memo.borrow().len());
         }
         let mut rules: Vec<(&'static str, usize)> = self.used.borrow().iter().map(|(k, v)| (*k, *v)).collect();
         rules.sort();
@@ -1089,10 +1250,16 @@ impl Check<'_> {
         let d = self.dir(n, ctx);
         let op = self.t.op(n);
         let kids: Vec<(N, usize)> = match op {
-            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Min(a, b) | Op::Max(a, b) => {
-                vec![(a, ctx), (b, ctx)]
-            }
-            Op::Neg(a) | Op::Abs(a) | Op::Up(a) | Op::Dn(a) | Op::Pin(a, ..) => vec![(a, ctx)],
+            Op::Add(a, b)
+            | Op::Sub(a, b)
+            | Op::Mul(a, b)
+            | Op::Div(a, b)
+            | Op::Min(a, b)
+            | Op::Max(a, b)
+            | Op::MinN(a, b)
+            | Op::MaxN(a, b) => vec![(a, ctx), (b, ctx)],
+            Op::Neg(a) | Op::Abs(a) | Op::Up(a) | Op::Dn(a) | Op::Pin(a, ..) | Op::Same(a, ..) => vec![(a, ctx)],
+            Op::Out(m, from, _) => vec![(m, ctx), (from, ctx)],
             Op::Sel(c, a, b) => vec![(a, self.push(ctx, c, true)), (b, self.push(ctx, c, false))],
             _ => vec![],
         };
@@ -1136,12 +1303,16 @@ impl Check<'_> {
             Op::Abs(..) => "an absolute value".into(),
             Op::Min(..) => "a min".into(),
             Op::Max(..) => "a max".into(),
+            Op::MinN(..) => "a min (NaN on a NaN operand)".into(),
+            Op::MaxN(..) => "a max (NaN on a NaN operand)".into(),
             Op::Up(..) => "a step up".into(),
             Op::Dn(..) => "a step down".into(),
             Op::Sel(..) => "a select".into(),
             Op::Pin(..) => "a pinned value".into(),
             Op::Free(..) => "a value chosen freely".into(),
             Op::Range(..) => "an end of a pinned range".into(),
+            Op::Same(..) => "an end of a value a lemma equates with another".into(),
+            Op::Out(..) => "an end moved outward".into(),
         }
     }
 
@@ -1157,11 +1328,10 @@ impl Check<'_> {
             BOp::And(..) if under => {
                 let mut terms = vec![];
                 self.terms_of(b, true, &mut terms);
-                for i in 0..terms.len() {
-                    let c =
-                        terms.iter().enumerate().filter(|(j, _)| *j != i).fold(ctx, |c, (_, &o)| self.push(c, o, true));
-                    if !self.truth_in(terms[i], true, true, c) {
-                        return self.culprit_truth_in(terms[i], true, c);
+                let c = terms.iter().fold(ctx, |c, &o| self.push(c, o, true));
+                for &x in &terms {
+                    if !self.truth_in(x, true, true, c) {
+                        return self.culprit_truth_in(x, true, c);
                     }
                 }
                 "none".into()

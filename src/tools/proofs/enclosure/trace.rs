@@ -22,6 +22,9 @@ pub(super) enum Op {
     Abs(N),
     Min(N, N),
     Max(N, N),
+    /// `min` and `max` that give NaN when either operand is NaN.
+    MinN(N, N),
+    MaxN(N, N),
     Up(N),
     Dn(N),
     Sel(Bn, N, N),
@@ -30,6 +33,11 @@ pub(super) enum Op {
     Free(N, u32),
     /// One end of a pinned range `[lo, hi]`: which, whether its quantity is > 0, lemma.
     Range(N, N, End, bool, u32),
+    /// An end (`x`, which) of an interval whose exact value equals, by the lemma, the
+    /// exact value of the second node.
+    Same(N, N, End, u32),
+    /// A value moved outward from an end (the second node), which side.
+    Out(N, N, End),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -193,6 +201,12 @@ impl F32Arith for Trace {
     fn max(&self, a: &N, b: &N) -> N {
         self.node(Op::Max(*a, *b))
     }
+    fn min_nan(&self, a: &N, b: &N) -> N {
+        self.node(Op::MinN(*a, *b))
+    }
+    fn max_nan(&self, a: &N, b: &N) -> N {
+        self.node(Op::MaxN(*a, *b))
+    }
     fn next_up(&self, a: &N) -> N {
         self.node(Op::Up(*a))
     }
@@ -272,6 +286,13 @@ impl F32Arith for Trace {
     fn pin_range(&self, v: &[N; 2], positive: bool, lemma: &'static str) -> [N; 2] {
         let i = self.note(&self.lemmas, lemma);
         [End::Lo, End::Hi].map(|e| self.node(Op::Range(v[0], v[1], e, positive, i)))
+    }
+    fn pin_same(&self, v: &[N; 2], like: &N, lemma: &'static str) -> [N; 2] {
+        let i = self.note(&self.lemmas, lemma);
+        [(v[0], End::Lo), (v[1], End::Hi)].map(|(x, e)| self.node(Op::Same(x, *like, e, i)))
+    }
+    fn moved_out(&self, moved: &N, from: &N, end: End) -> N {
+        self.node(Op::Out(*moved, *from, end))
     }
     fn choose_truth(&self, b: &Bn, why: &'static str) -> Bn {
         if self.const_of(*b).is_some() {

@@ -51,6 +51,36 @@ fn nilsson<R: Round>(t: &Trace) -> Demands {
     (ends("z", &z).to_vec(), vec![(t.not(&nonempty), "tile reject".into())])
 }
 
+/// The traced tile answer of `mam2012-safe` written with the arithmetic `R`: the u and
+/// v ranges' ends, the tile reject, and each per-sample line's cull at a sample
+/// `(t, u, v)` of the shutter (each line's value below 0 must put the sample beyond the
+/// line through its ends' exact values).
+fn mam2012<R: Round>(t: &Trace) -> Demands {
+    use crate::bounds::mam2012::{answer_of, line_eval, setup_safe_of};
+    let (tri, tile) = inputs(t);
+    let (why, axes) = setup_safe_of::<R, Trace>(t, &tri);
+    let enabled = t.not(&t.any(&why));
+    let [au, av] = [(0, 0, 2), (1, 1, 3)].map(|(a, lo, hi)| answer_of::<R, Trace>(t, &axes[a], &tile[lo], &tile[hi]));
+    let reject = t.all(&[enabled, t.not(&au.full), t.or(&au.empty, &t.and(&t.not(&av.full), &av.empty))]);
+    let mut culls = vec![(reject, "tile reject".to_string())];
+    let mut outs = vec![];
+    let (st, zero, one) = (t.input("t"), t.lit(0.0), t.lit(1.0));
+    for (name, a) in [("u", &au), ("v", &av)] {
+        let w = t.input(name);
+        // (An empty tile's range and lines are never read: demanded all the same.)
+        let kept = t.and(&enabled, &t.not(&a.full));
+        let r = [t.select(&kept, &a.range[0], &t.lit(-1.0)), t.select(&kept, &a.range[1], &one)];
+        outs.extend(ends(name, &r));
+        for (upper, (ok, la, lb)) in [false, true].into_iter().zip(&a.lines) {
+            let g = line_eval::<R, Trace>(t, upper, la, lb, &st, &w);
+            let shutter = t.and(&t.le(&zero, &st), &t.le(&st, &one));
+            let cull = t.all(&[kept, *ok, shutter, t.lt(&g, &zero)]);
+            culls.push((cull, format!("{name}t {} line", if upper { "upper" } else { "lower" })));
+        }
+    }
+    (outs, culls)
+}
+
 /// `bbox-safe`'s corner as `bbox_safe.g` states it, with the script's constants: for the
 /// shear `s`, `n = a -+ s` and the depth `w`, `RN(n / w)` moved by the pad
 /// `RN(RN(RN(RN(|s| + |n|) + FLOOR) / w) * PAD)`, then `STEPS` steps outward.
@@ -97,11 +127,12 @@ fn bbox<C: crate::bounds::bbox::Corner>(t: &Trace, corner: &C, script_text: &str
 }
 
 /// The variants whose composition the check covers.
-pub const CHECKED: &[&str] = &["bbox-safe", "la2011-safe", "nilsson2012-depth-safe"];
+pub const CHECKED: &[&str] = &["bbox-safe", "la2011-safe", "mam2012-safe", "nilsson2012-depth-safe"];
 
 /// Trace the tile answer of `id` (a variant of [`CHECKED`] or one of its planted slips
 /// `broken/planted-no-up/ID`, `broken/planted-no-dn/ID`) and check it: its output ends
-/// (la2011-safe: t, u, v; nilsson2012-depth-safe: z) or its tile reject (bbox-safe).
+/// (la2011-safe: t, u, v; nilsson2012-depth-safe: z; mam2012-safe: u, v) and its culls
+/// (the tile reject; mam2012-safe's per-sample lines).
 pub fn check(id: &str) -> Option<Outcome> {
     let base = id.rsplit('/').next()?;
     if !CHECKED.contains(&base) {
@@ -152,6 +183,9 @@ pub fn check_traced(id: &str) -> Option<Outcome> {
         ("", "la2011-safe") => la2011::<Outward>(&t),
         ("broken/planted-no-up/", "la2011-safe") => la2011::<NoUp>(&t),
         ("broken/planted-no-dn/", "la2011-safe") => la2011::<NoDn>(&t),
+        ("", "mam2012-safe") => mam2012::<Outward>(&t),
+        ("broken/planted-no-up/", "mam2012-safe") => mam2012::<NoUp>(&t),
+        ("broken/planted-no-dn/", "mam2012-safe") => mam2012::<NoDn>(&t),
         ("", "nilsson2012-depth-safe") => nilsson::<Outward>(&t),
         ("broken/planted-no-up/", "nilsson2012-depth-safe") => nilsson::<NoUp>(&t),
         ("broken/planted-no-dn/", "nilsson2012-depth-safe") => nilsson::<NoDn>(&t),
