@@ -709,15 +709,22 @@ fn the_moving_template_finds_bbox_f32_tile_cull() {
     assert!(r.render().contains("template moving"), "{}", r.render());
 }
 
-/// mam2012's cull as a query family asserts exactly what the f32 method does: on
+/// mam2012's (and mam2012-safe's) cull as a query family asserts exactly what the f32 method does: on
 /// moving template instances (all inputs pinned), the assertion "mam2012 culls the
 /// tile" is satisfiable exactly where the registered method answers Empty.
 #[test]
 fn the_mam2012_cull_asserts_what_the_method_culls() {
+    for id in ["mam2012", "mam2012-safe"] {
+        mam2012_cull_asserts_what_the_method_culls(id);
+    }
+}
+
+fn mam2012_cull_asserts_what_the_method_culls(id: &str) {
     use cullproof::tools::symbolic::bbox_query::{Side, TemplateCull};
-    use cullproof::tools::symbolic::mam2012_query::Mam2012Cull;
+    use cullproof::tools::symbolic::mam2012_query::cull_of;
     use cullproof::tools::symbolic::moving_query::template;
-    let m = by_id("mam2012").unwrap();
+    let m = by_id(id).unwrap();
+    let cull = cull_of(id).unwrap();
     let mut r = rng(5);
     let (mut culled, mut kept) = (0, 0);
     for i in 0..16 {
@@ -739,17 +746,17 @@ fn the_mam2012_cull_asserts_what_the_method_culls() {
         let smt = Smt::folding();
         let lits: Vec<String> = v.iter().map(|&x| cullproof::tools::symbolic::smt::lit(x)).collect();
         let (t, tl) = template(&smt, side, &std::array::from_fn(|k| lits[k].clone()));
-        smt.assert(&Mam2012Cull.cull(&smt, side, &t, &tl));
+        smt.assert(&cull.cull(&smt, side, &t, &tl));
         let run = z3::run(&smt.script(&[]), 120.0).expect("z3 runs");
         let want = if f32_culls { Answer::Sat } else { Answer::Unsat };
-        assert_eq!(run.answer, want, "instance {i} {v:?}");
+        assert_eq!(run.answer, want, "{id} instance {i} {v:?}");
         if f32_culls {
             culled += 1
         } else {
             kept += 1
         }
     }
-    assert!(culled >= 3 && kept >= 3, "{culled} culled, {kept} kept");
+    assert!(culled >= 3 && kept >= 3, "{id}: {culled} culled, {kept} kept");
 }
 
 /// On the moving template (narrow ranges, every input free), Bitwuzla finds la2011's

@@ -126,7 +126,9 @@
 //! exact ones. Every cull is then implied by that derivation.
 //! Its code (intervals, patches, lines, setup and tile test) lives in `mam2012/safe.rs`.
 //!
-//! *Arithmetic: directed steps (f32 interval arithmetic, `Iv`).* Each operation rounds
+//! *Arithmetic: directed steps (f32 interval arithmetic, `IvOps`, written over
+//! `F32Arith` like the rest of the variant, so that `cullproof proofs` traces the same
+//! code the gate runs: docs/proofs.md, section 4c).* Each operation rounds
 //! to nearest and steps each end one f32 outward (`next_down` / `next_up`); products and
 //! quotients take the extremes of the four end combinations. It encloses: a result r
 //! rounded to nearest from the exact z is within half an ulp of z, and r's neighbour on
@@ -272,8 +274,8 @@ pub struct Setup<F, B> {
 struct Prep(Result<Setup<f32, bool>, &'static str>);
 
 /// The arithmetic of the formulas `mam2012` (any [`F32Arith`]: f32, or SMT-LIB2
-/// terms) and `mam2012-safe` (f32 intervals rounded outward, `Iv`) share: written
-/// once, evaluated in either.
+/// terms) and `mam2012-safe` (intervals of any [`F32Arith`] rounded outward, `IvOps`)
+/// share: written once, evaluated in either.
 pub trait Ops {
     type T: Clone;
     fn lit(&self, v: f32) -> Self::T;

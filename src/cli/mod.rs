@@ -127,10 +127,10 @@ enum Cmd {
     /// is shrunk and written to DIR/cases/<method>/<hash>.json of the corpus (--corpus;
     /// never overwriting);
     /// a model the judge does not confirm is reported as such. Methods with an
-    /// encoding: bbox, bbox-safe, la2011, la2011-safe, mam2012, nilsson2012-depth,
-    /// nilsson2012-depth-safe, broken/planted-eq/bbox-safe, broken/planted-band/bbox-safe,
-    /// broken/planted-no-up/M-safe and broken/planted-no-dn/M-safe for M = la2011 and
-    /// nilsson2012-depth; lc and mam2012-new through their la2011 part (a model is a
+    /// encoding: bbox, bbox-safe, la2011, la2011-safe, mam2012, mam2012-safe,
+    /// nilsson2012-depth, nilsson2012-depth-safe, broken/planted-eq/bbox-safe,
+    /// broken/planted-band/bbox-safe, broken/planted-no-up/M-safe and
+    /// broken/planted-no-dn/M-safe for M = la2011, mam2012 and nilsson2012-depth; lc and mam2012-new through their la2011 part (a model is a
     /// counterexample, an unsat is never counted).
     #[command(allow_negative_numbers = true)]
     Prove(prove::ProveArgs),

@@ -56,12 +56,13 @@ impl Corner for Rule {
 
 /// The methods with a symbolic encoding (setup and tile reject, over
 /// [`crate::bounds::arith::F32Arith`]) and a query family.
-pub const ENCODED: [&str; 13] = [
+pub const ENCODED: [&str; 16] = [
     "bbox",
     "bbox-safe",
     "la2011",
     "la2011-safe",
     "mam2012",
+    "mam2012-safe",
     "nilsson2012-depth",
     "nilsson2012-depth-safe",
     "broken/planted-eq/bbox-safe",
@@ -70,6 +71,8 @@ pub const ENCODED: [&str; 13] = [
     "broken/planted-no-dn/la2011-safe",
     "broken/planted-no-up/nilsson2012-depth-safe",
     "broken/planted-no-dn/nilsson2012-depth-safe",
+    "broken/planted-no-up/mam2012-safe",
+    "broken/planted-no-dn/mam2012-safe",
 ];
 
 /// The encoding of a bbox-like method, or an error naming the ones there are.
@@ -168,8 +171,8 @@ pub fn cull(id: &str) -> Result<Cull> {
         "mam2012-new" => return Ok(Cull::Parts(&LA2011_PART, "the mam2012 and mam2012-hyperplane parts")),
         _ => {}
     }
-    if id == "mam2012" {
-        return Ok(Cull::Mam2012(super::mam2012_query::Mam2012Cull));
+    if let Some(c) = super::mam2012_query::cull_of(id) {
+        return Ok(Cull::Mam2012(c));
     }
     Ok(Cull::Bbox(rule(id)?))
 }
