@@ -739,3 +739,89 @@ fn a_cull_on_the_wrong_end_is_refused() {
         assert_eq!(o.failures.is_empty(), ok, "{name}: {:?}", o.failures);
     }
 }
+
+/// The rules mam2012-safe's intervals need refuse what they must: a min over only three
+/// of the four end products, a pair of ends of two different values, a quotient whose
+/// divisor's sign is not tested, an end "moved out" the wrong way, a rounded end compared
+/// `<= 0`, and an interval taken as the same value as another while one of its ends is
+/// no end.
+#[test]
+fn the_interval_rules_refuse_what_they_must() {
+    use cullproof::tools::proofs::enclosure::{Bn, Check, Trace, N};
+    // Two intervals: [dn(x x), up(x x)] and [dn(c c), up(c c)].
+    let setup = |t: &Trace| {
+        let (x, c) = (t.input("x"), t.input("c"));
+        let (xx, cc) = (t.mul(&x, &x), t.mul(&c, &c));
+        let a = [t.next_down(&xx), t.next_up(&xx)];
+        let b = [t.next_down(&cc), t.next_up(&cc)];
+        let fin = t.and(&t.is_finite(&x), &t.is_finite(&c));
+        (a, b, fin)
+    };
+    type Piece = fn(&Trace, [N; 2], [N; 2]) -> N;
+    let four: Piece = |t, a, b| {
+        let p = [t.mul(&a[0], &b[0]), t.mul(&a[0], &b[1]), t.mul(&a[1], &b[0]), t.mul(&a[1], &b[1])];
+        t.next_down(&t.min_nan(&t.min_nan(&t.min_nan(&p[0], &p[1]), &p[2]), &p[3]))
+    };
+    let three: Piece = |t, a, b| {
+        let p = [t.mul(&a[0], &b[0]), t.mul(&a[0], &b[1]), t.mul(&a[1], &b[0])];
+        t.next_down(&t.min_nan(&t.min_nan(&p[0], &p[1]), &p[2]))
+    };
+    let mixed: Piece = |t, a, b| {
+        // [a_lo, b_hi] is no interval of one value
+        let p = [t.mul(&a[0], &b[0]), t.mul(&a[0], &b[1]), t.mul(&b[1], &b[0]), t.mul(&b[1], &b[1])];
+        t.next_down(&t.min_nan(&t.min_nan(&t.min_nan(&p[0], &p[1]), &p[2]), &p[3]))
+    };
+    let quotient: Piece = |t, a, b| {
+        let q = [t.div(&a[0], &b[0]), t.div(&a[0], &b[1]), t.div(&a[1], &b[0]), t.div(&a[1], &b[1])];
+        let lo = t.next_down(&t.min_nan(&t.min_nan(&t.min_nan(&q[0], &q[1]), &q[2]), &q[3]));
+        t.select(&t.lt(&t.lit(0.0), &b[0]), &lo, &t.lit(f32::NAN))
+    };
+    let untested: Piece = |t, a, b| {
+        let q = [t.div(&a[0], &b[0]), t.div(&a[0], &b[1]), t.div(&a[1], &b[0]), t.div(&a[1], &b[1])];
+        t.next_down(&t.min_nan(&t.min_nan(&t.min_nan(&q[0], &q[1]), &q[2]), &q[3]))
+    };
+    let moved: Piece = |t, a, _| t.moved_out(&t.sub(&a[0], &t.lit(1e-6)), &a[0], End::Lo);
+    let moved_in: Piece = |t, a, _| t.moved_out(&t.add(&a[0], &t.lit(1e-6)), &a[0], End::Lo);
+    let same: Piece = |t, a, b| {
+        let other = [t.next_down(&t.add(&a[0], &b[0])), t.next_up(&t.add(&a[1], &b[1]))];
+        let s = t.pin_same(&other, &a[0], "test: the same value");
+        t.max_nan(&a[0], &s[0])
+    };
+    let same_rounded: Piece = |t, a, b| {
+        let other = [t.add(&a[0], &b[0]), t.next_up(&t.add(&a[1], &b[1]))];
+        let s = t.pin_same(&other, &a[0], "test: the same value");
+        t.max_nan(&a[0], &s[0])
+    };
+    for (name, piece, ok) in [
+        ("four products", four, true),
+        ("three products", three, false),
+        ("ends of two values", mixed, false),
+        ("quotient, divisor tested", quotient, true),
+        ("quotient, divisor untested", untested, false),
+        ("moved out", moved, true),
+        ("moved in", moved_in, false),
+        ("same value", same, true),
+        ("same value, an end rounded", same_rounded, false),
+    ] {
+        let t = Trace::new();
+        let (a, b, fin) = setup(&t);
+        let out = t.select(&fin, &piece(&t, a, b), &t.lit(f32::NEG_INFINITY));
+        let o = Check::new(&t).run(&[(out, End::Lo, "out".into())]);
+        let out_ok = o.failures.iter().all(|f| f.found == "may be NaN");
+        assert_eq!(out_ok, ok, "{name}: {:?}", o.failures);
+    }
+    // A rounded upper end decides `< 0` (rounding keeps the sign), not `<= 0` (a
+    // positive value can round to 0).
+    type Cull = fn(&Trace, N, N) -> Bn;
+    let lt: Cull = |t, g, zero| t.lt(&g, &zero);
+    let le: Cull = |t, g, zero| t.le(&g, &zero);
+    for (name, cull, ok) in [("g < 0", lt, true), ("g <= 0", le, false)] {
+        let t = Trace::new();
+        let (a, _, fin) = setup(&t);
+        let w = t.input("w");
+        let g = t.sub(&w, &a[0]);
+        let b = t.and(&fin, &cull(&t, g, t.lit(0.0)));
+        let o = Check::new(&t).run_with(&[], &[(b, "cull".into())]);
+        assert_eq!(o.failures.is_empty(), ok, "{name}: {:?}", o.failures);
+    }
+}

@@ -144,30 +144,39 @@ impl F32Arith for Plain {
     type F = f32;
     type B = bool;
 
+    #[inline]
     fn lit(&self, v: f32) -> f32 {
         v
     }
+    #[inline]
     fn add(&self, a: &f32, b: &f32) -> f32 {
         a + b
     }
+    #[inline]
     fn sub(&self, a: &f32, b: &f32) -> f32 {
         a - b
     }
+    #[inline]
     fn mul(&self, a: &f32, b: &f32) -> f32 {
         a * b
     }
+    #[inline]
     fn div(&self, a: &f32, b: &f32) -> f32 {
         a / b
     }
+    #[inline]
     fn fma(&self, a: &f32, b: &f32, c: &f32) -> f32 {
         a.mul_add(*b, *c)
     }
+    #[inline]
     fn neg(&self, a: &f32) -> f32 {
         -a
     }
+    #[inline]
     fn abs(&self, a: &f32) -> f32 {
         a.abs()
     }
+    #[inline]
     fn min(&self, a: &f32, b: &f32) -> f32 {
         if a.is_nan() || b < a {
             *b
@@ -175,6 +184,7 @@ impl F32Arith for Plain {
             *a
         }
     }
+    #[inline]
     fn max(&self, a: &f32, b: &f32) -> f32 {
         if a.is_nan() || b > a {
             *b
@@ -182,43 +192,71 @@ impl F32Arith for Plain {
             *a
         }
     }
-    // The steps as selects (the same bits as `f32::next_up` / `next_down`), so that a
-    // loop over many values runs them side by side.
     #[inline(always)]
+    fn min_nan(&self, a: &f32, b: &f32) -> f32 {
+        if a.is_nan() || b.is_nan() {
+            f32::NAN
+        } else if *b < *a {
+            *b
+        } else {
+            *a
+        }
+    }
+    #[inline(always)]
+    fn max_nan(&self, a: &f32, b: &f32) -> f32 {
+        if a.is_nan() || b.is_nan() {
+            f32::NAN
+        } else if *b > *a {
+            *b
+        } else {
+            *a
+        }
+    }
+    #[inline]
     fn next_up(&self, a: &f32) -> f32 {
-        crate::bounds::step::up(*a)
+        a.next_up()
     }
-    #[inline(always)]
+    #[inline]
     fn next_down(&self, a: &f32) -> f32 {
-        crate::bounds::step::dn(*a)
+        a.next_down()
     }
+    #[inline]
     fn lt(&self, a: &f32, b: &f32) -> bool {
         a < b
     }
+    #[inline]
     fn le(&self, a: &f32, b: &f32) -> bool {
         a <= b
     }
+    #[inline]
     fn eq(&self, a: &f32, b: &f32) -> bool {
         a == b
     }
+    #[inline]
     fn is_nan(&self, a: &f32) -> bool {
         a.is_nan()
     }
+    #[inline]
     fn is_finite(&self, a: &f32) -> bool {
         a.is_finite()
     }
+    #[inline]
     fn truth(&self, b: bool) -> bool {
         b
     }
+    #[inline]
     fn and(&self, a: &bool, b: &bool) -> bool {
         *a && *b
     }
+    #[inline]
     fn or(&self, a: &bool, b: &bool) -> bool {
         *a || *b
     }
+    #[inline]
     fn not(&self, a: &bool) -> bool {
         !a
     }
+    #[inline]
     fn select(&self, c: &bool, a: &f32, b: &f32) -> f32 {
         if *c {
             *a

@@ -43,6 +43,7 @@ impl<'a, A: F32Arith, R: Round> IvOps<'a, A, R> {
     }
     /// The four end products (or quotients), rounded, then stepped outward: NaN when
     /// one of them is NaN.
+    #[inline(always)]
     fn outward(&self, v: [A::F; 4]) -> Iv<A::F> {
         let ar = self.ar;
         let lo = ar.min_nan(&ar.min_nan(&ar.min_nan(&v[0], &v[1]), &v[2]), &v[3]);
@@ -61,18 +62,22 @@ impl<A: F32Arith, R: Round> Ops for IvOps<'_, A, R> {
     fn lit(&self, v: f32) -> Iv<A::F> {
         self.point(&self.ar.lit(v))
     }
+    #[inline]
     fn add(&self, a: &Iv<A::F>, b: &Iv<A::F>) -> Iv<A::F> {
         let ar = self.ar;
         [R::dn(ar, &ar.add(&a[0], &b[0])), R::up(ar, &ar.add(&a[1], &b[1]))]
     }
+    #[inline]
     fn sub(&self, a: &Iv<A::F>, b: &Iv<A::F>) -> Iv<A::F> {
         let ar = self.ar;
         [R::dn(ar, &ar.sub(&a[0], &b[1])), R::up(ar, &ar.sub(&a[1], &b[0]))]
     }
+    #[inline]
     fn mul(&self, a: &Iv<A::F>, b: &Iv<A::F>) -> Iv<A::F> {
         let ar = self.ar;
         self.outward([ar.mul(&a[0], &b[0]), ar.mul(&a[0], &b[1]), ar.mul(&a[1], &b[0]), ar.mul(&a[1], &b[1])])
     }
+    #[inline]
     fn div(&self, a: &Iv<A::F>, b: &Iv<A::F>) -> Iv<A::F> {
         let ar = self.ar;
         let q = self.outward([ar.div(&a[0], &b[0]), ar.div(&a[0], &b[1]), ar.div(&a[1], &b[0]), ar.div(&a[1], &b[1])]);
@@ -129,12 +134,28 @@ pub type SafeSetupOf<F, B> = ([B; 5], [SafeAxis<F, B>; 2]);
 
 /// The setup over any [`F32Arith`].
 pub fn setup_safe_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> SafeSetupOf<A::F, A::B> {
+    let [n, c, m, b] = first_reasons(ar, tri);
+    let (ext, axes) = axes_of::<R, A>(ar, tri);
+    ([n, c, m, b, ext], axes)
+}
+
+/// The reasons of `WHY_SAFE` that need no interval arithmetic: a non-finite input, and
+/// `mam2012`'s three.
+fn first_reasons<A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> [A::B; 4] {
     let inputs = tri.q.iter().chain(tri.r.iter()).flatten().chain(tri.c0.iter()).chain(tri.c1.iter());
     let finite: Vec<A::B> = inputs.chain(std::iter::once(&tri.k)).map(|v| ar.is_finite(v)).collect();
     let [c, m, b] = why_disabled(ar, tri);
+    [ar.not(&ar.all(&finite)), c, m, b]
+}
+
+/// The last reason of `WHY_SAFE` (an unusable screen extent) and both axes.
+type AxesOf<F, B> = (B, [SafeAxis<F, B>; 2]);
+
+/// Both axes, and the last reason of `WHY_SAFE` (an unusable screen extent).
+fn axes_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> AxesOf<A::F, A::B> {
     let (okx, x) = axis_safe::<R, A>(ar, tri, 0);
     let (oky, y) = axis_safe::<R, A>(ar, tri, 1);
-    ([ar.not(&ar.all(&finite)), c, m, b, ar.not(&ar.and(&okx, &oky))], [x, y])
+    (ar.not(&ar.and(&okx, &oky)), [x, y])
 }
 
 /// The patches of one axis in interval arithmetic (`axis` of `mam2012`, enclosed), and
@@ -281,6 +302,7 @@ pub fn answer_of<R: Round, A: F32Arith>(
 
 /// A line's value at a sample: `w - (a t + b)` (lower) or `(a t + b) - w` (upper), with
 /// `a t` and the sum each rounded and stepped outward (`R`), the difference rounded.
+#[inline(always)]
 pub fn line_eval<R: Round, A: F32Arith>(ar: &A, upper: bool, a: &A::F, b: &A::F, t: &A::F, w: &A::F) -> A::F {
     if upper {
         ar.sub(&R::up(ar, &ar.add(&R::up(ar, &ar.mul(a, t)), b)), w)
@@ -309,11 +331,16 @@ impl<R: Round> Method for Mam2012Safe<R> {
     fn info(&self) -> &'static MethodInfo {
         self.info
     }
+    /// [`setup_safe_of`] in f32, its parts in its order: a triangle disabled by one of the
+    /// first four reasons costs no interval arithmetic.
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        let (why, axes) = setup_safe_of::<R, Plain>(&Plain, &TriOf::of(tri));
-        let setup = match why.iter().position(|&w| w) {
+        let tri = TriOf::of(tri);
+        let setup = match first_reasons(&Plain, &tri).iter().position(|&w| w) {
             Some(k) => Err(WHY_SAFE[k]),
-            None => Ok(axes),
+            None => match axes_of::<R, Plain>(&Plain, &tri) {
+                (true, _) => Err(WHY_SAFE[4]),
+                (false, axes) => Ok(axes),
+            },
         };
         Box::new(PrepSafe::<R> { setup, round: PhantomData })
     }
@@ -367,13 +394,27 @@ impl<R: Round> SampleConstraint for SafeLine<R> {
         let Line { is_v, upper, a, b } = self.0;
         line_eval::<R, Plain>(&Plain, upper, &a, &b, &s.t, if is_v { &s.v } else { &s.u })
     }
-    /// `eval` over the columns (the same operations and steps per sample, so the
-    /// samples run side by side).
+    /// `eval` over the columns: for the `-safe` arithmetic the same operations and steps
+    /// per sample, the steps written as selects (the same bits as `next_up` /
+    /// `next_down`), so the samples run side by side; a planted slip sample by sample.
     fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {
+        use crate::bounds::step::{dn, up};
+        if !is_outward::<R>() {
+            for (i, o) in out.iter_mut().enumerate().take(c.len()) {
+                *o = self.eval(&c.sample(i));
+            }
+            return;
+        }
         let Line { is_v, upper, a, b } = self.0;
         let w = if is_v { c.v } else { c.u };
-        for ((o, w), t) in out.iter_mut().zip(w).zip(c.t) {
-            *o = line_eval::<R, Plain>(&Plain, upper, &a, &b, t, w);
+        if upper {
+            for ((o, &w), &t) in out.iter_mut().zip(w).zip(c.t) {
+                *o = up(up(a * t) + b) - w;
+            }
+        } else {
+            for ((o, &w), &t) in out.iter_mut().zip(w).zip(c.t) {
+                *o = w - dn(dn(a * t) + b);
+            }
         }
     }
     fn eval_box(&self, bx: &SampleBox) -> Interval {
