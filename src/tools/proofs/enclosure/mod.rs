@@ -14,8 +14,10 @@
 //! Directions follow fixed rules: rounding then stepping outward in the right direction
 //! encloses (STEP, `step.smt2`); sums, products by a factor of known sign, products of
 //! ends of one sign, quotients by a divisor of one strict sign, min and max of ends
-//! (NaN-free operands only), `max(|lo|, |hi|)` of one interval, comparisons of ends. The
-//! rules, read as statements about reals, are proven by z3 in
+//! (NaN-free operands, or a min that gives NaN on a NaN operand), the min or max of the
+//! four end products or quotients of two intervals, `max(|lo|, |hi|)` of one interval,
+//! comparisons of ends; and from MONO, an end moved outward by a literal and a rounded
+//! end compared with 0. The rules, read as statements about reals, are proven by z3 in
 //! `src/bounds/proofs/enclosure_rules.smt2` (the script `enclosure rules`). Conditions
 //! the code tests become facts inside their branch (signs, finiteness, NaN-freedom,
 //! exact products). A value no rule covers is no end.
@@ -23,7 +25,8 @@
 //! The check demands that every output end of the tile answer is an end of its side and
 //! NaN-free, that every cull implies its counterpart over the exact values, and that every
 //! value the code pins (`F32Arith::pin`, `pin_range`: a step whose argument is a named
-//! lemma) is an end of the side the lemma needs. Values the code may choose freely
+//! lemma; `F32Arith::pin_same`: an interval of a value the lemma equates with another)
+//! is an end of the side the lemma needs. Values the code may choose freely
 //! (`F32Arith::choose`, `choose_truth`) are taken as exact and listed. A lemma about a
 //! whole formula (bbox-safe's Gappa-proven pad) is declared on the formula built from the
 //! script's own constants ([`Trace::known_end`]); it reaches the code only where the code
