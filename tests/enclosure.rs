@@ -415,11 +415,11 @@ fn nilsson<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static
 /// drawn next to the line (the lens coordinate one to three f32 steps either side of the
 /// line's f32 value at t in {0, 1/4, 1/2, 1} and at the ends of the shutter).
 fn mam2012<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, Vec<T>) {
-    use cullproof::bounds::mam2012::{answer_of, line_eval, setup_safe_of};
+    use cullproof::bounds::mam2012::{answer_of, line_eval, rejects_of, setup_safe_of};
     let (why, axes) = setup_safe_of::<R, Pair>(ar, tri);
     let enabled = ar.not(&ar.any(&why));
     let [au, av] = [(0, 0, 2), (1, 1, 3)].map(|(a, lo, hi)| answer_of::<R, Pair>(ar, &axes[a], &tile[lo], &tile[hi]));
-    let reject = ar.all(&[enabled, ar.not(&au.full), ar.or(&au.empty, &ar.and(&ar.not(&av.full), &av.empty))]);
+    let reject = rejects_of(ar, &why, &au, &av);
     let mut culls = vec![reject];
     let mut ranges = vec![];
     for (name, a) in [("u", &au), ("v", &av)] {

@@ -206,7 +206,7 @@ use super::*;
 use crate::bounds::arith::{tile_of, F32Arith, Plain, TriOf};
 
 mod safe;
-pub use safe::{answer_of, line_eval, setup_safe_of, SafeAxis, SafeAxisAnswerOf, SafeSetupOf};
+pub use safe::{answer_of, line_eval, rejects_of, setup_safe_of, SafeAxis, SafeAxisAnswerOf, SafeSetupOf};
 pub use safe::{Mam2012Safe, METHOD_SAFE};
 
 /// The bilinear ut / vt test of Munkberg and Akenine-Möller 2012, §2.1.

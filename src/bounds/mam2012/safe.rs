@@ -482,6 +482,19 @@ fn answer<R: Round>(ax: &SafeAxis<f32, bool>, is_v: bool, t0: f32, t1: f32) -> S
     SafeAxisAnswer::Kept(a.range, [line(false, lo), line(true, hi)])
 }
 
+/// The tile reject of `mam2012-safe`'s f32 answer, over any [`F32Arith`]: the test runs (no
+/// reason of `why` holds), the u part is not Full, and it is Empty or the v part, not
+/// Full, is Empty (what the enclosure check and the symbolic search assert).
+pub fn rejects_of<A: F32Arith>(
+    ar: &A,
+    why: &[A::B; 5],
+    u: &SafeAxisAnswerOf<A::F, A::B>,
+    v: &SafeAxisAnswerOf<A::F, A::B>,
+) -> A::B {
+    let v_empty = ar.and(&ar.not(&v.full), &v.empty);
+    ar.all(&[ar.not(&ar.any(why)), ar.not(&u.full), ar.or(&u.empty, &v_empty)])
+}
+
 /// A tile's answer from its u part and its v part (the u part first: a u part that is
 /// Full or Empty decides before the v part is looked at).
 fn join_safe<R: Round>(u: &SafeAxisAnswer<R>, v: &SafeAxisAnswer<R>) -> TileResult {

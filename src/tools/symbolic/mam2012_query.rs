@@ -14,7 +14,7 @@ use super::bbox_query::{Side, TemplateCull};
 use super::smt::Smt;
 use crate::bounds::arith::{F32Arith, TriOf};
 use crate::bounds::broken::planted::{NoDn, NoUp};
-use crate::bounds::mam2012::{answer_of, setup_of, setup_safe_of, tile_answer};
+use crate::bounds::mam2012::{answer_of, rejects_of, setup_of, setup_safe_of, tile_answer};
 use crate::bounds::round::{Outward, Round};
 
 /// Which arithmetic of mam2012 a query encodes.
@@ -40,9 +40,7 @@ fn safe_cull<R: Round>(smt: &Smt, tri: &TriOf<String>, tile: &[String; 4]) -> St
     let (why, axes) = setup_safe_of::<R, Smt>(smt, tri);
     let u = answer_of::<R, Smt>(smt, &axes[0], &tile[0], &tile[2]);
     let v = answer_of::<R, Smt>(smt, &axes[1], &tile[1], &tile[3]);
-    let runs = smt.not(&smt.any(&why));
-    let v_empty = smt.and(&smt.not(&v.full), &v.empty);
-    smt.all(&[runs, smt.not(&u.full), smt.or(&u.empty, &v_empty)])
+    rejects_of(smt, &why, &u, &v)
 }
 
 impl TemplateCull for Mam2012Cull {

@@ -1175,9 +1175,6 @@ impl<'t> Check<'t> {
                 self.failures.borrow_mut().push(Failure { what: format!("output {name}"), found: "may be NaN".into() });
             }
         }
-        if std::env::var("ENC_DEBUG").is_ok() {
-            eprintln!("contexts {} dirs {}", self.ctxs.borrow().len(), self.dir_memo.borrow().len());
-        }
         let mut rules: Vec<(&'static str, usize)> = self.used.borrow().iter().map(|(k, v)| (*k, *v)).collect();
         rules.sort();
         Outcome {

@@ -56,12 +56,12 @@ fn nilsson<R: Round>(t: &Trace) -> Demands {
 /// `(t, u, v)` of the shutter (each line's value below 0 must put the sample beyond the
 /// line through its ends' exact values).
 fn mam2012<R: Round>(t: &Trace) -> Demands {
-    use crate::bounds::mam2012::{answer_of, line_eval, setup_safe_of};
+    use crate::bounds::mam2012::{answer_of, line_eval, rejects_of, setup_safe_of};
     let (tri, tile) = inputs(t);
     let (why, axes) = setup_safe_of::<R, Trace>(t, &tri);
     let enabled = t.not(&t.any(&why));
     let [au, av] = [(0, 0, 2), (1, 1, 3)].map(|(a, lo, hi)| answer_of::<R, Trace>(t, &axes[a], &tile[lo], &tile[hi]));
-    let reject = t.all(&[enabled, t.not(&au.full), t.or(&au.empty, &t.and(&t.not(&av.full), &av.empty))]);
+    let reject = rejects_of(t, &why, &au, &av);
     let mut culls = vec![(reject, "tile reject".to_string())];
     let mut outs = vec![];
     let (st, zero, one) = (t.input("t"), t.lit(0.0), t.lit(1.0));
