@@ -15,6 +15,8 @@ mod mam2012_old;
 mod mam2012_safe_old;
 #[path = "encoded/nilsson2012_depth_old.rs"]
 mod nilsson2012_depth_old;
+#[path = "encoded/wu2013_safe_old.rs"]
+mod wu2013_safe_old;
 
 use cullproof::bounds::by_id;
 use cullproof::{Tile, Triangle};
@@ -69,6 +71,12 @@ fn mam2012_safe_is_its_old_code_bit_for_bit() {
     let (tiles, culled) = compare("mam2012-safe", N, mam2012_safe_old::answer);
     assert_eq!(tiles, 2 * N);
     assert!(culled > N / 20, "only {culled} of {tiles} tiles culled: the reject went untested");
+}
+
+#[test]
+fn wu2013_safe_is_its_old_code_bit_for_bit() {
+    let (tiles, culled) = compare("wu2013-safe", N, wu2013_safe_old::answer);
+    assert!(tiles > 100_000 && culled > 1_000, "{tiles} tiles, {culled} culled");
 }
 
 #[test]

@@ -382,6 +382,25 @@ impl TimeLine {
     }
 }
 
+/// A stage-2 line's value at a sample over any [`F32Arith`](crate::bounds::arith::F32Arith):
+/// `fl(fl(fl(a l) + b) - t)` for an upper line, `fl(t - fl(fl(a l) + b))` for a lower
+/// one; the sample is culled where it is below 0 ([`TimeLine::eval`]).
+pub(crate) fn line_gap<A: crate::bounds::arith::F32Arith>(
+    ar: &A,
+    upper: bool,
+    a: &A::F,
+    b: &A::F,
+    l: &A::F,
+    t: &A::F,
+) -> A::F {
+    let line = ar.add(&ar.mul(a, l), b);
+    if upper {
+        ar.sub(&line, t)
+    } else {
+        ar.sub(t, &line)
+    }
+}
+
 impl SampleConstraint for TimeLine {
     fn name(&self) -> String {
         let (ax, l) = match self.lens {
@@ -399,12 +418,7 @@ impl SampleConstraint for TimeLine {
             Lens::U => s.u,
             Lens::V => s.v,
         };
-        let line = self.line(l);
-        if self.upper {
-            line - s.t
-        } else {
-            s.t - line
-        }
+        line_gap(&crate::bounds::arith::Plain, self.upper, &self.a, &self.b, &l, &s.t)
     }
     /// `eval` over the columns (the same operations per sample, side by side).
     fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {

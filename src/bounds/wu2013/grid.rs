@@ -6,10 +6,10 @@
 //! constraints. Every part is computed by the same functions as in `tile`, so each answer
 //! is `tile`'s, bit for bit (`grid_tests.rs`).
 
-use super::safe::{
-    hull_within, safe_line_cut, sign_hull, sign_parts, Columns, Iv, LineCut, LineEnds, SafeAxis, SafePrep,
-};
+use super::safe::{constraints_of, AxisCut, Columns, Iv, IvOps, LineEnds, SafeAxis, SafePrep};
 use super::*;
+use crate::bounds::arith::Plain;
+use crate::bounds::round::Round;
 
 /// The lens range of stage 1 on one axis as `tile` leaves it: `Some(range)` (the full
 /// lens when stage 1 gives no bound), or `None` when stage 1 culls the tile.
@@ -21,22 +21,20 @@ type LensRange = Option<[f32; 2]>;
 
 /// What one column boundary (or row boundary) `s` gives every column next to it.
 struct SafeBoundary {
-    /// Per vertex, [`SafeVertex::at_column`](super::safe::SafeVertex::at_column) at `s`.
-    at: [(Iv, Iv); 3],
-    /// Per vertex, [`SafeAxis::lens_at`] at `s` (only when stage 1 applies on the axis).
-    lens: Option<[[Iv; 2]; 3]>,
-    /// Per vertex, [`SafeVertex::line_ends`](super::safe::SafeVertex::line_ends) at `s`.
-    ends: [Option<LineEnds>; 3],
+    /// Per vertex, [`IvOps::at_column`] at `s`.
+    at: [(Iv<f32>, Iv<f32>); 3],
+    /// Per vertex, [`IvOps::lens_at`] at `s`.
+    lens: [[Iv<f32>; 2]; 3],
+    /// Per vertex, [`IvOps::line_ends`] at `s`.
+    ends: [LineEnds<f32, bool>; 3],
 }
 
 impl SafeBoundary {
-    fn new(axis: &SafeAxis, stage1: bool, s: f32) -> Self {
-        let at = axis.v.map(|a| a.at_column(s));
-        let mut ends = [None; 3];
-        for ((a, &col), e) in axis.v.iter().zip(&at).zip(ends.iter_mut()) {
-            *e = a.line_ends(col);
-        }
-        SafeBoundary { at, lens: stage1.then(|| axis.lens_at(s)), ends }
+    fn new<R: Round>(axis: &SafeAxis<f32>, s: f32) -> Self {
+        let o = IvOps::<Plain, R>::new(&Plain);
+        let at = axis.v.each_ref().map(|a| o.at_column(a, &s));
+        let ends = std::array::from_fn(|k| o.line_ends(&axis.v[k], &at[k]));
+        SafeBoundary { at, lens: o.lens_at(axis, &s), ends }
     }
 }
 
@@ -45,50 +43,50 @@ impl SafeBoundary {
 struct SafeAxisPart {
     /// Stage 1's lens range (`None`: the tile is culled).
     lens: LensRange,
-    /// Stage 2's crossing times as [`sign_parts`] (`None`: no time bound from the axis).
+    /// Stage 2's crossing times as [`IvOps::sign_parts`] (`None`: no time bound from the
+    /// axis).
     time: Option<[[f32; 2]; 4]>,
-    /// The published lines over the lens range (an empty cut when there are none).
-    cut: LineCut,
+    /// The published lines over the lens range.
+    cut: AxisCut<f32, bool>,
 }
 
 impl SafeAxisPart {
-    /// The part between boundaries `b0` and `b1`; `full` is the lens range when stage 1
-    /// gives no bound.
-    fn new(axis: &SafeAxis, lens: Lens, full: [f32; 2], b0: &SafeBoundary, b1: &SafeBoundary) -> Self {
-        let culled = SafeAxisPart { lens: None, time: None, cut: LineCut::default() };
-        let mut l = full;
-        if let (Some(inc), Some(at0), Some(at1)) = (axis.lens_directions(), &b0.lens, &b1.lens) {
-            if let Some(cr) = SafeAxis::lens_crossings_from(inc, [at0, at1]) {
-                match sign_hull(&cr, [-1.0, 1.0]) {
-                    None => return culled,
-                    Some(r) => l = r,
-                }
-            }
+    /// The part between boundaries `b0` and `b1`, as [`tile_answer`](super::safe) computes it.
+    fn new<R: Round>(axis: &SafeAxis<f32>, b0: &SafeBoundary, b1: &SafeBoundary) -> Option<Self> {
+        let o = IvOps::<Plain, R>::new(&Plain);
+        let (on, some, r) = o.stage1(axis, [&b0.lens, &b1.lens]);
+        if on && !some {
+            return None;
         }
-        let cols: Columns = std::array::from_fn(|k| [b0.at[k], b1.at[k]]);
-        let time = axis.time_crossings(&cols, l).map(|cr| sign_parts(&cr));
+        let l = if on { r } else { [-1.0, 1.0] };
+        let cols: Columns<f32> = std::array::from_fn(|k| [b0.at[k], b1.at[k]]);
+        let (timed, cr) = o.time_crossings(axis, &cols, &l);
+        let time = timed.then(|| o.sign_parts(&cr));
         let ends = std::array::from_fn(|k| [b0.ends[k], b1.ends[k]]);
-        let cut = SafeAxis::lines_from(&ends).map_or_else(LineCut::default, |ln| safe_line_cut(ln, lens, l));
-        SafeAxisPart { lens: Some(l), time, cut }
+        let (there, e) = o.lines_from(&ends);
+        Some(SafeAxisPart { lens: Some(l), time, cut: o.axis_cut(&there, &e, &l) })
     }
 
     /// Stage 2 of this axis on the time range `t` left by the axes before it: the
     /// sign-aware hull within `t`, then the lines (`None`: the tile is culled).
-    fn time_from(&self, mut t: [f32; 2]) -> Option<[f32; 2]> {
+    fn time_from<R: Round>(&self, mut t: [f32; 2]) -> Option<[f32; 2]> {
+        let o = IvOps::<Plain, R>::new(&Plain);
         if let Some(parts) = &self.time {
-            t = hull_within(parts, t)?;
+            let (some, r) = o.hull_within(parts, &t);
+            if !some {
+                return None;
+            }
+            t = r;
         }
-        self.cut.bound(&mut t);
-        Some(t)
+        Some(o.bound(&self.cut, t))
     }
 }
 
 /// The parts of every column (or row) between consecutive `bounds`, each boundary's
-/// values computed once.
-fn safe_parts(axis: &SafeAxis, lens: Lens, full: [f32; 2], bounds: &[f32]) -> Vec<SafeAxisPart> {
-    let stage1 = axis.lens_directions().is_some();
-    let at: Vec<SafeBoundary> = bounds.iter().map(|&s| SafeBoundary::new(axis, stage1, s)).collect();
-    at.windows(2).map(|w| SafeAxisPart::new(axis, lens, full, &w[0], &w[1])).collect()
+/// values computed once (`None`: stage 1 culls that column).
+fn safe_parts<R: Round>(axis: &SafeAxis<f32>, bounds: &[f32]) -> Vec<Option<SafeAxisPart>> {
+    let at: Vec<SafeBoundary> = bounds.iter().map(|&s| SafeBoundary::new::<R>(axis, s)).collect();
+    at.windows(2).map(|w| SafeAxisPart::new::<R>(axis, &w[0], &w[1])).collect()
 }
 
 /// [`SafePrep::grid`]: per column boundary and per row boundary the vertices' column
@@ -101,25 +99,27 @@ pub(super) struct SafeGrid {
     /// computed).
     finite: bool,
     /// Per column: its part and the time range after the x axis (`None`: culled).
-    cols: Vec<(SafeAxisPart, Option<[f32; 2]>)>,
-    rows: Vec<SafeAxisPart>,
+    cols: Vec<(Option<SafeAxisPart>, Option<[f32; 2]>)>,
+    rows: Vec<Option<SafeAxisPart>>,
+    /// The axis's time hull and lines on the rows (with the rounding discipline).
+    time_from: fn(&SafeAxisPart, [f32; 2]) -> Option<[f32; 2]>,
 }
 
 impl SafeGrid {
-    pub(super) fn new(prep: &SafePrep, grid: Grid) -> Self {
+    pub(super) fn new<R: Round>(prep: &SafePrep<R>, grid: Grid) -> Self {
+        let time_from = |p: &SafeAxisPart, t: [f32; 2]| p.time_from::<R>(t);
         if !prep.finite {
-            return SafeGrid { finite: false, cols: Vec::new(), rows: Vec::new() };
+            return SafeGrid { finite: false, cols: Vec::new(), rows: Vec::new(), time_from };
         }
-        let full = TileBounds::full();
-        let cols = safe_parts(&prep.x, Lens::U, full.u, grid.xs)
+        let cols = safe_parts::<R>(&prep.x, grid.xs)
             .into_iter()
             .map(|p| {
-                let t = p.lens.and_then(|_| p.time_from([0.0, 1.0]));
+                let t = p.as_ref().and_then(|p| p.time_from::<R>([0.0, 1.0]));
                 (p, t)
             })
             .collect();
-        let rows = safe_parts(&prep.y, Lens::V, full.v, grid.ys);
-        SafeGrid { finite: true, cols, rows }
+        let rows = safe_parts::<R>(&prep.y, grid.ys);
+        SafeGrid { finite: true, cols, rows, time_from }
     }
 }
 
@@ -130,18 +130,21 @@ impl TileGrid for SafeGrid {
             return TileResult::Bounds(b);
         }
         let ((c, tx), r) = (&self.cols[i], &self.rows[j]);
-        let (Some(u), Some(v), Some(t)) = (c.lens, r.lens, *tx) else {
+        let (Some(c), Some(r), Some(t)) = (c, r, *tx) else {
             return TileResult::Empty;
         };
-        let Some(t) = r.time_from(t) else {
+        let (Some(u), Some(v)) = (c.lens, r.lens) else {
+            return TileResult::Empty;
+        };
+        let Some(t) = (self.time_from)(r, t) else {
             return TileResult::Empty;
         };
         if t[0].is_nan() || t[1].is_nan() || t[0] > t[1] {
             return TileResult::Empty;
         }
-        let mut cons: Vec<Box<dyn SampleConstraint>> = Vec::with_capacity(c.cut.count() + r.cut.count());
-        c.cut.push(&mut cons);
-        r.cut.push(&mut cons);
+        let mut cons: Vec<Box<dyn SampleConstraint>> = Vec::new();
+        constraints_of(&c.cut, Lens::U, &mut cons);
+        constraints_of(&r.cut, Lens::V, &mut cons);
         (b.u, b.v, b.t, b.constraints) = (u, v, t, cons);
         TileResult::Bounds(b)
     }

@@ -7,6 +7,8 @@ use super::tests::{
     bounds, cam, one_side_translated, opposite_motion, spot_check, spot_check_of, tile_on, translated, unconstrained,
 };
 use super::*;
+use crate::bounds::arith::Plain;
+use crate::bounds::round::Outward;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -55,6 +57,13 @@ fn safe_keeps_the_findings() {
     assert_eq!(culled, 0);
 }
 
+/// The sign-aware hull of the crossings `cr` within `dom` (None: no part meets it).
+fn sign_hull(cr: &[(bool, f32, f32); 3], dom: [f32; 2]) -> Option<[f32; 2]> {
+    let o = IvOps::<Plain, Outward>::new(&Plain);
+    let (some, r) = o.hull_within(&o.sign_parts(cr), &dom);
+    some.then_some(r)
+}
+
 /// The sign-aware hull on the "no vertex crosses the row" example: two deltas stay
 /// positive, one negative, all crossing times negative: the published [min, max] is
 /// empty, the hull is the whole shutter.
@@ -82,34 +91,36 @@ fn sign_hull_handles_both_directions() {
 /// sums, differences and products of these f32 values; quotients to 2^-53).
 #[test]
 fn intervals_enclose_exact_results() {
+    let o = IvOps::<Plain, Outward>::new(&Plain);
     let mut rng = ChaCha8Rng::seed_from_u64(0x1f32);
     for n in 0..200_000 {
         let scale = [1e-30f32, 1e-6, 1.0, 1e6, 1e15][n % 5];
         let mut r = || {
             let lo = rng.gen_range(-1.0f32..1.0) * scale;
             let hi = lo + rng.gen_range(0.0f32..1.0) * scale * [0.0f32, 1e-7, 1.0][n % 3];
-            Iv { lo, hi }
+            [lo, hi]
         };
         let (a, b) = (r(), r());
-        let pick = |i: Iv, f: f64| i.lo as f64 + f * (i.hi as f64 - i.lo as f64);
+        let pick = |i: Iv<f32>, f: f64| i[0] as f64 + f * (i[1] as f64 - i[0] as f64);
         let (fa, fb) = (rng.gen_range(0.0..=1.0), rng.gen_range(0.0..=1.0));
         let (x, y) = (pick(a, fa), pick(b, fb));
-        let inside = |i: Iv, z: f64, what: &str| {
-            assert!(!i.ok() || (i.lo as f64 <= z && z <= i.hi as f64), "{what}: {z:e} not in {i:?} ({a:?}, {b:?})");
+        let inside = |i: Iv<f32>, z: f64, what: &str| {
+            assert!(!o.ok(&i) || (i[0] as f64 <= z && z <= i[1] as f64), "{what}: {z:e} not in {i:?} ({a:?}, {b:?})");
         };
         // x, y are not f32 values in general, but lie in the intervals: the
         // enclosure must hold for them too (f64 rounding far below the f32 steps).
-        inside(a.add(b), x + y, "add");
-        inside(a.sub(b), x - y, "sub");
-        inside(a.mul(b), x * y, "mul");
-        inside(a.div(b), x / y, "div");
+        inside(o.add(&a, &b), x + y, "add");
+        inside(o.sub(&a, &b), x - y, "sub");
+        inside(o.mul(&a, &b), x * y, "mul");
+        inside(o.div(&a, &b), x / y, "div");
     }
     // Underflow: a product that rounds to 0 is enclosed by the subnormal neighbours.
-    let t = Iv::pt(1e-30).mul(Iv::pt(1e-30));
-    assert!(t.lo < 0.0 && t.hi > 0.0);
-    assert!(!Iv::pt(f32::MAX).add(Iv::pt(f32::MAX)).ok());
-    assert!(!Iv::pt(1.0).div(Iv { lo: -1.0, hi: 1.0 }).ok());
-    assert!(!Iv::pt(f32::NAN).ok() && !Iv::pt(f32::NAN).pos() && !Iv::pt(f32::NAN).neg());
+    let t = o.mul(&o.pt(&1e-30), &o.pt(&1e-30));
+    assert!(t[0] < 0.0 && t[1] > 0.0);
+    assert!(!o.ok(&o.add(&o.pt(&f32::MAX), &o.pt(&f32::MAX))));
+    assert!(!o.ok(&o.div(&o.pt(&1.0), &[-1.0, 1.0])));
+    let bad = [f32::NAN; 2];
+    assert!(!o.ok(&bad) && !o.pos(&bad) && !o.neg(&bad));
 }
 
 /// The padded lines: for random endpoints and f32 samples at or above (below) the
