@@ -104,9 +104,10 @@ pub trait F32Arith {
     }
 
     /// `b`, a condition the code is free to choose (`why`): it only ever turns a cull
-    /// off, so the method is right whichever way it comes out. The enclosure check
-    /// demands nothing of it where it restricts a cull. Every instance but the check
-    /// returns `b`.
+    /// off, so the method's derivation does not rest on it. The enclosure check demands
+    /// nothing of its exact counterpart where it restricts a cull; inside, its f32 truth
+    /// is a fact (a lemma about the code may take it as a hypothesis). Every instance
+    /// but the check returns `b`.
     fn choose_truth(&self, b: &Self::B, _why: &'static str) -> Self::B {
         b.clone()
     }

@@ -241,7 +241,8 @@ use super::*;
 
 mod safe;
 pub use safe::METHOD_SAFE;
-pub(crate) use safe::{safe_line, FLOOR, PAD};
+pub(crate) use safe::{safe_line, setup_of, tile_answer, FLOOR, PAD};
+pub use safe::{Wu2013Safe, LENS_LEMMA, LINE_LEMMA};
 
 /// One vertex on one axis: position (x or y), w, and CoC (c or k c) at both ends.
 #[derive(Clone, Copy, Debug)]
@@ -274,7 +275,8 @@ struct Lines {
     lr: f32,
 }
 
-const LINE_LIMIT: f32 = 1.2676506e30; // 2^100
+/// The largest line endpoint a line is built from (2^100; `wu2013_safe.g` reads it).
+pub(crate) const LINE_LIMIT: f32 = 1.2676506e30; // 2^100
 
 impl Axis {
     /// Stage 1: the lens range over columns [s0, s1], or None (full lens).
@@ -583,7 +585,7 @@ struct Wu2013 {
     guarded: bool,
 }
 
-static INFO: MethodInfo = MethodInfo {
+pub(crate) static INFO: MethodInfo = MethodInfo {
     id: "wu2013",
     source: "Wu 2013, Clip Space Sample Culling for Stochastic Rasterization (M.Sc. thesis, NCTU): §3.3 stage 1 \
              lens bounds; §3.4 stage 2 Eq. 1 rewritten, linear bounds of Figs. 3.7-3.8; §3.5 per-vertex CoC",

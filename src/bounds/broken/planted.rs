@@ -28,6 +28,7 @@ use crate::bounds::bbox::{padded_corner, BBox, Corner, SafeCorner};
 use crate::bounds::la2011::La2011;
 use crate::bounds::mam2012::Mam2012Safe;
 use crate::bounds::nilsson2012_depth::Nilsson2012Depth;
+use crate::bounds::wu2013::Wu2013Safe;
 use crate::bounds::round::Round;
 use crate::bounds::{Method, MethodInfo, Outputs};
 use crate::model::Dims;
@@ -185,6 +186,22 @@ pub static NO_UP_MAM: &dyn Method = &Mam2012Safe::<NoUp> { info: &INFO_NO_UP_MAM
 /// `broken/planted-no-dn/mam2012-safe`.
 pub static NO_DN_MAM: &dyn Method = &Mam2012Safe::<NoDn> { info: &INFO_NO_DN_MAM, round: std::marker::PhantomData };
 
+static INFO_NO_UP_WU: MethodInfo = slip(
+    "broken/planted-no-up/wu2013-safe",
+    "wu2013-safe with the outward step of every upper end dropped",
+    crate::bounds::wu2013::INFO,
+);
+static INFO_NO_DN_WU: MethodInfo = slip(
+    "broken/planted-no-dn/wu2013-safe",
+    "wu2013-safe with the outward step of every lower end dropped",
+    crate::bounds::wu2013::INFO,
+);
+
+/// `broken/planted-no-up/wu2013-safe`.
+pub static NO_UP_WU: &dyn Method = &Wu2013Safe::<NoUp> { info: &INFO_NO_UP_WU, round: std::marker::PhantomData };
+/// `broken/planted-no-dn/wu2013-safe`.
+pub static NO_DN_WU: &dyn Method = &Wu2013Safe::<NoDn> { info: &INFO_NO_DN_WU, round: std::marker::PhantomData };
+
 static INFO_NO_UP_BOX: MethodInfo =
     slip("broken/planted-no-up/bbox-safe", "bbox-safe with the outward steps of every upper end dropped", INFO_EQ);
 static INFO_NO_DN_BOX: MethodInfo =
@@ -202,7 +219,7 @@ pub static BAND: &dyn Method = &BBox { info: &INFO_BAND, corner: BandSlip };
 
 /// The planted variant with this id, if it is one.
 pub fn parse(id: &str) -> Option<&'static dyn Method> {
-    [EQ, BAND, NO_UP, NO_DN, NO_UP_DEPTH, NO_DN_DEPTH, NO_UP_MAM, NO_DN_MAM, NO_UP_BOX, NO_DN_BOX]
+    [EQ, BAND, NO_UP, NO_DN, NO_UP_DEPTH, NO_DN_DEPTH, NO_UP_MAM, NO_DN_MAM, NO_UP_WU, NO_DN_WU, NO_UP_BOX, NO_DN_BOX]
         .into_iter()
         .find(|m| m.info().id == id)
 }

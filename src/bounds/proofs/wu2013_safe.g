@@ -3,6 +3,8 @@
 # docs/proofs.md, "wu2013-safe"). The code's constants (tests/proofs.rs checks them):
 PAD = 1b-21;
 FLOOR = 1b-100;
+# The endpoints' limit: a line is built only when |e_left|, |e_right| <= LIMIT.
+LIMIT = 1b100;
 # The error model, lemmas STEP and ULP: every finite f32 rounding r of z has
 # |r - z| <= U |r| + E.
 U = 1b-23;
@@ -30,4 +32,13 @@ x0 = k * (k * E + (1 + U) * k * (phi0 + E) + E + E);
 cA = 2 * PAD * h * h * h * h - U * k - U * xA;
 cB = PAD * h * h * h - U * xB;
 c0 = PAD * h * h * FLOOR - PAD * E * (h * h * h * h + h * h * h + h * h) - E * h - U * k * E - U * x0 - 2 * E;
-{ cA >= 0 /\ cB >= 0 /\ c0 >= 0 }
+#
+# Finiteness. With |e_left|, |e_right| <= LIMIT: 0.5 e is exact or a subnormal rounding
+# (|RN(0.5 e)| <= LIMIT / 2), so A = |RN(RN(0.5 e_right) - RN(0.5 e_left))| <= LIMIT
+# (LIMIT is an f32 value and rounding is monotone, MONO); |e + a| <= 2 LIMIT, so
+# Bb = |b| <= next_up(2 LIMIT) <= 2 LIMIT (1 + 2U). Every other rounded value of the
+# chain (p, RN(b + p), b', m, x) is at most |x|'s bound below, far under the overflow
+# threshold 2^128 (1 - 2^-25): no rounding of the chain overflows, so x is finite and
+# the error model above applies to each of them.
+xmax = xA * LIMIT + xB * (2 * LIMIT * (1 + 2 * U)) + x0;
+{ cA >= 0 /\ cB >= 0 /\ c0 >= 0 /\ xmax <= 1b104 }

@@ -141,8 +141,9 @@ pub(crate) type Columns<F> = [[(Iv<F>, Iv<F>); 2]; 3];
 
 /// One vertex's part of the published lines at one column ([`IvOps::line_ends`]):
 /// whether it is there (D of one strict sign at l = -1 and +1, every value finite),
-/// whether D > 0, and the upper ends at l = -1, +1, then the lower ends at l = -1, +1.
-pub(crate) type LineEnds<F, B> = (B, B, [F; 4]);
+/// whether D > 0 and whether D < 0 there, and the upper ends at l = -1, +1, then the
+/// lower ends at l = -1, +1.
+pub(crate) type LineEnds<F, B> = (B, [B; 2], [F; 4]);
 
 /// `wu2013-safe`'s line pad, 2^-21 = 8u (proof: `src/bounds/proofs/wu2013_safe.g`).
 pub(crate) const PAD: f32 = 1.0 / (1u32 << 21) as f32;
@@ -160,6 +161,9 @@ pub const LINE_LEMMA: &str = "wu2013-safe lines: a line a l + b (any a) with b a
 /// What a line's slope is: any value will do.
 pub const SLOPE_CHOICE: &str = "wu2013-safe line slope: the intercept is then chosen to dominate both endpoints, \
      so any finite slope gives a line through or beyond them";
+/// Why the endpoints' limit is the code's choice.
+pub const LIMIT_CHOICE: &str = "wu2013-safe builds a line only from endpoints within LINE_LIMIT: it only turns \
+     lines off, and its f32 truth is the hypothesis under which wu2013_safe.g proves the padded line's value finite";
 /// Why keeping a line as a per-sample constraint is the code's choice.
 pub const KEEP_CHOICE: &str = "wu2013-safe keeps a line as a constraint only where it can cut (a slope other than \
      0, a value inside the shutter): dropping a constraint only culls less";
@@ -171,6 +175,8 @@ pub const KEEP_CHOICE: &str = "wu2013-safe keeps a line as a constraint only whe
 #[derive(Clone, Debug)]
 pub(crate) struct SafeLineOf<F, B> {
     pub(crate) ok: B,
+    /// The endpoints' values at l = -1 and l = +1.
+    pub(crate) ends: [F; 2],
     pub(crate) a: F,
     pub(crate) b: F,
     pub(crate) padded: F,
@@ -373,8 +379,9 @@ impl<A: F32Arith, R: Round> IvOps<'_, A, R> {
         let slope = self.div(&self.sub(n1, &self.mul(&tz, d1)), &d0);
         let (gm, gp) = (self.sub(&tz, &slope), self.add(&tz, &slope));
         let ok = ar.all(&[ar.or(&d_pos, &d_neg), self.ok(&tm), self.ok(&tp), self.ok(&gm), self.ok(&gp)]);
+        // (d_pos and d_neg are not both true: one value is not > 0 and < 0.)
         let ends = [ar.max(&tm[1], &gm[1]), ar.max(&tp[1], &gp[1]), ar.min(&tm[0], &gm[0]), ar.min(&tp[0], &gp[0])];
-        (ok, d_pos, ends)
+        (ok, [d_pos, d_neg], ends)
     }
 
     /// Stage 2 as published (the green / red lines), enclosed, from each vertex's
@@ -387,16 +394,16 @@ impl<A: F32Arith, R: Round> IvOps<'_, A, R> {
         let (ninf, inf) = (ar.lit(f32::NEG_INFINITY), ar.lit(f32::INFINITY));
         let mut out = [ninf.clone(), ninf, inf.clone(), inf];
         let (mut ok, mut pos, mut neg) = (vec![], vec![], vec![]);
-        for (there, d_pos, e) in ends.iter().flatten() {
+        for (there, [d_pos, d_neg], e) in ends.iter().flatten() {
             ok.push(there.clone());
             pos.push(d_pos.clone());
-            neg.push(ar.not(d_pos));
+            neg.push(d_neg.clone());
             out[0] = ar.max(&out[0], &e[0]);
             out[1] = ar.max(&out[1], &e[1]);
             out[2] = ar.min(&out[2], &e[2]);
             out[3] = ar.min(&out[3], &e[3]);
         }
-        // Each end there has D of one strict sign: "not both signs" is "all of one".
+        // Each end there has D > 0 or D < 0 at both l: "not both signs" is "all of one".
         ok.push(ar.or(&ar.all(&pos), &ar.all(&neg)));
         (ar.all(&ok), out)
     }
@@ -406,7 +413,10 @@ impl<A: F32Arith, R: Round> IvOps<'_, A, R> {
     pub(crate) fn safe_line(&self, upper: bool, e_left: &A::F, e_right: &A::F) -> SafeLineOf<A::F, A::B> {
         let ar = self.ar;
         let lim = ar.lit(LINE_LIMIT);
-        let within = ar.and(&ar.le(&ar.abs(e_left), &lim), &ar.le(&ar.abs(e_right), &lim));
+        let within = ar.choose_truth(
+            &ar.and(&ar.le(&ar.abs(e_left), &lim), &ar.le(&ar.abs(e_right), &lim)),
+            LIMIT_CHOICE,
+        );
         let half = ar.lit(0.5);
         let a = ar.choose(&ar.sub(&ar.mul(&half, e_right), &ar.mul(&half, e_left)), SLOPE_CHOICE);
         let (l, r) = (ar.add(e_left, &a), ar.sub(e_right, &a));
@@ -420,7 +430,7 @@ impl<A: F32Arith, R: Round> IvOps<'_, A, R> {
             ar.moved_out(&R::dn(ar, &ar.sub(&b, &pad)), &b, End::Lo)
         };
         let ok = ar.all(&[within, ar.is_finite(&a), ar.is_finite(&padded)]);
-        SafeLineOf { ok, a, b, padded }
+        SafeLineOf { ok, ends: [e_left.clone(), e_right.clone()], a, b, padded }
     }
 
     /// What the padded line does over the lens range `l` (`there`: the axis has lines).

@@ -65,6 +65,7 @@ pub fn shared_constants() -> Vec<(&'static Script, &'static str, f64)> {
         (&BBOX_PAD, "FLOOR", bbox::FLOOR as f64),
         (&WU_PAD, "PAD", wu2013::PAD as f64),
         (&WU_PAD, "FLOOR", wu2013::FLOOR as f64),
+        (&WU_PAD, "LIMIT", wu2013::LINE_LIMIT as f64),
     ]
 }
 

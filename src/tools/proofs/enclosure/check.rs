@@ -213,18 +213,25 @@ pub struct Check<'t> {
     reals: RefCell<Pool<Real>>,
     real_memo: RefCell<HashMap<N, Ri>>,
     ctxs: RefCell<Vec<Facts>>,
-    ctx_index: RefCell<HashMap<(usize, Bn, bool), usize>>,
+    ctx_index: RefCell<HashMap<(usize, Bn, bool, bool), usize>>,
     /// The conditions each context assumes (sorted), and the context of each such set:
     /// a branch reached along two paths is one context.
     assumed: RefCell<Vec<Vec<(Bn, bool)>>>,
-    by_assumed: RefCell<HashMap<Vec<(Bn, bool)>, usize>>,
+    /// (Contexts made inside a probe at the root are their own: their facts were
+    /// worked out with a probe's findings.)
+    by_assumed: RefCell<HashMap<(Vec<(Bn, bool)>, bool), usize>>,
     dir_memo: RefCell<HashMap<(N, usize), Dir>>,
-    nan_memo: RefCell<HashMap<(N, usize), bool>>,
-    fin_memo: RefCell<HashMap<(N, usize), bool>>,
+    /// Keyed also by whether a probe at the root asked (its findings are its own).
+    nan_memo: RefCell<HashMap<(N, usize, bool), bool>>,
+    fin_memo: RefCell<HashMap<(N, usize, bool), bool>>,
     failures: RefCell<Vec<Failure>>,
     /// The pinned values met (each once, whatever branches it was checked under).
     pins: RefCell<HashSet<N>>,
     used: RefCell<HashMap<&'static str, usize>>,
+    /// Inside a probe at the root (> 0): a pin that is no end there gives no end rather
+    /// than a failure.
+    probing: std::cell::Cell<u32>,
+    probe_memo: RefCell<HashMap<(N, usize), Dir>>,
 }
 
 const ROOT: usize = 0;
@@ -238,13 +245,15 @@ impl<'t> Check<'t> {
             ctxs: RefCell::new(vec![Facts::default()]),
             ctx_index: RefCell::new(HashMap::new()),
             assumed: RefCell::new(vec![vec![]]),
-            by_assumed: RefCell::new(HashMap::from([(vec![], ROOT)])),
+            by_assumed: RefCell::new(HashMap::from([((vec![], false), ROOT), ((vec![], true), ROOT)])),
             dir_memo: RefCell::new(HashMap::new()),
             nan_memo: RefCell::new(HashMap::new()),
             fin_memo: RefCell::new(HashMap::new()),
             failures: RefCell::new(vec![]),
             pins: RefCell::new(HashSet::new()),
             used: RefCell::new(HashMap::new()),
+            probing: std::cell::Cell::new(0),
+            probe_memo: RefCell::new(HashMap::new()),
         }
     }
 
@@ -268,8 +277,8 @@ impl<'t> Check<'t> {
             return r;
         }
         let t = self.t;
-        let known = t.known.borrow().get(&n).copied();
-        if let Some((_, exact, _, _)) = known {
+        let known = t.known.borrow().get(&n).map(|k| k.exact);
+        if let Some(exact) = known {
             let r = self.real(exact);
             self.real_memo.borrow_mut().insert(n, r);
             return r;
@@ -344,7 +353,8 @@ impl<'t> Check<'t> {
 
     /// The branch of `ctx` where `c` is `v`.
     fn push(&self, ctx: usize, c: Bn, v: bool) -> usize {
-        if let Some(&i) = self.ctx_index.borrow().get(&(ctx, c, v)) {
+        let probing = self.probing.get() > 0;
+        if let Some(&i) = self.ctx_index.borrow().get(&(ctx, c, v, probing)) {
             return i;
         }
         let mut set = self.assumed.borrow()[ctx].clone();
@@ -352,7 +362,7 @@ impl<'t> Check<'t> {
             Ok(_) => ctx,
             Err(at) => {
                 set.insert(at, (c, v));
-                let known = self.by_assumed.borrow().get(&set).copied();
+                let known = self.by_assumed.borrow().get(&(set.clone(), probing)).copied();
                 match known {
                     Some(i) => i,
                     None => {
@@ -363,13 +373,13 @@ impl<'t> Check<'t> {
                         let i = cs.len() - 1;
                         drop(cs);
                         self.assumed.borrow_mut().push(set.clone());
-                        self.by_assumed.borrow_mut().insert(set, i);
+                        self.by_assumed.borrow_mut().insert((set, probing), i);
                         i
                     }
                 }
             }
         };
-        self.ctx_index.borrow_mut().insert((ctx, c, v), i);
+        self.ctx_index.borrow_mut().insert((ctx, c, v, probing), i);
         i
     }
 
@@ -549,6 +559,29 @@ impl<'t> Check<'t> {
     fn f_sign_own(&self, n: N, ctx: usize) -> Option<Sg> {
         match self.t.op(n) {
             Op::Abs(_) => return Some(Sg::NonNeg),
+            // The rounding of a sum of two values >= 0 is >= 0 (MONO), and of a product of
+            // two values of known signs has the product's sign or is 0.
+            Op::Add(a, b) => {
+                if let (Some(sa), Some(sb)) = (self.f_sign(a, ctx), self.f_sign(b, ctx)) {
+                    if sa.ge0() && sb.ge0() {
+                        return Some(Sg::NonNeg);
+                    }
+                    if sa.le0() && sb.le0() {
+                        return Some(Sg::NonPos);
+                    }
+                }
+            }
+            Op::Mul(a, b) => {
+                if let (Some(sa), Some(sb)) = (self.f_sign(a, ctx), self.f_sign(b, ctx)) {
+                    let same = (sa.ge0() && sb.ge0()) || (sa.le0() && sb.le0());
+                    let opposite = (sa.ge0() && sb.le0()) || (sa.le0() && sb.ge0());
+                    match (same, opposite) {
+                        (true, false) => return Some(Sg::NonNeg),
+                        (false, true) => return Some(Sg::NonPos),
+                        _ => {}
+                    }
+                }
+            }
             Op::Neg(a) => {
                 if let Some(s) = self.f_sign(a, ctx) {
                     return Some(s.neg());
@@ -587,12 +620,21 @@ impl<'t> Check<'t> {
     }
 
     fn finite(&self, n: N, ctx: usize) -> bool {
-        if let Some(&v) = self.fin_memo.borrow().get(&(n, ctx)) {
+        let key = (n, ctx, self.probing.get() > 0);
+        if let Some(&v) = self.fin_memo.borrow().get(&key) {
             return v;
+        }
+        if ctx != ROOT && self.at_root(|| self.finite(n, ROOT)) {
+            return true;
         }
         let t = self.t;
         let known = self.facts(ctx).finite.contains(&n);
+        let by_lemma = || {
+            let k = t.known.borrow().get(&n).cloned();
+            k.is_some_and(|k| k.positive.is_none() && self.conds_hold(&k.conds, ctx))
+        };
         let v = known
+            || by_lemma()
             || match t.op(n) {
                 Op::Lit(b) => f32::from_bits(b).is_finite(),
                 Op::Neg(a) | Op::Abs(a) | Op::Pin(a, ..) | Op::Free(a, _) | Op::Same(a, ..) | Op::Out(a, ..) => {
@@ -605,7 +647,7 @@ impl<'t> Check<'t> {
                 Op::Sel(c, a, b) => self.finite(a, self.push(ctx, c, true)) && self.finite(b, self.push(ctx, c, false)),
                 _ => false,
             };
-        self.fin_memo.borrow_mut().insert((n, ctx), v);
+        self.fin_memo.borrow_mut().insert(key, v);
         v
     }
 
@@ -614,8 +656,12 @@ impl<'t> Check<'t> {
         if self.facts(ctx).dead {
             return true;
         }
-        if let Some(&v) = self.nan_memo.borrow().get(&(n, ctx)) {
+        let key = (n, ctx, self.probing.get() > 0);
+        if let Some(&v) = self.nan_memo.borrow().get(&key) {
             return v;
+        }
+        if ctx != ROOT && self.at_root(|| self.nan_free(n, ROOT)) {
+            return true;
         }
         let t = self.t;
         let known = self.facts(ctx).nan_free.contains(&n);
@@ -649,8 +695,31 @@ impl<'t> Check<'t> {
                     self.nan_free(a, self.push(ctx, c, true)) && self.nan_free(b, self.push(ctx, c, false))
                 }
             };
-        self.nan_memo.borrow_mut().insert((n, ctx), v);
+        self.nan_memo.borrow_mut().insert(key, v);
         v
+    }
+
+    /// Whether every condition of `conds` holds in `ctx`: each is a term of a condition
+    /// the branch assumes true (through conjunctions and conditions chosen freely).
+    fn conds_hold(&self, conds: &[Bn], ctx: usize) -> bool {
+        let assumed = self.assumed.borrow()[ctx].clone();
+        let mut terms = vec![];
+        for (b, v) in assumed {
+            if v {
+                self.true_terms(b, &mut terms);
+            }
+        }
+        conds.iter().all(|c| terms.contains(c))
+    }
+    fn true_terms(&self, b: Bn, out: &mut Vec<Bn>) {
+        match self.t.bop(b) {
+            BOp::And(x, y) => {
+                self.true_terms(x, out);
+                self.true_terms(y, out);
+            }
+            BOp::Free(x, _) => self.true_terms(x, out),
+            _ => out.push(b),
+        }
     }
 
     /// Whether `a * b` is exact in `ctx`: a factor is the literal 0 or ±1, or the branch
@@ -684,9 +753,41 @@ impl<'t> Check<'t> {
         if let Some(&d) = self.dir_memo.borrow().get(&(n, ctx)) {
             return d;
         }
+        // A probe's findings are its own (a pin that is no end gives no end there).
+        let probing = self.probing.get() > 0;
+        if probing {
+            if let Some(&d) = self.probe_memo.borrow().get(&(n, ctx)) {
+                return d;
+            }
+        }
+        // What holds at the root holds in every branch: a value whose direction does not
+        // need this branch's facts is not worked out again for it (nested selects on
+        // unrelated conditions would otherwise multiply the contexts).
+        // Once the check has failed, what the root gives is the answer: the verdict
+        // stands, and a failing variant's branches are not searched one by one.
+        if ctx != ROOT {
+            let d0 = self.at_root(|| self.dir(n, ROOT));
+            if (d0.pre != Pre::Any && !d0.rounded) || !self.failures.borrow().is_empty() {
+                self.dir_memo.borrow_mut().insert((n, ctx), d0);
+                return d0;
+            }
+        }
         let d = self.dir_of(n, ctx);
-        self.dir_memo.borrow_mut().insert((n, ctx), d);
+        if probing {
+            self.probe_memo.borrow_mut().insert((n, ctx), d);
+        } else {
+            self.dir_memo.borrow_mut().insert((n, ctx), d);
+        }
         d
+    }
+
+    /// `f` as a probe at the root: a pin that is no end there gives no end rather than a
+    /// failure (the pin is demanded where the code reaches it).
+    fn at_root<T>(&self, f: impl FnOnce() -> T) -> T {
+        self.probing.set(self.probing.get() + 1);
+        let r = f();
+        self.probing.set(self.probing.get() - 1);
+        r
     }
 
     /// Operands of an arithmetic operation: unrounded directions (a rounded value used
@@ -702,11 +803,15 @@ impl<'t> Check<'t> {
 
     fn dir_of(&self, n: N, ctx: usize) -> Dir {
         let t = self.t;
-        let known = t.known.borrow().get(&n).copied();
-        if let Some((end, _, positive, _)) = known {
-            if self.finite(n, ctx) && self.f_sign(positive, ctx) == Some(Sg::Pos) {
+        let known = t.known.borrow().get(&n).cloned();
+        if let Some(k) = known {
+            let holds = match k.positive {
+                Some(p) => self.finite(n, ctx) && self.f_sign(p, ctx) == Some(Sg::Pos),
+                None => self.conds_hold(&k.conds, ctx),
+            };
+            if holds {
                 self.rule("an end a lemma proves");
-                return unrounded(if end == End::Lo { Pre::Lo } else { Pre::Hi });
+                return unrounded(if k.end == End::Lo { Pre::Lo } else { Pre::Hi });
             }
             return ANY;
         }
@@ -802,7 +907,14 @@ impl<'t> Check<'t> {
                     _ => ANY,
                 }
             }
-            Op::Sel(c, a, b) => join(self.dir(a, self.push(ctx, c, true)), self.dir(b, self.push(ctx, c, false))),
+            Op::Sel(c, a, b) => {
+                // (No end on one side is no end: the other side is not worked out.)
+                let da = self.dir(a, self.push(ctx, c, true));
+                if da.pre == Pre::Any {
+                    return ANY;
+                }
+                join(da, self.dir(b, self.push(ctx, c, false)))
+            }
             Op::Range(lo, hi, end, _, lemma) => {
                 self.pins.borrow_mut().insert(n);
                 let name = t.lemmas.borrow()[lemma as usize];
@@ -810,6 +922,9 @@ impl<'t> Check<'t> {
                     let d = self.dir(x, ctx);
                     let want = if e == End::Lo { Pre::Lo } else { Pre::Hi };
                     if d.rounded || !(d.pre == want || d.pre == Pre::Exact || d.pre == Pre::Nan) {
+                        if self.probing.get() > 0 {
+                            return ANY;
+                        }
                         self.fail(format!("pinned range's {} end (lemma `{name}`)", end_name(e)), d);
                     }
                 }
@@ -821,6 +936,9 @@ impl<'t> Check<'t> {
                 let want = if end == End::Lo { Pre::Lo } else { Pre::Hi };
                 if d.rounded || !(d.pre == want || d.pre == Pre::Exact || d.pre == Pre::Nan) {
                     let name = t.lemmas.borrow()[lemma as usize];
+                    if self.probing.get() > 0 {
+                        return ANY;
+                    }
                     self.fail(format!("{} end of a value the lemma `{name}` equates", end_name(end)), d);
                 }
                 unrounded(want)
@@ -828,14 +946,24 @@ impl<'t> Check<'t> {
             Op::Out(m, from, end) => {
                 // `from - k` (k >= 0) rounds to a value <= from: from is an f32 value and
                 // rounding is monotone (MONO); `from + k` mirrors for an upper end.
+                // A step in the same direction after it keeps it beyond; the amount is a
+                // literal or a value of known sign (NaN aside: a NaN amount gives NaN).
                 let lo = end == End::Lo;
-                let beyond = match t.op(m) {
-                    Op::Sub(f, k) => f == from && t.lit_of(k).is_some_and(|k| if lo { k >= 0.0 } else { k <= 0.0 }),
-                    Op::Add(f, k) => f == from && t.lit_of(k).is_some_and(|k| if lo { k <= 0.0 } else { k >= 0.0 }),
-                    Op::Dn(f) => f == from && lo,
-                    Op::Up(f) => f == from && !lo,
-                    _ => false,
+                let inner = match t.op(m) {
+                    Op::Dn(x) if lo => x,
+                    Op::Up(x) if !lo => x,
+                    _ => m,
                 };
+                let signed = |k: N, nonneg: bool| match t.lit_of(k) {
+                    Some(v) => (nonneg && v >= 0.0) || (!nonneg && v <= 0.0),
+                    None => self.f_sign(k, ctx).is_some_and(|s| if nonneg { s.ge0() } else { s.le0() }),
+                };
+                let beyond = inner == from
+                    || match t.op(inner) {
+                        Op::Sub(f, k) => f == from && signed(k, lo),
+                        Op::Add(f, k) => f == from && signed(k, !lo),
+                        _ => false,
+                    };
                 let want = if lo { Pre::Lo } else { Pre::Hi };
                 let d = self.dir(from, ctx);
                 if beyond && !d.rounded && (d.pre == want || d.pre == Pre::Exact || d.pre == Pre::Nan) {
@@ -851,6 +979,9 @@ impl<'t> Check<'t> {
                 let want = if end == End::Lo { Pre::Lo } else { Pre::Hi };
                 let ok = !d.rounded && (d.pre == want || d.pre == Pre::Exact);
                 if !ok {
+                    if self.probing.get() > 0 {
+                        return ANY;
+                    }
                     let name = t.lemmas.borrow()[lemma as usize];
                     self.fail(format!("pinned {} end (lemma `{name}`)", end_name(end)), d);
                 }

@@ -55,6 +55,22 @@ pub(super) enum BOp {
     Free(Bn, u32),
 }
 
+/// A value a lemma proves an end of an exact value ([`Trace::known_end`],
+/// [`Trace::known_end_if`]).
+#[derive(Clone, Debug)]
+pub(super) struct Known {
+    /// Its side.
+    pub(super) end: End,
+    /// The exact value's node.
+    pub(super) exact: N,
+    /// Where the lemma holds: the value finite and `positive` > 0 (`Some`), or every
+    /// condition of `conds` true on the branch (`None`: the lemma proves finiteness too).
+    pub(super) positive: Option<N>,
+    pub(super) conds: Vec<Bn>,
+    #[allow(dead_code)]
+    pub(super) lemma: u32,
+}
+
 /// Interned nodes.
 pub(super) struct Pool<T> {
     pub(super) nodes: Vec<T>,
@@ -90,9 +106,8 @@ pub struct Trace {
     pub(super) inputs: RefCell<Vec<String>>,
     pub(super) lemmas: RefCell<Vec<&'static str>>,
     pub(super) choices: RefCell<Vec<&'static str>>,
-    /// Values a lemma proves ends of an exact value: side, the exact value's node, the
-    /// value that must be > 0, the lemma.
-    pub(super) known: RefCell<HashMap<N, (End, N, N, u32)>>,
+    /// Values a lemma proves ends of an exact value.
+    pub(super) known: RefCell<HashMap<N, Known>>,
 }
 
 impl Trace {
@@ -113,7 +128,17 @@ impl Trace {
     /// anything else never meets the declared node).
     pub fn known_end(&self, node: N, end: End, exact: N, positive: N, lemma: &'static str) {
         let i = self.note(&self.lemmas, lemma);
-        self.known.borrow_mut().insert(node, (end, exact, positive, i));
+        self.known.borrow_mut().insert(node, Known { end, exact, positive: Some(positive), conds: vec![], lemma: i });
+    }
+
+    /// Declare, by the lemma named `lemma`, `node` finite and an end (`end`) of the exact
+    /// value of `exact` on every branch where each of `conds` holds (each a condition
+    /// the code tests, or the sample's domain: the lemma's hypotheses). The lemma's
+    /// proof must be about exactly the operations that compute `node`, as for
+    /// [`known_end`](Self::known_end).
+    pub fn known_end_if(&self, node: N, end: End, exact: N, conds: &[Bn], lemma: &'static str) {
+        let i = self.note(&self.lemmas, lemma);
+        self.known.borrow_mut().insert(node, Known { end, exact, positive: None, conds: conds.to_vec(), lemma: i });
     }
 
     /// How many operations the trace holds.

@@ -81,6 +81,62 @@ fn mam2012<R: Round>(t: &Trace) -> Demands {
     (outs, culls)
 }
 
+/// The lemma of `wu2013_safe.g`, as the check applies it.
+pub const WU_LEMMA: &str = "wu2013_safe.g: for line endpoints |e_left|, |e_right| <= LIMIT and a lens value \
+     |l| <= 1, the padded line's f32 value fl(fl(a l) + b') is finite and at or above a l + b (upper lines; lower \
+     lines: at or below)";
+
+/// The traced tile answer of `wu2013-safe` written with the arithmetic `R`: the u, v
+/// and t ranges' ends, the tile reject, and each per-sample line's cull at a sample
+/// `(l, t)` with `|l| <= 1` (a line's value below 0 must put the sample beyond the line
+/// `a l + b` through its pinned intercept). Each line's f32 value
+/// `fl(fl(a l) + b')` is declared an end of `a l + b` by [`WU_LEMMA`] on the formula of
+/// `wu2013_safe.g` built with the script's own constants (`script_text`), where the
+/// code tests the script's limit on the endpoints.
+fn wu2013<R: Round>(t: &Trace, script_text: &str) -> Result<Demands, String> {
+    use crate::bounds::wu2013::{line_gap, setup_of, tile_answer};
+    use crate::tools::proofs::check::constant_in;
+    let constant = |name| constant_in(crate::bounds::proofs::WU_PAD.file, script_text, name).map(|v| v as f32);
+    let (pad, floor, limit) = (constant("PAD")?, constant("FLOOR")?, constant("LIMIT")?);
+    let (tri, tile) = inputs(t);
+    let (finite, axes) = setup_of::<R, Trace>(t, &tri);
+    let a = tile_answer::<R, Trace>(t, &axes, &tile);
+    let kept = t.and(&finite, &t.not(&a.reject));
+    let mut outs = vec![];
+    for (name, r, full) in [("u", &a.u, [-1.0, 1.0]), ("v", &a.v, [-1.0, 1.0]), ("t", &a.t, [0.0, 1.0])] {
+        // (A rejected tile's ranges are never read: demanded all the same where kept.)
+        let r = [t.select(&kept, &r[0], &t.lit(full[0])), t.select(&kept, &r[1], &t.lit(full[1]))];
+        outs.extend(ends(name, &r));
+    }
+    let mut culls = vec![(t.and(&finite, &a.reject), "tile reject".to_string())];
+    let st = t.input("t");
+    for (name, cut) in [("u", &a.lines[0]), ("v", &a.lines[1])] {
+        let l = t.input(name);
+        let lens = [t.le(&t.lit(-1.0), &l), t.le(&l, &t.lit(1.0))];
+        for (upper, side) in [true, false].into_iter().zip(cut) {
+            let c = &side.line;
+            // The script's formula: p = RN(RN(RN(RN(|a| + |a|) + |b|) + FLOOR) * PAD),
+            // b' = the step outward of RN(b +- p), x = RN(RN(a l) + b').
+            let sum = t.add(&t.add(&t.add(&t.abs(&c.a), &t.abs(&c.a)), &t.abs(&c.b)), &t.lit(floor));
+            let p = t.mul(&sum, &t.lit(pad));
+            let padded = if upper {
+                t.moved_out(&t.next_up(&t.add(&c.b, &p)), &c.b, End::Hi)
+            } else {
+                t.moved_out(&t.next_down(&t.sub(&c.b, &p)), &c.b, End::Lo)
+            };
+            let x = t.add(&t.mul(&c.a, &l), &padded);
+            let exact = t.add(&t.mul(&c.a, &l), &c.b);
+            let within = c.ends.map(|e| t.le(&t.abs(&e), &t.lit(limit)));
+            let conds = [within[0], within[1], lens[0], lens[1]];
+            t.known_end_if(x, if upper { End::Hi } else { End::Lo }, exact, &conds, WU_LEMMA);
+            let g = line_gap(t, upper, &c.a, &c.padded, &l, &st);
+            let cull = t.all(&[finite, side.keep, lens[0], lens[1], t.lt(&g, &t.lit(0.0))]);
+            culls.push((cull, format!("{name}t {} line", if upper { "upper" } else { "lower" })));
+        }
+    }
+    Ok((outs, culls))
+}
+
 /// `bbox-safe`'s corner as `bbox_safe.g` states it, with the script's constants: for the
 /// shear `s`, `n = a -+ s` and the depth `w`, `RN(n / w)` moved by the pad
 /// `RN(RN(RN(RN(|s| + |n|) + FLOOR) / w) * PAD)`, then `STEPS` steps outward.
@@ -127,7 +183,7 @@ fn bbox<C: crate::bounds::bbox::Corner>(t: &Trace, corner: &C, script_text: &str
 }
 
 /// The variants whose composition the check covers.
-pub const CHECKED: &[&str] = &["bbox-safe", "la2011-safe", "mam2012-safe", "nilsson2012-depth-safe"];
+pub const CHECKED: &[&str] = &["bbox-safe", "la2011-safe", "mam2012-safe", "nilsson2012-depth-safe", "wu2013-safe"];
 
 /// Trace the tile answer of `id` (a variant of [`CHECKED`] or one of its planted slips
 /// `broken/planted-no-up/ID`, `broken/planted-no-dn/ID`) and check it: its output ends
@@ -148,6 +204,23 @@ fn finish(t: &Trace, culls: Result<Vec<(Bn, String)>, String>) -> Outcome {
             Outcome { failures: vec![Failure { what: "the lemma's constants".into(), found: e }], ..Outcome::default() }
         }
     }
+}
+
+fn finish_demands(t: &Trace, demands: Result<Demands, String>) -> Outcome {
+    match demands {
+        Ok((outs, culls)) => Check::new(t).run_with(&outs, &culls),
+        Err(e) => {
+            Outcome { failures: vec![Failure { what: "the lemma's constants".into(), found: e }], ..Outcome::default() }
+        }
+    }
+}
+
+/// `wu2013-safe` checked against another text of its Gappa script (the lemma's formula
+/// takes that text's constants): a control that a script other than the code's is
+/// refused.
+pub fn check_wu2013_with(script_text: &str) -> Outcome {
+    let t = Trace::new();
+    finish_demands(&t, wu2013::<Outward>(&t, script_text))
 }
 
 /// `bbox-safe` checked against another text of its Gappa script (the lemma's formula
@@ -178,6 +251,15 @@ pub fn check_traced(id: &str) -> Option<Outcome> {
     };
     if let Some(culls) = culls {
         return Some(finish(&t, culls));
+    }
+    let wu = match (id.strip_suffix(base)?, base) {
+        ("", "wu2013-safe") => Some(wu2013::<Outward>(&t, crate::bounds::proofs::WU_PAD.text)),
+        ("broken/planted-no-up/", "wu2013-safe") => Some(wu2013::<NoUp>(&t, crate::bounds::proofs::WU_PAD.text)),
+        ("broken/planted-no-dn/", "wu2013-safe") => Some(wu2013::<NoDn>(&t, crate::bounds::proofs::WU_PAD.text)),
+        _ => None,
+    };
+    if let Some(demands) = wu {
+        return Some(finish_demands(&t, demands));
     }
     let outs = match (id.strip_suffix(base)?, base) {
         ("", "la2011-safe") => la2011::<Outward>(&t),
