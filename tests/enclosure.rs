@@ -46,11 +46,38 @@ fn the_checked_variants_pass_over_their_code() {
     ] {
         assert!(used(r) > 0, "{r}: {:?}", o.rules);
     }
+    let o = check("wu2013-safe").expect("wu2013-safe is checked");
+    assert!(o.failures.is_empty(), "{:?}", o.failures);
+    assert_eq!(o.outputs, 11, "u, v, t: both ends each, the tile reject and the four lines' culls");
+    assert_eq!(o.lemmas.len(), 3, "the lens range, the lines, wu2013_safe.g: {:?}", o.lemmas);
+    assert_eq!(o.choices.len(), 3, "the slope, the endpoints' limit, keeping a line: {:?}", o.choices);
+    let used = |r: &str| o.rules.iter().find(|(n, _)| *n == r).map_or(0, |x| x.1);
+    assert!(used("an end a lemma proves") >= 4, "every line's f32 value: {:?}", o.rules);
+    assert!(used("an end moved outward (MONO)") >= 4, "every padded intercept: {:?}", o.rules);
+    assert!(used("min (max) of the four end products or quotients") > 0, "{:?}", o.rules);
     let o = check("bbox-safe").expect("bbox-safe is checked");
     assert!(o.failures.is_empty(), "{:?}", o.failures);
     assert_eq!(o.outputs, 1, "the tile reject");
     let used = |r: &str| o.rules.iter().find(|(n, _)| *n == r).map_or(0, |x| x.1);
     assert!(used("an end a lemma proves") >= 48, "every corner's two ends: {:?}", o.rules);
+}
+
+/// wu2013-safe's lines are `wu2013_safe.g`'s formula with the script's own constants: a
+/// pad halved, another floor or another limit in the script (or, the same, in the code)
+/// leaves the code's line values outside the lemma, and the lines' culls unproven.
+#[test]
+fn a_wu2013_line_other_than_the_scripts_is_refused() {
+    use cullproof::bounds::proofs::WU_PAD;
+    use cullproof::tools::proofs::check::with_constant;
+    use cullproof::tools::proofs::enclosure::check_wu2013_with;
+    assert!(check_wu2013_with(WU_PAD.text).failures.is_empty());
+    for (name, value) in [("PAD", "1b-22"), ("FLOOR", "1b-99"), ("LIMIT", "1b101")] {
+        let text = with_constant(&WU_PAD, name, value);
+        assert_ne!(text, WU_PAD.text);
+        let o = check_wu2013_with(&text);
+        assert!(o.failures.iter().any(|f| f.what.contains("line")), "{name} = {value} passed: {:?}", o.failures);
+        assert!(!o.failures.iter().any(|f| f.what.contains("tile reject")), "{name}: {:?}", o.failures);
+    }
 }
 
 /// bbox-safe's corners are the Gappa script's formula with the script's own constants:
@@ -85,6 +112,8 @@ fn a_dropped_outward_step_fails_the_enclosure_check() {
         ("broken/planted-no-dn/nilsson2012-depth-safe", "lower"),
         ("broken/planted-no-up/mam2012-safe", "line"),
         ("broken/planted-no-dn/mam2012-safe", "line"),
+        ("broken/planted-no-up/wu2013-safe", "upper"),
+        ("broken/planted-no-dn/wu2013-safe", "lower"),
     ] {
         let o = check(id).expect("a planted slip of a checked variant is checked");
         assert!(!o.failures.is_empty(), "{id} passed");
@@ -99,6 +128,7 @@ fn a_dropped_outward_step_fails_the_enclosure_check() {
     assert!(check("la2011").is_none(), "the published method has no enclosure claim");
     assert!(check("nilsson2012-depth").is_none(), "the published method has no enclosure claim");
     assert!(check("mam2012").is_none(), "the published method has no enclosure claim");
+    assert!(check("wu2013").is_none(), "the published method has no enclosure claim");
 }
 
 /// An extended exact value.
@@ -451,6 +481,49 @@ fn mam2012<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static
     (ranges, culls)
 }
 
+/// wu2013-safe: the u, v and t ranges (where every input is finite and the tile is
+/// kept), the tile reject, and each kept line's cull at samples drawn next to the line
+/// (t one to three f32 steps either side of the line's f32 value at l in
+/// {-1, -1/2, 0, 1/2, 1}). A cull's exact counterpart puts the sample beyond the line
+/// through the pinned intercept: it fails where the padded f32 line lies inside it.
+fn wu2013<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, Vec<T>) {
+    use cullproof::bounds::wu2013::{line_gap, setup_of, tile_answer};
+    let (finite, axes) = setup_of::<R, Pair>(ar, tri);
+    let a = tile_answer::<R, Pair>(ar, &axes, tile);
+    let kept = ar.and(&finite, &ar.not(&a.reject));
+    let mut ranges = vec![];
+    for (name, r, full) in [("u", &a.u, [-1.0, 1.0]), ("v", &a.v, [-1.0, 1.0]), ("t", &a.t, [0.0, 1.0])] {
+        ranges.push((name, [0, 1].map(|k| ar.select(&kept, &r[k], &ar.lit(full[k])))));
+    }
+    let mut culls = vec![ar.and(&finite, &a.reject)];
+    for cut in &a.lines {
+        for (upper, side) in [true, false].into_iter().zip(cut) {
+            if !(finite.0 && side.keep.0) {
+                continue;
+            }
+            let c = &side.line;
+            for lv in [-1.0f32, -0.5, 0.0, 0.5, 1.0] {
+                let x = c.a.0 * lv + c.padded.0;
+                let mut t = x;
+                for step in 0..7 {
+                    let l = ar.lit(lv);
+                    let g = line_gap(ar, upper, &c.a, &c.padded, &l, &ar.lit(t));
+                    let lens = [ar.le(&ar.lit(-1.0), &l), ar.le(&l, &ar.lit(1.0))];
+                    culls.push(ar.all(&[finite, side.keep, lens[0], lens[1], ar.lt(&g, &ar.lit(0.0))]));
+                    t = if step < 3 {
+                        t.next_down()
+                    } else if step == 3 {
+                        x.next_up()
+                    } else {
+                        t.next_up()
+                    };
+                }
+            }
+        }
+    }
+    (ranges, culls)
+}
+
 /// Run a method over the pair arithmetic on `n` drawn inputs; the ends found on the
 /// wrong side of their exact values (and the culls whose exact counterpart is false),
 /// the number of ends compared, how many of them cut (inside the domain: t in (0, 1),
@@ -517,10 +590,11 @@ fn attack(answer: Answer, n: usize, seed: u64) -> (Vec<String>, usize, usize, us
 /// slips finds ends on the wrong side (so it can fail).
 #[test]
 fn the_checked_ends_enclose_their_exact_values_on_drawn_inputs() {
-    let methods: [(&str, Answer, Answer, Answer); 3] = [
+    let methods: [(&str, Answer, Answer, Answer); 4] = [
         ("la2011-safe", la2011::<Outward>, la2011::<NoUp>, la2011::<NoDn>),
         ("nilsson2012-depth-safe", nilsson::<Outward>, nilsson::<NoUp>, nilsson::<NoDn>),
         ("mam2012-safe", mam2012::<Outward>, mam2012::<NoUp>, mam2012::<NoDn>),
+        ("wu2013-safe", wu2013::<Outward>, wu2013::<NoUp>, wu2013::<NoDn>),
     ];
     for (id, safe, no_up, no_dn) in methods {
         let (bad, n, inside, culls) = attack(safe, 20_000, 1);
@@ -631,7 +705,7 @@ fn proofs_fails_on_every_planted_dropped_step() {
     use cullproof::cli::proofs::{render, run, run_enclosure};
     use std::time::Duration;
     let limit = Duration::from_secs(120);
-    for id in ["nilsson2012-depth-safe", "mam2012-safe"] {
+    for id in ["nilsson2012-depth-safe", "mam2012-safe", "wu2013-safe"] {
         let r = run(&[id], limit, 100, 2, false);
         assert!(r.ok(), "{}", render(&r));
         assert_eq!(r.enclosure.len(), 1);
@@ -641,6 +715,8 @@ fn proofs_fails_on_every_planted_dropped_step() {
         "broken/planted-no-dn/nilsson2012-depth-safe",
         "broken/planted-no-up/mam2012-safe",
         "broken/planted-no-dn/mam2012-safe",
+        "broken/planted-no-up/wu2013-safe",
+        "broken/planted-no-dn/wu2013-safe",
     ] {
         let r = run(&[id], limit, 100, 2, false);
         assert!(!r.ok(), "{id} passed");

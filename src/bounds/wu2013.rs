@@ -241,8 +241,11 @@ use super::*;
 
 mod safe;
 pub use safe::METHOD_SAFE;
-pub(crate) use safe::{safe_line, setup_of, tile_answer, FLOOR, PAD};
-pub use safe::{Wu2013Safe, LENS_LEMMA, LINE_LEMMA};
+pub(crate) use safe::{safe_line, FLOOR, PAD};
+pub use safe::{
+    setup_of, tile_answer, AnswerOf, AxisCut, SafeAxis, SafeLineOf, SafeSetupOf, SafeVertex, SideCut, Wu2013Safe, KEEP_CHOICE,
+    LENS_LEMMA, LIMIT_CHOICE, LINE_LEMMA, SLOPE_CHOICE,
+};
 
 /// One vertex on one axis: position (x or y), w, and CoC (c or k c) at both ends.
 #[derive(Clone, Copy, Debug)]
@@ -387,7 +390,7 @@ impl TimeLine {
 /// A stage-2 line's value at a sample over any [`F32Arith`](crate::bounds::arith::F32Arith):
 /// `fl(fl(fl(a l) + b) - t)` for an upper line, `fl(t - fl(fl(a l) + b))` for a lower
 /// one; the sample is culled where it is below 0 ([`TimeLine::eval`]).
-pub(crate) fn line_gap<A: crate::bounds::arith::F32Arith>(
+pub fn line_gap<A: crate::bounds::arith::F32Arith>(
     ar: &A,
     upper: bool,
     a: &A::F,

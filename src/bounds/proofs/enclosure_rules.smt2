@@ -132,6 +132,30 @@
 (define-fun mline () Bool
   (=> (and (<= m0 M0) (<= m1 M1) (<= 0.0 t15) (<= t15 1.0))
       (<= (+ (* (- m1 m0) t15) m0) (+ (* (- 1.0 t15) M0) (* t15 M1)))))
+; -- signs of sums and products: two values >= 0 add up to a value >= 0 (<= 0 likewise),
+;    and a product of two values of known signs has their product's sign (the rounding
+;    keeps it: MONO); so an end moved outward by such an amount stays beyond it.
+(declare-const x16 Real) (declare-const y16 Real) (declare-const b16 Real)
+(define-fun ksigns () Bool
+  (and (=> (and (>= x16 0.0) (>= y16 0.0)) (and (>= (+ x16 y16) 0.0) (>= (* x16 y16) 0.0)))
+       (=> (and (<= x16 0.0) (<= y16 0.0)) (and (<= (+ x16 y16) 0.0) (>= (* x16 y16) 0.0)))
+       (=> (and (>= x16 0.0) (<= y16 0.0)) (<= (* x16 y16) 0.0))
+       (=> (>= x16 0.0) (and (>= (+ b16 x16) b16) (<= (- b16 x16) b16)))))
+; -- lemma "wu2013-safe lens range": a lens value of the exact range [L0, L1] lies in
+;    [l0, l1] for l0 <= L0, L1 <= l1 (so in the rectangle stage 2 reads at its corners).
+(declare-const l17 Real) (declare-const L017 Real) (declare-const L117 Real)
+(declare-const l017 Real) (declare-const l117 Real)
+(define-fun wlens () Bool
+  (=> (and (<= L017 l17) (<= l17 L117) (<= l017 L017) (<= L117 l117)) (and (<= l017 l17) (<= l17 l117))))
+; -- lemma "wu2013-safe lines": an intercept b >= e_left + a and >= e_right - a, with
+;    e_left >= EL and e_right >= ER, puts the line a l + b at or above the exact line
+;    through (-1, EL), (1, ER) for every l in [-1, 1], whatever a is.
+(declare-const a18 Real) (declare-const b18 Real) (declare-const el18 Real) (declare-const er18 Real)
+(declare-const EL18 Real) (declare-const ER18 Real) (declare-const l18 Real)
+(define-fun wline () Bool
+  (=> (and (>= b18 (+ el18 a18)) (>= b18 (- er18 a18)) (>= el18 EL18) (>= er18 ER18)
+           (<= -1.0 l18) (<= l18 1.0))
+      (>= (+ (* a18 l18) b18) (+ (* (/ (- 1.0 l18) 2.0) EL18) (* (/ (+ 1.0 l18) 2.0) ER18)))))
 (assert (not (and sum scale prod quot_hi quot_lo minmax cmp absmax signs chord wbound
-                 corners mcorners mcolumns msame mline)))
+                 corners mcorners mcolumns msame mline ksigns wlens wline)))
 (check-sat)

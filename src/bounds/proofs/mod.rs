@@ -147,7 +147,8 @@ pub const WU_PAD: Script = Script {
     file: "wu2013_safe.g",
     tool: Tool::Gappa,
     claim: "the line pad 2^-21 (2 |a| + |b| + 2^-100) and one step keep the f32 evaluation \
-            RN(RN(a l) + b') at or above the exact line a l + b for every |l| <= 1",
+            RN(RN(a l) + b') at or above the exact line a l + b for every |l| <= 1, and finite for \
+            endpoints within 2^100",
     prelude: false,
     text: include_str!("wu2013_safe.g"),
 };
@@ -300,12 +301,24 @@ pub const VARIANTS: &[Variant] = &[
             Range { inputs: "sample lens coordinate u, v (the lines' l)", range: "[-1, 1] (the model's lens)" },
             Range { inputs: "any non-finite input", range: "answered with the full domain (code inspection)" },
         ],
-        scripts: &["STEP", "MONO", "GAP", "ULP", "wu2013-safe pad"],
-        mechanical: "STEP for every interval operation; the error model (STEP, ULP) and the inequality \
-                     that the lines' pad covers their f32 evaluation for every |l| <= 1 (wu2013_safe.g, \
-                     with the code's PAD and FLOOR); MONO for the sign of the last difference",
-        by_argument: STEPS_ARGUMENT,
-        level: Level::LemmasChecked,
+        scripts: &["STEP", "MONO", "GAP", "ULP", "wu2013-safe pad", "enclosure rules"],
+        mechanical: "every rounded result stepped outward encloses the exact result (STEP, GAP); the error \
+                     model (STEP, ULP) and the inequality that the lines' pad covers their f32 evaluation \
+                     for every |l| <= 1 with the endpoints within the code's limit, which keeps every \
+                     value of the evaluation finite (wu2013_safe.g, with the code's PAD, FLOOR and \
+                     LIMIT); the composition over the method's own f32 code for every input: the \
+                     enclosure check traces the setup and the tile answer and finds every end of u, v \
+                     and t an end of its side of its exact value, and NaN-free, the tile reject to imply \
+                     its exact counterpart, and each per-sample line's cull (|l| <= 1) to put the sample \
+                     beyond the line through its pinned intercept, with each line's f32 value found to be \
+                     wu2013_safe.g's formula with the script's constants where the code tests the \
+                     script's limit (so the lemma applies), by rules z3 proves in real arithmetic \
+                     (enclosure rules, with the lemmas of the lens range and the lines)",
+        by_argument: "the real-arithmetic derivation in wu2013.rs (the sign-aware hulls of the crossings \
+                      bound the covered lens values and times; the chord and tangent bound each crossing \
+                      time over the lens), and that each branch the f32 code takes on its ends is one \
+                      the exact values allow (fallbacks give the full domain)",
+        level: Level::MachineChecked,
     },
     Variant {
         id: "nilsson2012-depth-safe",

@@ -23,7 +23,7 @@ use std::marker::PhantomData;
 
 /// A closed interval `[lo, hi]` of values of some [`F32Arith`] enclosing an exact real
 /// value; NaN ends mean "no information" (every test on them is false).
-pub(crate) type Iv<F> = [F; 2];
+pub type Iv<F> = [F; 2];
 
 /// f32 interval arithmetic over any [`F32Arith`]: every operation rounds to nearest and
 /// steps each end one f32 value outward (`R::dn` / `R::up`), which encloses the exact
@@ -112,7 +112,7 @@ impl<'a, A: F32Arith, R: Round> IvOps<'a, A, R> {
 /// (c, or k c on the y axis) as an enclosure, and the enclosures of `p0 - p1`,
 /// `w0 - w1` and `c0 - c1` (they do not depend on the tile: computed once, at setup).
 #[derive(Clone, Debug)]
-pub(crate) struct SafeVertex<F> {
+pub struct SafeVertex<F> {
     p0: F,
     w0: F,
     c0: Iv<F>,
@@ -126,24 +126,24 @@ pub(crate) struct SafeVertex<F> {
 
 /// One axis (x with u, or y with v) for `wu2013-safe`.
 #[derive(Clone, Debug)]
-pub(crate) struct SafeAxis<F> {
+pub struct SafeAxis<F> {
     pub(crate) v: [SafeVertex<F>; 3],
 }
 
 /// One crossing, for [`IvOps::sign_parts`]: `delta_k` is affine in the variable z (u,
 /// or t), increasing (the truth value) or decreasing, and vanishes at some `z_k` in
 /// `[m, hi]` for every (column, other coordinate) of the tile.
-pub(crate) type Crossing<F, B> = (B, F, F);
+pub type Crossing<F, B> = (B, F, F);
 
 /// Per vertex, [`IvOps::at_column`] at the tile's two columns (shared by stage 2's tile
 /// interval and its lines).
-pub(crate) type Columns<F> = [[(Iv<F>, Iv<F>); 2]; 3];
+pub type Columns<F> = [[(Iv<F>, Iv<F>); 2]; 3];
 
 /// One vertex's part of the published lines at one column ([`IvOps::line_ends`]):
 /// whether it is there (D of one strict sign at l = -1 and +1, every value finite),
 /// whether D > 0 and whether D < 0 there, and the upper ends at l = -1, +1, then the
 /// lower ends at l = -1, +1.
-pub(crate) type LineEnds<F, B> = (B, [B; 2], [F; 4]);
+pub type LineEnds<F, B> = (B, [B; 2], [F; 4]);
 
 /// `wu2013-safe`'s line pad, 2^-21 = 8u (proof: `src/bounds/proofs/wu2013_safe.g`).
 pub(crate) const PAD: f32 = 1.0 / (1u32 << 21) as f32;
@@ -173,13 +173,13 @@ pub const KEEP_CHOICE: &str = "wu2013-safe keeps a line as a constraint only whe
 /// `b` through or beyond both endpoints (pinned, [`LINE_LEMMA`]) and `b'`, that
 /// intercept moved outward by the f32 error of [`TimeLine::eval`] (module doc).
 #[derive(Clone, Debug)]
-pub(crate) struct SafeLineOf<F, B> {
-    pub(crate) ok: B,
+pub struct SafeLineOf<F, B> {
+    pub ok: B,
     /// The endpoints' values at l = -1 and l = +1.
-    pub(crate) ends: [F; 2],
-    pub(crate) a: F,
-    pub(crate) b: F,
-    pub(crate) padded: F,
+    pub ends: [F; 2],
+    pub a: F,
+    pub b: F,
+    pub padded: F,
 }
 
 /// What one line does to a tile over its lens range: whether it bounds the tile's times
@@ -187,15 +187,15 @@ pub(crate) struct SafeLineOf<F, B> {
 /// (an upper line's greatest value over the range, a lower line's least), and whether
 /// the line is kept as a per-sample constraint.
 #[derive(Clone, Debug)]
-pub(crate) struct SideCut<F, B> {
-    pub(crate) has: B,
-    pub(crate) bound: F,
-    pub(crate) keep: B,
-    pub(crate) line: SafeLineOf<F, B>,
+pub struct SideCut<F, B> {
+    pub has: B,
+    pub bound: F,
+    pub keep: B,
+    pub line: SafeLineOf<F, B>,
 }
 
 /// One axis's lines over a tile: the upper, then the lower.
-pub(crate) type AxisCut<F, B> = [SideCut<F, B>; 2];
+pub type AxisCut<F, B> = [SideCut<F, B>; 2];
 
 impl<A: F32Arith, R: Round> IvOps<'_, A, R> {
     fn vertex(&self, p0: &A::F, w0: &A::F, c0: Iv<A::F>, p1: &A::F, w1: &A::F, c1: Iv<A::F>) -> SafeVertex<A::F> {
@@ -469,10 +469,10 @@ impl<A: F32Arith, R: Round> IvOps<'_, A, R> {
 
 /// Both axes of `wu2013-safe` and whether every input is finite (otherwise every tile
 /// gets the full domain).
-pub(crate) type SafeSetupOf<F, B> = (B, [SafeAxis<F>; 2]);
+pub type SafeSetupOf<F, B> = (B, [SafeAxis<F>; 2]);
 
 /// The setup of `wu2013-safe` over any [`F32Arith`].
-pub(crate) fn setup_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> SafeSetupOf<A::F, A::B> {
+pub fn setup_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> SafeSetupOf<A::F, A::B> {
     let o = IvOps::<A, R>::new(ar);
     let inputs = tri.q.iter().chain(tri.r.iter()).flatten().chain(tri.c0.iter()).chain(tri.c1.iter());
     let finite: Vec<A::B> = inputs.chain(std::iter::once(&tri.k)).map(|v| ar.is_finite(v)).collect();
@@ -481,21 +481,21 @@ pub(crate) fn setup_of<R: Round, A: F32Arith>(ar: &A, tri: &TriOf<A::F>) -> Safe
 
 /// A `wu2013-safe` tile answer over any [`F32Arith`] (where every input is finite).
 #[derive(Clone, Debug)]
-pub(crate) struct AnswerOf<F, B> {
+pub struct AnswerOf<F, B> {
     /// No covered sample: a stage leaves no lens value or time, or the time range is
     /// NaN or reversed.
-    pub(crate) reject: B,
-    pub(crate) u: [F; 2],
-    pub(crate) v: [F; 2],
-    pub(crate) t: [F; 2],
+    pub reject: B,
+    pub u: [F; 2],
+    pub v: [F; 2],
+    pub t: [F; 2],
     /// Per axis (x with u, then y with v), its lines.
-    pub(crate) lines: [AxisCut<F, B>; 2],
+    pub lines: [AxisCut<F, B>; 2],
 }
 
 /// The tile `[x0, y0, x1, y1]`'s answer over any [`F32Arith`]: stage 1 on both axes,
 /// then stage 2 on x, then on y, each axis's sign-aware time hull and lines over the
 /// lens range stage 1 left on it.
-pub(crate) fn tile_answer<R: Round, A: F32Arith>(
+pub fn tile_answer<R: Round, A: F32Arith>(
     ar: &A,
     axes: &[SafeAxis<A::F>; 2],
     tile: &[A::F; 4],
