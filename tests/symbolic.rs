@@ -715,16 +715,24 @@ fn the_moving_template_finds_bbox_f32_tile_cull() {
 #[test]
 fn the_mam2012_cull_asserts_what_the_method_culls() {
     for id in ["mam2012", "mam2012-safe"] {
-        mam2012_cull_asserts_what_the_method_culls(id);
+        cull_asserts_what_the_method_culls(id);
     }
 }
 
-fn mam2012_cull_asserts_what_the_method_culls(id: &str) {
+/// wu2013-safe's encoded tile answer (stage 1 and 2 with their lines, intervals
+/// included) asserts a cull exactly where the f32 method culls, on pinned instances of
+/// the moving template.
+#[test]
+fn the_wu2013_safe_cull_asserts_what_the_method_culls() {
+    cull_asserts_what_the_method_culls("wu2013-safe");
+}
+
+fn cull_asserts_what_the_method_culls(id: &str) {
     use cullproof::tools::symbolic::bbox_query::{Side, TemplateCull};
-    use cullproof::tools::symbolic::mam2012_query::cull_of;
     use cullproof::tools::symbolic::moving_query::template;
+    use cullproof::tools::symbolic::prove::cull;
     let m = by_id(id).unwrap();
-    let cull = cull_of(id).unwrap();
+    let cull = cull(id).unwrap();
     let mut r = rng(5);
     let (mut culled, mut kept) = (0, 0);
     for i in 0..16 {

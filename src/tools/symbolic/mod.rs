@@ -20,8 +20,14 @@
 //! - `mam2012`: the whole setup (the enabling conditions, the screen extent, the Figure 5
 //!   corners, the patches) and the tile answer (the reject, u^, v^ and the four
 //!   per-sample lines' coefficients): `crate::bounds::mam2012::setup_of`,
-//!   `crate::bounds::mam2012::tile_answer`. `mam2012-safe` shares the formulas (over
-//!   `crate::bounds::mam2012::Ops`) but its interval arithmetic is not encoded.
+//!   `crate::bounds::mam2012::tile_answer`. `mam2012-safe` (and its planted slips): its
+//!   setup and tile answer, intervals included (`crate::bounds::mam2012::setup_safe_of`,
+//!   `answer_of`; [`mam2012_query`]).
+//! - `wu2013-safe` (and its planted slips): the whole setup (the vertices' enclosures
+//!   per axis) and the whole tile answer (stage 1's lens hulls, stage 2's time hulls and
+//!   padded lines, the reject): `crate::bounds::wu2013::setup_of`,
+//!   `crate::bounds::wu2013::tile_answer` ([`wu2013_query`]). The published `wu2013` is
+//!   not encoded.
 //! - `nilsson2012-depth` and `nilsson2012-depth-safe`: the whole setup (the two moving
 //!   planes and their offsets, the vertex boxes, the (w, z) line of the conversion) and
 //!   the whole tile answer (the w bounds of the planes over the tile, the depth
@@ -36,8 +42,8 @@
 //!
 //! The queries attack the x sides of the box (of the footprint, for la2011) on a
 //! template triangle (four inputs): [`bbox_query`] for bbox, bbox-safe and the planted
-//! slips, [`la2011_query`] for la2011 and la2011-safe, [`mam2012_query`] and
-//! [`nilsson2012_query`]; the moving template ([`moving_query`], seven inputs) takes
+//! slips, [`la2011_query`] for la2011 and la2011-safe, [`mam2012_query`],
+//! [`nilsson2012_query`] and [`wu2013_query`]; the moving template ([`moving_query`], seven inputs) takes
 //! every method's cull too. A method's template is a
 //! [`family::Family`]; by default the search runs the concolic plan ([`concolic`]):
 //! many small queries, each with some inputs fixed, under a deterministic resource
@@ -54,4 +60,5 @@ pub mod prove;
 pub mod rounding;
 pub mod smt;
 pub mod solver;
+pub mod wu2013_query;
 pub mod z3;

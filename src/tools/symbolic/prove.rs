@@ -56,7 +56,7 @@ impl Corner for Rule {
 
 /// The methods with a symbolic encoding (setup and tile reject, over
 /// [`crate::bounds::arith::F32Arith`]) and a query family.
-pub const ENCODED: [&str; 16] = [
+pub const ENCODED: [&str; 19] = [
     "bbox",
     "bbox-safe",
     "la2011",
@@ -73,6 +73,9 @@ pub const ENCODED: [&str; 16] = [
     "broken/planted-no-dn/nilsson2012-depth-safe",
     "broken/planted-no-up/mam2012-safe",
     "broken/planted-no-dn/mam2012-safe",
+    "wu2013-safe",
+    "broken/planted-no-up/wu2013-safe",
+    "broken/planted-no-dn/wu2013-safe",
 ];
 
 /// The encoding of a bbox-like method, or an error naming the ones there are.
@@ -107,6 +110,7 @@ pub enum Cull {
     Bbox(Rule),
     La2011(super::la2011_query::La2011Cull),
     Mam2012(super::mam2012_query::Mam2012Cull),
+    Wu2013(super::wu2013_query::Wu2013Cull),
     Nilsson2012(super::nilsson2012_query::Nilsson2012Cull),
     /// A conjunction of tests with only some parts encoded: any encoded part's cull culls
     /// the whole (a part's Empty is the conjunction's answer); the parts left out, named,
@@ -136,6 +140,7 @@ impl super::bbox_query::TemplateCull for Cull {
             Cull::Bbox(r) => r.cull(smt, side, tri, tile),
             Cull::La2011(c) => c.cull(smt, side, tri, tile),
             Cull::Mam2012(c) => c.cull(smt, side, tri, tile),
+            Cull::Wu2013(c) => c.cull(smt, side, tri, tile),
             Cull::Nilsson2012(c) => c.cull(smt, side, tri, tile),
             Cull::Parts(parts, _) => {
                 let terms: Vec<String> = parts.iter().map(|p| p.cull(smt, side, tri, tile)).collect();
@@ -173,6 +178,9 @@ pub fn cull(id: &str) -> Result<Cull> {
     }
     if let Some(c) = super::mam2012_query::cull_of(id) {
         return Ok(Cull::Mam2012(c));
+    }
+    if let Some(c) = super::wu2013_query::cull_of(id) {
+        return Ok(Cull::Wu2013(c));
     }
     Ok(Cull::Bbox(rule(id)?))
 }
