@@ -243,8 +243,8 @@ mod safe;
 pub use safe::METHOD_SAFE;
 pub(crate) use safe::{safe_line, FLOOR, PAD};
 pub use safe::{
-    setup_of, tile_answer, AnswerOf, AxisCut, SafeAxis, SafeLineOf, SafeSetupOf, SafeVertex, SideCut, Wu2013Safe, KEEP_CHOICE,
-    LENS_LEMMA, LIMIT_CHOICE, LINE_LEMMA, SLOPE_CHOICE,
+    setup_of, tile_answer, AnswerOf, AxisCut, SafeAxis, SafeLineOf, SafeSetupOf, SafeVertex, SideCut, Wu2013Safe,
+    KEEP_CHOICE, LENS_LEMMA, LIMIT_CHOICE, LINE_LEMMA, SLOPE_CHOICE,
 };
 
 /// One vertex on one axis: position (x or y), w, and CoC (c or k c) at both ends.

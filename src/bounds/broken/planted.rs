@@ -28,8 +28,8 @@ use crate::bounds::bbox::{padded_corner, BBox, Corner, SafeCorner};
 use crate::bounds::la2011::La2011;
 use crate::bounds::mam2012::Mam2012Safe;
 use crate::bounds::nilsson2012_depth::Nilsson2012Depth;
-use crate::bounds::wu2013::Wu2013Safe;
 use crate::bounds::round::Round;
+use crate::bounds::wu2013::Wu2013Safe;
 use crate::bounds::{Method, MethodInfo, Outputs};
 use crate::model::Dims;
 

@@ -23,18 +23,19 @@ type LensRange = Option<[f32; 2]>;
 struct SafeBoundary {
     /// Per vertex, [`IvOps::at_column`] at `s`.
     at: [(Iv<f32>, Iv<f32>); 3],
-    /// Per vertex, [`IvOps::lens_at`] at `s`.
-    lens: [[Iv<f32>; 2]; 3],
+    /// Per vertex, [`IvOps::lens_at`] at `s` (only where stage 1 can apply on the axis:
+    /// every CoC of one strict sign over the shutter).
+    lens: Option<[[Iv<f32>; 2]; 3]>,
     /// Per vertex, [`IvOps::line_ends`] at `s`.
     ends: [LineEnds<f32, bool>; 3],
 }
 
 impl SafeBoundary {
-    fn new<R: Round>(axis: &SafeAxis<f32>, s: f32) -> Self {
+    fn new<R: Round>(axis: &SafeAxis<f32>, stage1: bool, s: f32) -> Self {
         let o = IvOps::<Plain, R>::new(&Plain);
         let at = axis.v.each_ref().map(|a| o.at_column(a, &s));
         let ends = std::array::from_fn(|k| o.line_ends(&axis.v[k], &at[k]));
-        SafeBoundary { at, lens: o.lens_at(axis, &s), ends }
+        SafeBoundary { at, lens: stage1.then(|| o.lens_at(axis, &s)), ends }
     }
 }
 
@@ -54,7 +55,11 @@ impl SafeAxisPart {
     /// The part between boundaries `b0` and `b1`, as [`tile_answer`](super::safe) computes it.
     fn new<R: Round>(axis: &SafeAxis<f32>, b0: &SafeBoundary, b1: &SafeBoundary) -> Option<Self> {
         let o = IvOps::<Plain, R>::new(&Plain);
-        let (on, some, r) = o.stage1(axis, [&b0.lens, &b1.lens]);
+        // Stage 1 where it can apply (else it is off: the full lens).
+        let (on, some, r) = match (&b0.lens, &b1.lens) {
+            (Some(l0), Some(l1)) => o.stage1(axis, [l0, l1]),
+            _ => (false, true, [-1.0, 1.0]),
+        };
         if on && !some {
             return None;
         }
@@ -85,7 +90,8 @@ impl SafeAxisPart {
 /// The parts of every column (or row) between consecutive `bounds`, each boundary's
 /// values computed once (`None`: stage 1 culls that column).
 fn safe_parts<R: Round>(axis: &SafeAxis<f32>, bounds: &[f32]) -> Vec<Option<SafeAxisPart>> {
-    let at: Vec<SafeBoundary> = bounds.iter().map(|&s| SafeBoundary::new::<R>(axis, s)).collect();
+    let stage1 = IvOps::<Plain, R>::new(&Plain).lens_directions(axis).0;
+    let at: Vec<SafeBoundary> = bounds.iter().map(|&s| SafeBoundary::new::<R>(axis, stage1, s)).collect();
     at.windows(2).map(|w| SafeAxisPart::new::<R>(axis, &w[0], &w[1])).collect()
 }
 

@@ -135,6 +135,9 @@ pub struct SafeAxis<F> {
 /// `[m, hi]` for every (column, other coordinate) of the tile.
 pub type Crossing<F, B> = (B, F, F);
 
+/// Per vertex its [`Crossing`], and whether every value they come from is usable.
+pub type Crossings<F, B> = (B, [Crossing<F, B>; 3]);
+
 /// Per vertex, [`IvOps::at_column`] at the tile's two columns (shared by stage 2's tile
 /// interval and its lines).
 pub type Columns<F> = [[(Iv<F>, Iv<F>); 2]; 3];
@@ -253,11 +256,7 @@ impl<A: F32Arith, R: Round> IvOps<'_, A, R> {
     /// Stage 1's crossings from the directions and the values at the two boundaries
     /// `at` (left, right): per vertex the extremes over the shutter ends and the two
     /// columns, and whether every value is finite.
-    pub(crate) fn lens_crossings_from(
-        &self,
-        inc: &[A::B; 3],
-        at: [&[[Iv<A::F>; 2]; 3]; 2],
-    ) -> (A::B, [Crossing<A::F, A::B>; 3]) {
+    pub(crate) fn lens_crossings_from(&self, inc: &[A::B; 3], at: [&[[Iv<A::F>; 2]; 3]; 2]) -> Crossings<A::F, A::B> {
         let ar = self.ar;
         let mut ok = vec![];
         let out = std::array::from_fn(|k| {
@@ -335,7 +334,7 @@ impl<A: F32Arith, R: Round> IvOps<'_, A, R> {
         axis: &SafeAxis<A::F>,
         cols: &Columns<A::F>,
         l: &[A::F; 2],
-    ) -> (A::B, [Crossing<A::F, A::B>; 3]) {
+    ) -> Crossings<A::F, A::B> {
         let ar = self.ar;
         let mut ok = vec![];
         let out = std::array::from_fn(|k| {
@@ -413,10 +412,8 @@ impl<A: F32Arith, R: Round> IvOps<'_, A, R> {
     pub(crate) fn safe_line(&self, upper: bool, e_left: &A::F, e_right: &A::F) -> SafeLineOf<A::F, A::B> {
         let ar = self.ar;
         let lim = ar.lit(LINE_LIMIT);
-        let within = ar.choose_truth(
-            &ar.and(&ar.le(&ar.abs(e_left), &lim), &ar.le(&ar.abs(e_right), &lim)),
-            LIMIT_CHOICE,
-        );
+        let within =
+            ar.choose_truth(&ar.and(&ar.le(&ar.abs(e_left), &lim), &ar.le(&ar.abs(e_right), &lim)), LIMIT_CHOICE);
         let half = ar.lit(0.5);
         let a = ar.choose(&ar.sub(&ar.mul(&half, e_right), &ar.mul(&half, e_left)), SLOPE_CHOICE);
         let (l, r) = (ar.add(e_left, &a), ar.sub(e_right, &a));
@@ -519,7 +516,8 @@ pub fn tile_answer<R: Round, A: F32Arith>(
         let (some, r) = o.hull_within(&o.sign_parts(&cr), &t);
         culls.push(ar.and(&on, &ar.not(&some)));
         t = [ar.select(&on, &r[0], &t[0]), ar.select(&on, &r[1], &t[1])];
-        let ends = std::array::from_fn(|k| [o.line_ends(&axis.v[k], &cols[k][0]), o.line_ends(&axis.v[k], &cols[k][1])]);
+        let ends =
+            std::array::from_fn(|k| [o.line_ends(&axis.v[k], &cols[k][0]), o.line_ends(&axis.v[k], &cols[k][1])]);
         let (there, e) = o.lines_from(&ends);
         let cut = o.axis_cut(&there, &e, &l);
         t = o.bound(&cut, t);

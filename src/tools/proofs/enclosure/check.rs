@@ -219,7 +219,7 @@ pub struct Check<'t> {
     assumed: RefCell<Vec<Vec<(Bn, bool)>>>,
     /// (Contexts made inside a probe at the root are their own: their facts were
     /// worked out with a probe's findings.)
-    by_assumed: RefCell<HashMap<(Vec<(Bn, bool)>, bool), usize>>,
+    by_assumed: RefCell<HashMap<Assumed, usize>>,
     dir_memo: RefCell<HashMap<(N, usize), Dir>>,
     /// Keyed also by whether a probe at the root asked (its findings are its own).
     nan_memo: RefCell<HashMap<(N, usize, bool), bool>>,
@@ -235,6 +235,9 @@ pub struct Check<'t> {
 }
 
 const ROOT: usize = 0;
+
+/// The conditions a context assumes (sorted), and whether a probe at the root made it.
+type Assumed = (Vec<(Bn, bool)>, bool);
 
 impl<'t> Check<'t> {
     pub fn new(t: &'t Trace) -> Self {
