@@ -67,8 +67,6 @@ pub(super) struct Known {
     /// condition of `conds` true on the branch (`None`: the lemma proves finiteness too).
     pub(super) positive: Option<N>,
     pub(super) conds: Vec<Bn>,
-    #[allow(dead_code)]
-    pub(super) lemma: u32,
 }
 
 /// Interned nodes.
@@ -127,8 +125,8 @@ impl Trace {
     /// the lemma's own formula: equal operations are one node, so a code that computes
     /// anything else never meets the declared node).
     pub fn known_end(&self, node: N, end: End, exact: N, positive: N, lemma: &'static str) {
-        let i = self.note(&self.lemmas, lemma);
-        self.known.borrow_mut().insert(node, Known { end, exact, positive: Some(positive), conds: vec![], lemma: i });
+        self.note(&self.lemmas, lemma);
+        self.known.borrow_mut().insert(node, Known { end, exact, positive: Some(positive), conds: vec![] });
     }
 
     /// Declare, by the lemma named `lemma`, `node` finite and an end (`end`) of the exact
@@ -137,8 +135,8 @@ impl Trace {
     /// proof must be about exactly the operations that compute `node`, as for
     /// [`known_end`](Self::known_end).
     pub fn known_end_if(&self, node: N, end: End, exact: N, conds: &[Bn], lemma: &'static str) {
-        let i = self.note(&self.lemmas, lemma);
-        self.known.borrow_mut().insert(node, Known { end, exact, positive: None, conds: conds.to_vec(), lemma: i });
+        self.note(&self.lemmas, lemma);
+        self.known.borrow_mut().insert(node, Known { end, exact, positive: None, conds: conds.to_vec() });
     }
 
     /// How many operations the trace holds.
