@@ -11,7 +11,7 @@
 use cullproof::bounds::arith::{End, F32Arith, TriOf};
 use cullproof::bounds::broken::planted::{NoDn, NoUp};
 use cullproof::bounds::la2011::{setup_of, tile_answer};
-use cullproof::bounds::round::{Outward, Round};
+use cullproof::bounds::round::{Nearest, Outward, Round};
 use cullproof::cases::generate::{boundary_tile, physical_case, Regime};
 use cullproof::tools::proofs::enclosure::check;
 use num_bigint::BigInt;
@@ -114,6 +114,8 @@ fn a_dropped_outward_step_fails_the_enclosure_check() {
         ("broken/planted-no-dn/mam2012-safe", "line"),
         ("broken/planted-no-up/wu2013-safe", "upper"),
         ("broken/planted-no-dn/wu2013-safe", "lower"),
+        ("broken/planted-no-up/gdam2010-safe", "piece cull"),
+        ("broken/planted-no-dn/gdam2010-safe", "piece cull"),
     ] {
         let o = check(id).expect("a planted slip of a checked variant is checked");
         assert!(!o.failures.is_empty(), "{id} passed");
@@ -705,7 +707,7 @@ fn proofs_fails_on_every_planted_dropped_step() {
     use cullproof::cli::proofs::{render, run, run_enclosure};
     use std::time::Duration;
     let limit = Duration::from_secs(120);
-    for id in ["nilsson2012-depth-safe", "mam2012-safe", "wu2013-safe"] {
+    for id in ["nilsson2012-depth-safe", "mam2012-safe", "wu2013-safe", "gdam2010-safe"] {
         let r = run(&[id], limit, 100, 2, false);
         assert!(r.ok(), "{}", render(&r));
         assert_eq!(r.enclosure.len(), 1);
@@ -717,6 +719,8 @@ fn proofs_fails_on_every_planted_dropped_step() {
         "broken/planted-no-dn/mam2012-safe",
         "broken/planted-no-up/wu2013-safe",
         "broken/planted-no-dn/wu2013-safe",
+        "broken/planted-no-up/gdam2010-safe",
+        "broken/planted-no-dn/gdam2010-safe",
     ] {
         let r = run(&[id], limit, 100, 2, false);
         assert!(!r.ok(), "{id} passed");
@@ -901,4 +905,187 @@ fn the_interval_rules_refuse_what_they_must() {
         let o = Check::new(&t).run_with(&[], &[(b, "cull".into())]);
         assert_eq!(o.failures.is_empty(), ok, "{name}: {:?}", o.failures);
     }
+}
+
+/// The exact edge values `E_k = P_i x P_j` of `gdam2010-safe` at the sample position
+/// `(x, y)` and time `t` (rationals from the f32 inputs, no rounding): whether all
+/// three are > 0 or all < 0 (the covered times are among those).
+fn gdam_covered(q: &[[f32; 3]; 3], r: &[[f32; 3]; 3], x: f32, y: f32, t: f32) -> bool {
+    let num = |v: X| match v {
+        X::Num(n, d) => (n, d),
+        _ => unreachable!("finite inputs"),
+    };
+    let (xs, ys, ts) = (rat(x), rat(y), rat(t));
+    let p: Vec<[X; 2]> = (0..3)
+        .map(|i| {
+            let at = |c: usize| arith('+', &rat(q[i][c]), &arith('*', &ts, &arith('-', &rat(r[i][c]), &rat(q[i][c]))));
+            let w = at(2);
+            [arith('-', &at(0), &arith('*', &xs, &w)), arith('-', &at(1), &arith('*', &ys, &w))]
+        })
+        .collect();
+    let signs: Vec<Ordering> = [(1, 2), (2, 0), (0, 1)]
+        .iter()
+        .map(|&(i, j)| {
+            let e = arith('-', &arith('*', &p[i][0], &p[j][1]), &arith('*', &p[i][1], &p[j][0]));
+            let (n, d) = num(e);
+            (n * d).cmp(&BigInt::from(0))
+        })
+        .collect();
+    signs.iter().all(|&s| s == Ordering::Greater) || signs.iter().all(|&s| s == Ordering::Less)
+}
+
+/// f64 estimates of where the edges of `gdam2010-safe` change sign at `(x, y)`: the
+/// roots in (0, 1) of each edge's quadratic in t, and its vertex (where pieces are cut).
+fn gdam_turns(q: &[[f32; 3]; 3], r: &[[f32; 3]; 3], x: f32, y: f32) -> Vec<f64> {
+    let rel = |p: [f32; 3]| [p[0] as f64 - x as f64 * p[2] as f64, p[1] as f64 - y as f64 * p[2] as f64];
+    let mut out = vec![];
+    for (i, j) in [(1, 2), (2, 0), (0, 1)] {
+        let (a, b) = (rel(q[i]), rel(q[j]));
+        let (da, db) = ([rel(r[i])[0] - a[0], rel(r[i])[1] - a[1]], [rel(r[j])[0] - b[0], rel(r[j])[1] - b[1]]);
+        let cr = |u: [f64; 2], v: [f64; 2]| u[0] * v[1] - u[1] * v[0];
+        let (qa, qb, qc) = (cr(da, db), cr(a, db) + cr(da, b), cr(a, b));
+        if qa != 0.0 {
+            out.push(-qb / (2.0 * qa));
+            let disc = qb * qb - 4.0 * qa * qc;
+            if disc >= 0.0 {
+                out.extend([(-qb - disc.sqrt()) / (2.0 * qa), (-qb + disc.sqrt()) / (2.0 * qa)]);
+            }
+        } else if qb != 0.0 {
+            out.push(-qc / qb);
+        }
+    }
+    out.retain(|t| *t > 0.0 && *t < 1.0);
+    out
+}
+
+/// gdam2010-safe's culls attacked in exact arithmetic, at sample positions on and next
+/// to the edges' lines (a point of an edge at t = 0 or t = 1, rounded to f32, and the
+/// tile's corners) and on pieces of the shutter next to where the edges change sign
+/// (2^-23 to 2^-6 from a root or a vertex, 2^-10 to 1 wide) or at the shutter's ends;
+/// every other case with its winding turned. Every piece the code culls must have its
+/// exact counterpart true (the check's claim), and no time of it, at its ends, one f32
+/// step inside them and 7 points between, may
+/// have all three exact edge values of one strict sign (the method's claim). With
+/// `padded` false the pads are 0: the culls come as close to the edges as the rounding
+/// lets them. Returns the failures, the pieces tried, culled, and the times checked.
+fn gdam_attack<R: Round>(n: usize, seed: u64, padded: bool) -> (Vec<String>, usize, usize, usize) {
+    use cullproof::bounds::gdam2010::{end_of, piece_of, sample_of, still_of};
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let ar = Pair::default();
+    let (mut bad, mut pieces, mut culled, mut times) = (vec![], 0, 0, 0);
+    use Regime::*;
+    let regimes = [Static, Motion, BehindLens, Sliver, Tiny, Huge, Perspective, FacingFlip, FarFromOrigin, Degenerate];
+    for i in 0..n {
+        let case = physical_case(&mut rng, regimes[i % regimes.len()]);
+        let tri = &case.triangle;
+        let xyw = |p: [f32; 4]| [p[0], p[1], p[3]];
+        let (mut q, mut r) = (tri.q.map(xyw), tri.r.map(xyw));
+        // Every other case with its winding turned (two vertices swapped): the edges'
+        // signs inside are then the other way round.
+        if i % 2 == 1 {
+            (q.swap(1, 2), r.swap(1, 2));
+        }
+        if !q.iter().chain(r.iter()).flatten().all(|v| v.is_finite()) {
+            continue;
+        }
+        let size = [1.0, 4.0, 16.0][rng.gen_range(0..3)];
+        let tile = boundary_tile(&case, &mut rng, size);
+        // A point of edge (i, j) at one shutter end, in screen coordinates.
+        let (a, s, end) = (rng.gen_range(0..3), rng.gen::<f64>(), rng.gen_range(0..2));
+        let b = (a + rng.gen_range(1..3)) % 3;
+        let v = if end == 0 { &q } else { &r };
+        let scr = |p: [f32; 3], c: usize| p[c] as f64 / p[2] as f64;
+        let on = [0, 1].map(|c| (scr(v[a], c) + s * (scr(v[b], c) - scr(v[a], c))) as f32);
+        let positions = [on, [tile.x0, tile.y0], [tile.x1, tile.y1]];
+        for [x, y] in positions {
+            if !(x.is_finite() && y.is_finite()) {
+                continue;
+            }
+            let (qv, rv) = (q.map(|p| p.map(|c| ar.lit(c))), r.map(|p| p.map(|c| ar.lit(c))));
+            let smp = sample_of::<R, Pair>(&ar, &qv, &rv, &ar.lit(x), &ar.lit(y), padded);
+            let mut cands = vec![(0.0f32, 1.0f32)];
+            for t in gdam_turns(&q, &r, x, y) {
+                for d in [2f64.powi(-23), 2f64.powi(-18), 2f64.powi(-12), 2f64.powi(-6)] {
+                    for w in [2f64.powi(-10), 0.125, 1.0] {
+                        cands.push(((t + d) as f32, ((t + d + w).min(1.0)) as f32));
+                        cands.push((((t - d - w).max(0.0)) as f32, (t - d) as f32));
+                    }
+                }
+            }
+            for w in [2f32.powi(-20), 2f32.powi(-8), 0.25] {
+                cands.extend([(0.0, w), (1.0 - w, 1.0)]);
+            }
+            for (l, h) in cands {
+                if !(0.0 <= l && l <= h && h <= 1.0) {
+                    continue;
+                }
+                pieces += 1;
+                let (el, eh) = (end_of::<R, Pair>(&ar, &smp, &ar.lit(l)), end_of::<R, Pair>(&ar, &smp, &ar.lit(h)));
+                let (cull, _) = piece_of::<R, Pair>(&ar, &smp, &el, &eh);
+                if !cull.0 {
+                    continue;
+                }
+                culled += 1;
+                if cull.1 != Some(true) {
+                    bad.push(format!("piece [{l}, {h}] at ({x}, {y}): culled, its exact counterpart {:?}", cull.1));
+                }
+                let mut ts = vec![l, h, l.next_up().min(h), h.next_down().max(l)];
+                ts.extend((1..8).map(|k| l + (h - l) * k as f32 / 8.0));
+                for t in ts.into_iter().filter(|t| (l..=h).contains(t)) {
+                    times += 1;
+                    if gdam_covered(&q, &r, x, y, t) {
+                        bad.push(format!("piece [{l}, {h}] at ({x}, {y}): culled, t = {t} covered ({tri:?})"));
+                    }
+                }
+            }
+            // The whole shutter of a triangle that does not move.
+            let e0 = end_of::<R, Pair>(&ar, &smp, &ar.lit(0.0));
+            let (cull, _) = still_of::<R, Pair>(&ar, &smp, &e0);
+            if cull.0 {
+                culled += 1;
+                if cull.1 != Some(true) {
+                    bad.push(format!("still triangle at ({x}, {y}): culled, its exact counterpart {:?}", cull.1));
+                }
+                times += 1;
+                if gdam_covered(&q, &r, x, y, 0.0) {
+                    bad.push(format!("still triangle at ({x}, {y}): culled, covered ({tri:?})"));
+                }
+            }
+        }
+    }
+    (bad, pieces, culled, times)
+}
+
+/// gdam2010-safe passes the check; its slips fail it; and the culls the check vouches
+/// for hold in exact arithmetic (with its pads and with every pad 0), where the same
+/// pieces without outward steps and pads are caught.
+#[test]
+fn gdam2010_safe_pieces_are_checked_and_hold_in_exact_arithmetic() {
+    let o = check("gdam2010-safe").expect("gdam2010-safe is checked");
+    assert!(o.failures.is_empty(), "{:?}", o.failures);
+    assert_eq!(o.outputs, 2, "a piece's cull and a still triangle's cull");
+    assert_eq!(o.choices.len(), 1, "the pad: {:?}", o.choices);
+    let used = |r: &str| o.rules.iter().find(|(n, _)| *n == r).map_or(0, |x| x.1);
+    assert!(used("min (max) of the four end products or quotients") >= 24, "{:?}", o.rules);
+    for id in ["broken/planted-no-up/gdam2010-safe", "broken/planted-no-dn/gdam2010-safe"] {
+        let o = check(id).expect("a planted slip of a checked variant is checked");
+        assert!(
+            o.failures.iter().any(|f| f.what.contains("piece cull") && f.found.contains("imply")),
+            "{id}: {:?}",
+            o.failures
+        );
+    }
+    for padded in [true, false] {
+        let (bad, pieces, culled, times) = gdam_attack::<Outward>(700, 7, padded);
+        eprintln!("gdam2010-safe (padded {padded}): {pieces} pieces, {culled} culled, {times} times checked exactly");
+        assert!(bad.is_empty(), "{} failures: {:?}", bad.len(), &bad[..bad.len().min(5)]);
+        assert!(culled > 10_000 && times > 200_000, "{pieces} pieces, {culled} culled, {times} times");
+    }
+    // The same pieces rounded to nearest without steps (as a published f32 method
+    // would), unpadded: culled where they are not.
+    // (The slips, one side's steps dropped, rarely cull a covered time: the check
+    // refuses them above; the attack needs both sides gone.)
+    let (nearest, _, _, _) = gdam_attack::<Nearest>(700, 7, false);
+    eprintln!("unpadded, no steps: {} failures", nearest.len());
+    assert!(nearest.len() >= 10, "the attack cannot fail: {}", nearest.len());
 }

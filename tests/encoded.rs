@@ -5,6 +5,8 @@
 
 #[path = "encoded/cases.rs"]
 mod cases;
+#[path = "encoded/gdam2010_safe_old.rs"]
+mod gdam2010_safe_old;
 #[path = "encoded/hyperplane_old.rs"]
 mod hyperplane_old;
 #[path = "encoded/la2011_old.rs"]
@@ -95,4 +97,35 @@ fn nilsson2012_depth_is_its_old_code_bit_for_bit() {
         assert_eq!(tiles, 2 * N);
         assert!(culled > N / 50, "{id}: only {culled} of {tiles} tiles culled: the reject went untested");
     }
+}
+
+/// `gdam2010-safe`'s time set against its old code (f32 intervals as a type with early
+/// returns), span for span, at pixel positions in and around each case's tiles (every
+/// case with its CoC zeroed: the method is motion-only).
+#[test]
+fn gdam2010_safe_is_its_old_code_bit_for_bit() {
+    use cullproof::bounds::gdam2010::SafeTimeSpans;
+    let (mut samples, mut culled, mut cut) = (0usize, 0usize, 0usize);
+    for k in 0..20_000 {
+        let (mut tri, ts) = cases::case(0x9da3, k);
+        (tri.c0, tri.c1) = ([0.0; 3], [0.0; 3]);
+        if !tri.q.iter().chain(tri.r.iter()).flatten().all(|v| v.is_finite()) {
+            continue;
+        }
+        let (new, old) = (SafeTimeSpans::new(&tri), gdam2010_safe_old::SafeTimeSpans::new(&tri));
+        for tile in &ts {
+            let (x0, y0, x1, y1) = (tile.x0, tile.y0, tile.x1, tile.y1);
+            for (fx, fy) in [(0.0, 0.0), (0.5, 0.5), (1.0, 0.25), (0.25, 1.0), (0.75, 0.0)] {
+                let (x, y) = (x0 + fx * (x1 - x0), y0 + fy * (y1 - y0));
+                let (a, b) = (new.spans_at(x, y), old.spans_at(x, y));
+                let bits = |s: &[[f32; 2]]| s.iter().flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(a.as_slice()), bits(b.as_slice()), "case {k}: {tri:?} at ({x}, {y})");
+                samples += 1;
+                let kept: f32 = a.as_slice().iter().map(|s| s[1] - s[0]).sum();
+                culled += (a.n == 0) as usize;
+                cut += (a.n > 0 && kept < 1.0) as usize;
+            }
+        }
+    }
+    assert!(samples > 100_000 && culled > 1_000 && cut > 1_000, "{samples} positions, {culled} culled, {cut} cut");
 }

@@ -211,7 +211,10 @@
 use super::*;
 
 mod safe;
-pub use safe::{SafeTimeSpans, METHOD_SAFE};
+pub use safe::{
+    end_of, piece_of, sample_of, still_of, EndOf, Gdam2010Safe, SafeSpans, SafeTimeSpans, SampleOf, METHOD_SAFE,
+    PAD_CHOICE,
+};
 
 /// The three cross-product vectors of one moving edge: `alpha = a . (X, Y, 1)` etc.
 #[derive(Clone, Copy, Debug)]
@@ -424,7 +427,7 @@ impl<S: SampleConstraint + Copy + 'static> Prepared for Prep<S> {
 
 struct Gdam2010;
 
-static INFO: MethodInfo = MethodInfo {
+pub(crate) static INFO: MethodInfo = MethodInfo {
     id: "gdam2010",
     source: "Gribel, Doggett, Akenine-Möller 2010, Analytical Motion Blur Rasterization with Compression \
              (cited by Nilsson et al. 2012 §2, §4); quadratic moving edge functions of Munkberg et al. 2011 \

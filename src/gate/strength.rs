@@ -197,14 +197,14 @@ mod tests {
                 ("bbox-safe", Strength::MachineChecked),
                 ("la2011", Strength::ProvenOnCases),
                 ("lb2011", Strength::Unproven),
-                ("gdam2010-safe", Strength::LemmasChecked),
+                ("gdam2010-safe", Strength::MachineChecked),
                 ("wu2013-safe", Strength::Violated),
             ]
         );
         assert_eq!((s[0].cases, s[0].violated_regimes, s[0].regimes), (20, 1, 2));
         assert!(s[1].text.contains("8 of 10 cases proven") && !s[1].ranges.is_empty() && !s[1].scripts.is_empty());
         assert!(s[2].text.contains("proven on 10 cases"));
-        assert!(s[4].text.contains("rounding lemmas checked") && s[4].text.contains("all 10 cases proven"));
+        assert!(s[4].text.contains("machine-checked") && s[4].text.contains("all 10 cases proven"));
         assert!(s[5].text.contains("contradicts its proof"));
     }
 }

@@ -13,7 +13,7 @@
 //!
 //! And two slips in the arithmetic of each variant written with the shared rounding
 //! discipline ([`crate::bounds::round`]: `la2011-safe`, `nilsson2012-depth-safe`,
-//! `mam2012-safe`), for
+//! `mam2012-safe`, `wu2013-safe`, `gdam2010-safe`), for
 //! the proofs tied to the code ([`crate::bounds::proofs`]):
 //! `broken/planted-no-up/M-safe` keeps every lower end's outward step but drops the
 //! upper ends' (each upper end is the value rounded to nearest, as in the published
@@ -25,6 +25,7 @@
 
 use crate::bounds::arith::F32Arith;
 use crate::bounds::bbox::{padded_corner, BBox, Corner, SafeCorner};
+use crate::bounds::gdam2010::Gdam2010Safe;
 use crate::bounds::la2011::La2011;
 use crate::bounds::mam2012::Mam2012Safe;
 use crate::bounds::nilsson2012_depth::Nilsson2012Depth;
@@ -202,6 +203,22 @@ pub static NO_UP_WU: &dyn Method = &Wu2013Safe::<NoUp> { info: &INFO_NO_UP_WU, r
 /// `broken/planted-no-dn/wu2013-safe`.
 pub static NO_DN_WU: &dyn Method = &Wu2013Safe::<NoDn> { info: &INFO_NO_DN_WU, round: std::marker::PhantomData };
 
+static INFO_NO_UP_GDAM: MethodInfo = slip(
+    "broken/planted-no-up/gdam2010-safe",
+    "gdam2010-safe with the outward step of every upper end dropped",
+    crate::bounds::gdam2010::INFO,
+);
+static INFO_NO_DN_GDAM: MethodInfo = slip(
+    "broken/planted-no-dn/gdam2010-safe",
+    "gdam2010-safe with the outward step of every lower end dropped",
+    crate::bounds::gdam2010::INFO,
+);
+
+/// `broken/planted-no-up/gdam2010-safe`.
+pub static NO_UP_GDAM: &dyn Method = &Gdam2010Safe::<NoUp> { info: &INFO_NO_UP_GDAM, round: std::marker::PhantomData };
+/// `broken/planted-no-dn/gdam2010-safe`.
+pub static NO_DN_GDAM: &dyn Method = &Gdam2010Safe::<NoDn> { info: &INFO_NO_DN_GDAM, round: std::marker::PhantomData };
+
 static INFO_NO_UP_BOX: MethodInfo =
     slip("broken/planted-no-up/bbox-safe", "bbox-safe with the outward steps of every upper end dropped", INFO_EQ);
 static INFO_NO_DN_BOX: MethodInfo =
@@ -219,7 +236,22 @@ pub static BAND: &dyn Method = &BBox { info: &INFO_BAND, corner: BandSlip };
 
 /// The planted variant with this id, if it is one.
 pub fn parse(id: &str) -> Option<&'static dyn Method> {
-    [EQ, BAND, NO_UP, NO_DN, NO_UP_DEPTH, NO_DN_DEPTH, NO_UP_MAM, NO_DN_MAM, NO_UP_WU, NO_DN_WU, NO_UP_BOX, NO_DN_BOX]
-        .into_iter()
-        .find(|m| m.info().id == id)
+    [
+        EQ,
+        BAND,
+        NO_UP,
+        NO_DN,
+        NO_UP_DEPTH,
+        NO_DN_DEPTH,
+        NO_UP_MAM,
+        NO_DN_MAM,
+        NO_UP_WU,
+        NO_DN_WU,
+        NO_UP_GDAM,
+        NO_DN_GDAM,
+        NO_UP_BOX,
+        NO_DN_BOX,
+    ]
+    .into_iter()
+    .find(|m| m.info().id == id)
 }

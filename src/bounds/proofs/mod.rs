@@ -225,12 +225,6 @@ const ALL_FINITE: &[Range] = &[
     Range { inputs: "any non-finite input", range: "answered with the full domain (code inspection)" },
 ];
 
-/// The directed-step composition, shared by the interval variants.
-const STEPS_ARGUMENT: &str = "each value is an f32 interval whose ends are rounded results stepped outward \
-     (STEP for + - * / and fma, all correctly rounded in Rust), combined only by monotone operations \
-     (sums of same-sided ends, the four end products or quotients, min/max, exact comparisons); the \
-     real-arithmetic derivation of the method in its file then applies to the enclosed exact values";
-
 /// The variants with a proof, in the registry's order.
 pub const VARIANTS: &[Variant] = &[
     Variant {
@@ -337,12 +331,36 @@ pub const VARIANTS: &[Variant] = &[
     },
     Variant {
         id: "gdam2010-safe",
-        ranges: ALL_FINITE,
-        scripts: &["STEP", "MONO"],
-        mechanical: "STEP for the fused multiply-adds and the interval cross products; MONO for g(s) >= 0 \
-                     (an f32 difference of ordered f32 values)",
-        by_argument: STEPS_ARGUMENT,
-        level: Level::LemmasChecked,
+        ranges: &[
+            Range {
+                inputs: "vertex x, y, w at both shutter ends, sample position x, y",
+                range: "every finite f32 value (subnormals, zeros of either sign, up to +-MAX)",
+            },
+            Range {
+                inputs: "a piece [l, h] of the shutter",
+                range: "any f32 values 0 <= l <= h <= 1 (the cut points)",
+            },
+            Range {
+                inputs: "any non-finite vertex input, a non-finite sample position or a CoC other than 0",
+                range: "nothing culled (code inspection)",
+            },
+        ],
+        scripts: &["STEP", "MONO", "enclosure rules"],
+        mechanical: "every rounded result stepped outward encloses the exact result (STEP, for the fused \
+                     multiply-adds and the interval sums and products); the composition over the method's \
+                     own f32 code for every input: the enclosure check traces the per-sample setup and one \
+                     piece's answer and finds the piece's cull and the cull of a still triangle's whole \
+                     shutter to imply their exact counterparts (some edge's three exact Bernstein \
+                     coefficients at or below minus its pad and some edge's at or above it, the pad >= 0), \
+                     by rules z3 proves in real arithmetic (enclosure rules: the four end products, sums \
+                     of same-sided ends); MONO for g(s) >= 0 (an f32 difference of ordered f32 values)",
+        by_argument: "the real-arithmetic derivation in gdam2010.rs (a quadratic on a piece lies between its \
+                      least and greatest Bernstein coefficient, so an edge <= 0 and an edge >= 0 throughout \
+                      leave no covered time), that each branch the f32 code takes is one the exact values \
+                      allow (an interval [0, 0] holds exactly 0; equal inputs at both shutter ends make the \
+                      motion exactly 0; at t = 0 and t = 1 the vertex is its end value), and that the kept \
+                      pieces, which share their ends, merge into spans holding every kept time",
+        level: Level::MachineChecked,
     },
 ];
 

@@ -81,6 +81,26 @@ fn mam2012<R: Round>(t: &Trace) -> Demands {
     (outs, culls)
 }
 
+/// The traced per-sample answer of `gdam2010-safe` written with the arithmetic `R`, at
+/// a sample position `(X, Y)` and for a piece `[l, h]` of the shutter (any f32 values:
+/// the cut points only decide where pieces end): the piece's cull, and the cull of the
+/// whole shutter of a triangle whose vertices do not move. Each must imply its exact
+/// counterpart: some edge's three exact Bernstein coefficients on the piece at or below
+/// minus its pad and some edge's at or above its pad, with the pad `>= 0`.
+fn gdam2010<R: Round>(t: &Trace) -> Demands {
+    use crate::bounds::gdam2010::{end_of, piece_of, sample_of, still_of};
+    let (tri, _) = inputs(t);
+    let xyw = |p: &[N; 4]| [p[0], p[1], p[3]];
+    let (q, r) = (tri.q.each_ref().map(xyw), tri.r.each_ref().map(xyw));
+    let [x, y, l, h] = ["X", "Y", "l", "h"].map(|n| t.input(n));
+    let s = sample_of::<R, Trace>(t, &q, &r, &x, &y, true);
+    let (el, eh) = (end_of::<R, Trace>(t, &s, &l), end_of::<R, Trace>(t, &s, &h));
+    let (piece, _) = piece_of::<R, Trace>(t, &s, &el, &eh);
+    let e0 = end_of::<R, Trace>(t, &s, &t.lit(0.0));
+    let (still, _) = still_of::<R, Trace>(t, &s, &e0);
+    (vec![], vec![(piece, "piece cull".to_string()), (still, "still-triangle cull".to_string())])
+}
+
 /// The lemma of `wu2013_safe.g`, as the check applies it.
 pub const WU_LEMMA: &str = "wu2013_safe.g: for line endpoints |e_left|, |e_right| <= LIMIT and a lens value \
      |l| <= 1, the padded line's f32 value fl(fl(a l) + b') is finite and at or above a l + b (upper lines; lower \
@@ -183,12 +203,13 @@ fn bbox<C: crate::bounds::bbox::Corner>(t: &Trace, corner: &C, script_text: &str
 }
 
 /// The variants whose composition the check covers.
-pub const CHECKED: &[&str] = &["bbox-safe", "la2011-safe", "mam2012-safe", "nilsson2012-depth-safe", "wu2013-safe"];
+pub const CHECKED: &[&str] =
+    &["bbox-safe", "la2011-safe", "mam2012-safe", "nilsson2012-depth-safe", "wu2013-safe", "gdam2010-safe"];
 
 /// Trace the tile answer of `id` (a variant of [`CHECKED`] or one of its planted slips
 /// `broken/planted-no-up/ID`, `broken/planted-no-dn/ID`) and check it: its output ends
 /// (la2011-safe: t, u, v; nilsson2012-depth-safe: z; mam2012-safe: u, v) and its culls
-/// (the tile reject; mam2012-safe's per-sample lines).
+/// (the tile reject; mam2012-safe's per-sample lines; gdam2010-safe's pieces).
 pub fn check(id: &str) -> Option<Outcome> {
     let base = id.rsplit('/').next()?;
     if !CHECKED.contains(&base) {
@@ -271,6 +292,9 @@ pub fn check_traced(id: &str) -> Option<Outcome> {
         ("", "nilsson2012-depth-safe") => nilsson::<Outward>(&t),
         ("broken/planted-no-up/", "nilsson2012-depth-safe") => nilsson::<NoUp>(&t),
         ("broken/planted-no-dn/", "nilsson2012-depth-safe") => nilsson::<NoDn>(&t),
+        ("", "gdam2010-safe") => gdam2010::<Outward>(&t),
+        ("broken/planted-no-up/", "gdam2010-safe") => gdam2010::<NoUp>(&t),
+        ("broken/planted-no-dn/", "gdam2010-safe") => gdam2010::<NoDn>(&t),
         _ => return None,
     };
     Some(Check::new(&t).run_with(&outs.0, &outs.1))
