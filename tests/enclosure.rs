@@ -983,7 +983,8 @@ fn gdam_attack<R: Round>(n: usize, seed: u64, padded: bool) -> (Vec<String>, usi
         // Every other case with its winding turned (two vertices swapped): the edges'
         // signs inside are then the other way round.
         if i % 2 == 1 {
-            (q.swap(1, 2), r.swap(1, 2));
+            q.swap(1, 2);
+            r.swap(1, 2);
         }
         if !q.iter().chain(r.iter()).flatten().all(|v| v.is_finite()) {
             continue;
@@ -1088,4 +1089,54 @@ fn gdam2010_safe_pieces_are_checked_and_hold_in_exact_arithmetic() {
     let (nearest, _, _, _) = gdam_attack::<Nearest>(700, 7, false);
     eprintln!("unpadded, no steps: {} failures", nearest.len());
     assert!(nearest.len() >= 10, "the attack cannot fail: {}", nearest.len());
+}
+
+/// A shortcut of one exact value (`F32Arith::select_same`) is verified: an interval
+/// `[0, 0]` stands for 0, equal inputs for one value, a time of 0 for 0; a shortcut
+/// taken on one end only, on inputs compared in part, or with the wrong branch is
+/// refused.
+#[test]
+fn a_shortcut_must_keep_its_exact_value() {
+    use cullproof::tools::proofs::enclosure::{Check, Trace};
+    type Piece = fn(&Trace) -> u32;
+    // [lo, hi] encloses x y; b + [lo, hi] where the interval is [0, 0] is b.
+    fn sum(t: &Trace, both: bool) -> u32 {
+        let (x, y, b) = (t.input("x"), t.input("y"), t.input("b"));
+        let p = t.mul(&x, &y);
+        let (lo, hi) = (t.next_down(&p), t.next_up(&p));
+        let zero = t.lit(0.0);
+        let z = if both { t.and(&t.eq(&lo, &zero), &t.eq(&hi, &zero)) } else { t.eq(&hi, &zero) };
+        t.select_same(&z, &b, &t.next_up(&t.add(&hi, &b)), "zero sum")
+    }
+    // x - X w at both ends: their difference is 0 where the inputs are equal.
+    fn still(t: &Trace, all: bool, swap: bool) -> u32 {
+        let nx = t.neg(&t.input("X"));
+        let (q, r) = (["qx", "qw"].map(|n| t.input(n)), ["rx", "rw"].map(|n| t.input(n)));
+        let (a, b) = (t.fma(&nx, &q[1], &q[0]), t.fma(&nx, &r[1], &r[0]));
+        let d = t.next_up(&t.sub(&t.next_up(&b), &t.next_down(&a)));
+        let eq = if all { t.and(&t.eq(&q[0], &r[0]), &t.eq(&q[1], &r[1])) } else { t.eq(&q[0], &r[0]) };
+        let tt = t.input("t");
+        let moved = t.select_same(&eq, &t.lit(0.0), &d, "still");
+        // a + t d at t = 0 is a (swapped: b, wrong).
+        let at = t.next_up(&t.add(&t.next_up(&a), &t.next_up(&t.mul(&tt, &moved))));
+        let end = if swap { t.next_up(&b) } else { t.next_up(&a) };
+        t.select_same(&t.eq(&tt, &t.lit(0.0)), &end, &at, "at zero")
+    }
+    let cases: [(&str, Piece, bool); 5] = [
+        ("both ends 0", |t| sum(t, true), true),
+        ("one end 0", |t| sum(t, false), false),
+        ("all inputs equal", |t| still(t, true, false), true),
+        ("some inputs equal", |t| still(t, false, false), false),
+        ("the other end's value", |t| still(t, true, true), false),
+    ];
+    for (name, piece, ok) in cases {
+        let t = Trace::new();
+        let out = piece(&t);
+        let o = Check::new(&t).run(&[(out, End::Hi, "out".into())]);
+        let refused = o.failures.iter().any(|f| f.what.starts_with("shortcut"));
+        assert_eq!(!refused, ok, "{name}: {:?}", o.failures);
+        if ok {
+            assert!(o.rules.iter().any(|(r, k)| r.contains("shortcut") && *k > 0), "{name}: {:?}", o.rules);
+        }
+    }
 }

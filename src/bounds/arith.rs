@@ -112,6 +112,16 @@ pub trait F32Arith {
         b.clone()
     }
 
+    /// `if c { a } else { b }` where, by the code's own argument `why`, both branches
+    /// have one exact value wherever `c` holds (a shortcut: an exact 0 operand, a time
+    /// at a shutter end, a vertex whose inputs are equal at both ends). The enclosure
+    /// check verifies that argument (the two exact values agree as polynomials under the
+    /// equalities `c` states) and takes `b`'s exact value for the select's; every other
+    /// instance selects.
+    fn select_same(&self, c: &Self::B, a: &Self::F, b: &Self::F, _why: &'static str) -> Self::F {
+        self.select(c, a, b)
+    }
+
     /// `min(a, b)`, NaN when either is NaN (where [`F32Arith::min`] drops a NaN first
     /// operand).
     fn min_nan(&self, a: &Self::F, b: &Self::F) -> Self::F {

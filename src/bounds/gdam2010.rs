@@ -102,7 +102,12 @@
 //! each piece, merge the covered ones into closed spans, the same `g(s)`) but a piece
 //! is culled only when f32 interval arithmetic *proves* that no time in it is covered;
 //! the roots only say where to cut, so their errors cost tightness, never correctness.
-//! Its code (intervals, pads, pieces, cuts) lives in `gdam2010/safe.rs`.
+//! Its code (intervals, pads, pieces, cuts) lives in `gdam2010/safe.rs`; the part a
+//! cull rests on is written once over `F32Arith` (the per-sample setup `sample_of`, a
+//! piece end `end_of`, a piece's answer `piece_of`, a still triangle's `still_of`), and
+//! the enclosure check of `cullproof proofs` traces it for every input: each cull implies
+//! its exact counterpart (docs/proofs.md, section 4c). The cut points and the splitting
+//! stay plain f32 code: they only choose the pieces.
 //!
 //! *The edge values, relative to the pixel.* For the sample's (X, Y) the model's edge
 //! value is `E_k(t) = P_i(t) x P_j(t)` (2D cross product) with
@@ -136,7 +141,9 @@
 //! culled iff some edge has every enclosed `b <= 0` (no `E_k > 0` on the piece) and
 //! some edge has every `b >= 0` (no `E_k < 0`): then no t of the closed piece is
 //! covered. With the pad (below) the tests are stricter: culled iff some edge k has
-//! every enclosed `b <= -pad_k` and some edge j every `b >= pad_j`. Every other piece is
+//! every enclosed `b <= -pad_k` and some edge j every `b >= pad_j`, each test also
+//! requiring `0 <= pad` (always true of the pad below; it makes the tests' exact
+//! counterparts imply the unpadded ones). Every other piece is
 //! kept (a piece with all `b` of one strict sign for all
 //! edges is certainly covered; one with neither answer is "open" and is split at its
 //! midpoint, at most 12 times per sample and only while wider than 2^-12, then kept).

@@ -16,6 +16,14 @@ pub type Iv<F> = [F; 2];
 /// A point relative to the sample's pixel, `(x - X w, y - Y w)`, enclosed.
 pub type Rel<F> = [Iv<F>; 2];
 
+/// The shortcuts of one exact value ([`F32Arith::select_same`]; the enclosure check
+/// verifies each).
+const ZERO_SUM: &str = "gdam2010-safe: an operand enclosed as [0, 0] is exactly 0, so the sum is the other operand";
+const ZERO_PRODUCT: &str = "gdam2010-safe: an operand enclosed as [0, 0] is exactly 0, so the product is 0";
+const STILL: &str = "gdam2010-safe: a vertex whose inputs are equal at both shutter ends does not move";
+const AT_ZERO: &str = "gdam2010-safe: at t = 0 the vertex is its value at t = 0";
+const AT_ONE: &str = "gdam2010-safe: at t = 1 the vertex is its value at t = 1";
+
 /// The interval arithmetic of `gdam2010-safe` over any [`F32Arith`], with the rounding
 /// discipline `R` ([`Outward`]: one step outward after each rounded result). Every
 /// shortcut of an exact zero is a select, so that the check traces all of it.
@@ -36,8 +44,9 @@ impl<'a, A: F32Arith, R: Round> IvOps<'a, A, R> {
         let (ar, z) = (self.ar, self.ar.lit(0.0));
         ar.and(&ar.eq(&a[0], &z), &ar.eq(&a[1], &z))
     }
-    fn sel(&self, c: &A::B, a: &Iv<A::F>, b: &Iv<A::F>) -> Iv<A::F> {
-        [self.ar.select(c, &a[0], &b[0]), self.ar.select(c, &a[1], &b[1])]
+    /// `if c { a } else { b }`, both one exact value where `c` holds (`why`).
+    fn same(&self, c: &A::B, a: &Iv<A::F>, b: &Iv<A::F>, why: &'static str) -> Iv<A::F> {
+        [self.ar.select_same(c, &a[0], &b[0], why), self.ar.select_same(c, &a[1], &b[1], why)]
     }
     /// The exact value lies within one f32 step of `r`, a result rounded to nearest.
     fn near(&self, r: &A::F) -> Iv<A::F> {
@@ -47,7 +56,7 @@ impl<'a, A: F32Arith, R: Round> IvOps<'a, A, R> {
     fn add(&self, a: &Iv<A::F>, b: &Iv<A::F>) -> Iv<A::F> {
         let ar = self.ar;
         let s = [R::dn(ar, &ar.add(&a[0], &b[0])), R::up(ar, &ar.add(&a[1], &b[1]))];
-        self.sel(&self.is_zero(a), b, &self.sel(&self.is_zero(b), a, &s))
+        self.same(&self.is_zero(a), b, &self.same(&self.is_zero(b), a, &s, ZERO_SUM), ZERO_SUM)
     }
     fn neg(&self, a: &Iv<A::F>) -> Iv<A::F> {
         [self.ar.neg(&a[1]), self.ar.neg(&a[0])]
@@ -63,7 +72,7 @@ impl<'a, A: F32Arith, R: Round> IvOps<'a, A, R> {
         let lo = ar.min_nan(&ar.min_nan(&ar.min_nan(&p[0], &p[1]), &p[2]), &p[3]);
         let hi = ar.max_nan(&ar.max_nan(&ar.max_nan(&p[0], &p[1]), &p[2]), &p[3]);
         let out = [R::dn(ar, &lo), R::up(ar, &hi)];
-        self.sel(&ar.or(&self.is_zero(a), &self.is_zero(b)), &self.zero(), &out)
+        self.same(&ar.or(&self.is_zero(a), &self.is_zero(b)), &self.zero(), &out, ZERO_PRODUCT)
     }
     /// `p.x q.y - p.y q.x`, enclosed.
     fn cross(&self, p: &Rel<A::F>, q: &Rel<A::F>) -> Iv<A::F> {
@@ -121,7 +130,7 @@ pub fn sample_of<R: Round, A: F32Arith>(
     let still_v: [A::B; 3] = std::array::from_fn(|i| ar.all(&[0, 1, 2].map(|c| ar.eq(&q[i][c], &r[i][c]))));
     let di: [Rel<A::F>; 3] = std::array::from_fn(|i| {
         let moved = [o.sub(&bi[i][0], &ai[i][0]), o.sub(&bi[i][1], &ai[i][1])];
-        [o.sel(&still_v[i], &o.zero(), &moved[0]), o.sel(&still_v[i], &o.zero(), &moved[1])]
+        [0, 1].map(|c| o.same(&still_v[i], &o.zero(), &moved[c], STILL))
     });
     let still = ar.all(&still_v);
     SampleOf { a, b, ai, bi, di, pad, still }
@@ -143,7 +152,7 @@ pub fn end_of<R: Round, A: F32Arith>(ar: &A, s: &SampleOf<A::F, A::B>, t: &A::F)
     let tt = [t.clone(), t.clone()];
     let p: [Rel<A::F>; 3] = std::array::from_fn(|i| {
         let mid = [o.add(&s.ai[i][0], &o.mul(&tt, &s.di[i][0])), o.add(&s.ai[i][1], &o.mul(&tt, &s.di[i][1]))];
-        std::array::from_fn(|c| o.sel(&at0, &s.ai[i][c], &o.sel(&at1, &s.bi[i][c], &mid[c])))
+        std::array::from_fn(|c| o.same(&at0, &s.ai[i][c], &o.same(&at1, &s.bi[i][c], &mid[c], AT_ONE), AT_ZERO))
     });
     let e = EDGES.map(|(i, j)| o.cross(&p[i], &p[j]));
     EndOf { p, e }

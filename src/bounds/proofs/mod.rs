@@ -353,13 +353,16 @@ pub const VARIANTS: &[Variant] = &[
                      shutter to imply their exact counterparts (some edge's three exact Bernstein \
                      coefficients at or below minus its pad and some edge's at or above it, the pad >= 0), \
                      by rules z3 proves in real arithmetic (enclosure rules: the four end products, sums \
-                     of same-sided ends); MONO for g(s) >= 0 (an f32 difference of ordered f32 values)",
+                     of same-sided ends), and each of its shortcuts to keep the exact value (both branches \
+                     one polynomial under the condition's equalities); MONO for g(s) >= 0 (an f32 \
+                     difference of ordered f32 values)",
         by_argument: "the real-arithmetic derivation in gdam2010.rs (a quadratic on a piece lies between its \
                       least and greatest Bernstein coefficient, so an edge <= 0 and an edge >= 0 throughout \
-                      leave no covered time), that each branch the f32 code takes is one the exact values \
-                      allow (an interval [0, 0] holds exactly 0; equal inputs at both shutter ends make the \
-                      motion exactly 0; at t = 0 and t = 1 the vertex is its end value), and that the kept \
-                      pieces, which share their ends, merge into spans holding every kept time",
+                      leave no covered time; a still triangle's edges are constant), and that the kept \
+                      pieces, which share their ends, merge into spans holding every kept time (its \
+                      shortcuts, an interval [0, 0] taken as 0, equal inputs at both shutter ends as no \
+                      motion, the vertex at t = 0 and t = 1 as its end value, are checked: their branches \
+                      are one exact value under their conditions)",
         level: Level::MachineChecked,
     },
 ];

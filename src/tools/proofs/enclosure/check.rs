@@ -6,6 +6,8 @@ use crate::bounds::arith::End;
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
 
+mod same;
+
 // ---------------------------------------------------------------------------------
 // Exact values.
 
@@ -307,8 +309,25 @@ impl<'t> Check<'t> {
             Op::Up(a) | Op::Dn(a) => self.real(a),
             Op::Sel(c, a, b) => {
                 let (ra, rb) = (self.real(a), self.real(b));
+                let why = t.same.borrow().get(&n).copied();
                 if ra == rb {
                     ra
+                } else if let Some(why) = why {
+                    // A shortcut: both branches one exact value where `c` holds.
+                    if self.same_under(c, ra, rb) {
+                        self.rule("a shortcut's branches of one exact value");
+                        rb
+                    } else {
+                        let f = Failure {
+                            what: format!("shortcut ({why})"),
+                            found: "its branches' exact values are not shown equal under its condition".into(),
+                        };
+                        let mut fs = self.failures.borrow_mut();
+                        if !fs.contains(&f) {
+                            fs.push(f);
+                        }
+                        self.rnode(Real::Ite(c, ra, rb))
+                    }
                 } else {
                     self.rnode(Real::Ite(c, ra, rb))
                 }
@@ -1295,6 +1314,12 @@ impl<'t> Check<'t> {
     /// Demand that each output is an end of its side (or exact) and NaN-free, and
     /// collect the outcome (pins are demanded as they are met).
     pub fn run(&self, outputs: &[(N, End, String)]) -> Outcome {
+        // Every shortcut is verified, whether a demand reads its exact value or not.
+        let mut shortcuts: Vec<N> = self.t.same.borrow().keys().copied().collect();
+        shortcuts.sort_unstable();
+        for n in shortcuts {
+            self.real(n);
+        }
         for (n, end, name) in outputs {
             let d = self.dir(*n, ROOT);
             let want = if *end == End::Lo { Pre::Lo } else { Pre::Hi };

@@ -26,7 +26,9 @@
 //! NaN-free, that every cull implies its counterpart over the exact values, and that every
 //! value the code pins (`F32Arith::pin`, `pin_range`: a step whose argument is a named
 //! lemma; `F32Arith::pin_same`: an interval of a value the lemma equates with another)
-//! is an end of the side the lemma needs. Values the code may choose freely
+//! is an end of the side the lemma needs, and that every shortcut the code declares
+//! (`F32Arith::select_same`) keeps its exact value: both branches one polynomial under
+//! the condition's equalities (`check::same`). Values the code may choose freely
 //! (`F32Arith::choose`, `choose_truth`) are taken as exact and listed. A lemma about a
 //! whole formula (bbox-safe's Gappa-proven pad) is declared on the formula built from the
 //! script's own constants ([`Trace::known_end`]); it reaches the code only where the code

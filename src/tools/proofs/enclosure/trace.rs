@@ -106,6 +106,9 @@ pub struct Trace {
     pub(super) choices: RefCell<Vec<&'static str>>,
     /// Values a lemma proves ends of an exact value.
     pub(super) known: RefCell<HashMap<N, Known>>,
+    /// Selects whose branches the code declares of one exact value under their
+    /// condition ([`F32Arith::select_same`]), and why.
+    pub(super) same: RefCell<HashMap<N, &'static str>>,
 }
 
 impl Trace {
@@ -327,5 +330,12 @@ impl F32Arith for Trace {
     fn choose(&self, a: &N, why: &'static str) -> N {
         let i = self.note(&self.choices, why);
         self.node(Op::Free(*a, i))
+    }
+    fn select_same(&self, c: &Bn, a: &N, b: &N, why: &'static str) -> N {
+        let n = self.select(c, a, b);
+        if matches!(self.op(n), Op::Sel(..)) {
+            self.same.borrow_mut().insert(n, why);
+        }
+        n
     }
 }
