@@ -122,6 +122,13 @@ pub trait F32Arith {
         self.select(c, a, b)
     }
 
+    /// `[a && f()[0], .., a && f()[K - 1]]` for a pure `f`: the f32 instance evaluates
+    /// `f` only where `a` holds (a short-circuit conjunction, the same truth values);
+    /// every other instance evaluates it always and records the conjunctions.
+    fn and_each<const K: usize>(&self, a: &Self::B, f: impl FnOnce() -> [Self::B; K]) -> [Self::B; K] {
+        f().map(|b| self.and(a, &b))
+    }
+
     /// `min(a, b)`, NaN when either is NaN (where [`F32Arith::min`] drops a NaN first
     /// operand).
     fn min_nan(&self, a: &Self::F, b: &Self::F) -> Self::F {
@@ -201,6 +208,14 @@ impl F32Arith for Plain {
             *b
         } else {
             *a
+        }
+    }
+    #[inline(always)]
+    fn and_each<const K: usize>(&self, a: &bool, f: impl FnOnce() -> [bool; K]) -> [bool; K] {
+        if *a {
+            f()
+        } else {
+            [false; K]
         }
     }
     #[inline(always)]

@@ -36,36 +36,44 @@ impl<'a, A: F32Arith, R: Round> IvOps<'a, A, R> {
     pub fn new(ar: &'a A) -> Self {
         IvOps { ar, round: PhantomData }
     }
+    #[inline(always)]
     fn zero(&self) -> Iv<A::F> {
         [self.ar.lit(0.0), self.ar.lit(0.0)]
     }
     /// Both ends are 0: the enclosed value is exactly 0.
+    #[inline(always)]
     fn is_zero(&self, a: &Iv<A::F>) -> A::B {
         let (ar, z) = (self.ar, self.ar.lit(0.0));
         ar.and(&ar.eq(&a[0], &z), &ar.eq(&a[1], &z))
     }
     /// `if c { a } else { b }`, both one exact value where `c` holds (`why`).
+    #[inline(always)]
     fn same(&self, c: &A::B, a: &Iv<A::F>, b: &Iv<A::F>, why: &'static str) -> Iv<A::F> {
         [self.ar.select_same(c, &a[0], &b[0], why), self.ar.select_same(c, &a[1], &b[1], why)]
     }
     /// The exact value lies within one f32 step of `r`, a result rounded to nearest.
+    #[inline(always)]
     fn near(&self, r: &A::F) -> Iv<A::F> {
         [R::dn(self.ar, r), R::up(self.ar, r)]
     }
     /// The sum; an exact 0 operand gives the other one unchanged.
+    #[inline(always)]
     fn add(&self, a: &Iv<A::F>, b: &Iv<A::F>) -> Iv<A::F> {
         let ar = self.ar;
         let s = [R::dn(ar, &ar.add(&a[0], &b[0])), R::up(ar, &ar.add(&a[1], &b[1]))];
         self.same(&self.is_zero(a), b, &self.same(&self.is_zero(b), a, &s, ZERO_SUM), ZERO_SUM)
     }
+    #[inline(always)]
     fn neg(&self, a: &Iv<A::F>) -> Iv<A::F> {
         [self.ar.neg(&a[1]), self.ar.neg(&a[0])]
     }
+    #[inline(always)]
     fn sub(&self, a: &Iv<A::F>, b: &Iv<A::F>) -> Iv<A::F> {
         self.add(a, &self.neg(b))
     }
     /// The product: the least and greatest of the four end products, stepped outward
     /// (NaN when one of them is NaN); an exact 0 operand gives an exact 0.
+    #[inline(always)]
     fn mul(&self, a: &Iv<A::F>, b: &Iv<A::F>) -> Iv<A::F> {
         let ar = self.ar;
         let p = [ar.mul(&a[0], &b[0]), ar.mul(&a[0], &b[1]), ar.mul(&a[1], &b[0]), ar.mul(&a[1], &b[1])];
@@ -75,6 +83,7 @@ impl<'a, A: F32Arith, R: Round> IvOps<'a, A, R> {
         self.same(&ar.or(&self.is_zero(a), &self.is_zero(b)), &self.zero(), &out, ZERO_PRODUCT)
     }
     /// `p.x q.y - p.y q.x`, enclosed.
+    #[inline(always)]
     fn cross(&self, p: &Rel<A::F>, q: &Rel<A::F>) -> Iv<A::F> {
         self.sub(&self.mul(&p[0], &q[1]), &self.mul(&p[1], &q[0]))
     }
@@ -165,11 +174,11 @@ pub fn end_of<R: Round, A: F32Arith>(ar: &A, s: &SampleOf<A::F, A::B>, t: &A::F)
 fn edge_tests<A: F32Arith>(ar: &A, b: &[Iv<A::F>; 3], pad: &A::F) -> [A::B; 4] {
     let zero = ar.lit(0.0);
     let (ok, np) = (ar.le(&zero, pad), ar.neg(pad));
-    let le: Vec<A::B> = std::iter::once(ok.clone()).chain(b.iter().map(|v| ar.le(&v[1], &np))).collect();
-    let ge: Vec<A::B> = std::iter::once(ok).chain(b.iter().map(|v| ar.le(pad, &v[0]))).collect();
-    let gt: Vec<A::B> = b.iter().map(|v| ar.lt(&zero, &v[0])).collect();
-    let lt: Vec<A::B> = b.iter().map(|v| ar.lt(&v[1], &zero)).collect();
-    [ar.all(&le), ar.all(&ge), ar.all(&gt), ar.all(&lt)]
+    let le = ar.all(&[ok.clone(), ar.le(&b[0][1], &np), ar.le(&b[1][1], &np), ar.le(&b[2][1], &np)]);
+    let ge = ar.all(&[ok, ar.le(pad, &b[0][0]), ar.le(pad, &b[1][0]), ar.le(pad, &b[2][0])]);
+    let gt = ar.all(&b.each_ref().map(|v| ar.lt(&zero, &v[0])));
+    let lt = ar.all(&b.each_ref().map(|v| ar.lt(&v[1], &zero)));
+    [le, ge, gt, lt]
 }
 
 /// A piece's answer from its edges' tests: culled (certified: no t in it is covered)
@@ -195,10 +204,18 @@ pub fn piece_of<R: Round, A: F32Arith>(
 ) -> (A::B, A::B) {
     let o = IvOps::<A, R>::new(ar);
     let (pl, ph) = (&l.p, &h.p);
+    let zero = ar.lit(0.0);
     let tests: [[A::B; 4]; 3] = std::array::from_fn(|k| {
         let (i, j) = EDGES[k];
-        let mid = o.add(&o.cross(&pl[i], &ph[j]), &o.cross(&ph[i], &pl[j]));
-        edge_tests(ar, &[l.e[k].clone(), mid, h.e[k].clone()], &s.pad[k])
+        let ends = [&l.e[k], &h.e[k]];
+        // Each test needs the ends <= 0 or the ends >= 0: only then does the middle
+        // coefficient matter (a conjunction with a test it implies: the same truth).
+        let le = ar.and(&ar.le(&ends[0][1], &zero), &ar.le(&ends[1][1], &zero));
+        let ge = ar.and(&ar.le(&zero, &ends[0][0]), &ar.le(&zero, &ends[1][0]));
+        ar.and_each(&ar.or(&le, &ge), || {
+            let mid = o.add(&o.cross(&pl[i], &ph[j]), &o.cross(&ph[i], &pl[j]));
+            edge_tests(ar, &[l.e[k].clone(), mid, h.e[k].clone()], &s.pad[k])
+        })
     });
     answer_of(ar, &tests)
 }
