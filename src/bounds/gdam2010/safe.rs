@@ -407,9 +407,10 @@ impl<R> Clone for SafeSpans<R> {
     }
 }
 impl<R> Copy for SafeSpans<R> {}
+/// Printed as the constraint's type name, `SafeTimeSpans`, for every rounding discipline.
 impl<R> std::fmt::Debug for SafeSpans<R> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SafeSpans").field("q", &self.q).field("r", &self.r).finish_non_exhaustive()
+        f.debug_struct("SafeTimeSpans").field("q", &self.q).field("r", &self.r).finish_non_exhaustive()
     }
 }
 
