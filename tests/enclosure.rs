@@ -202,6 +202,8 @@ struct Pair {
     /// Per-sample culls made whose exact counterpart holds.
     sample_culls: RefCell<usize>,
     turn: RefCell<usize>,
+    /// Shortcuts taken (their condition true), each checked in exact arithmetic.
+    shortcuts: RefCell<usize>,
 }
 
 fn on_side(v: &V, end: End) -> bool {
@@ -344,6 +346,17 @@ impl F32Arith for Pair {
     }
     fn choose(&self, a: &V, _why: &'static str) -> V {
         V(a.0, rat(a.0))
+    }
+    /// A shortcut's claim in exact arithmetic: where its condition holds, both branches
+    /// have one exact value (each branch's own, computed without the shortcut).
+    fn select_same(&self, c: &T, a: &V, b: &V, why: &'static str) -> V {
+        if c.0 {
+            *self.shortcuts.borrow_mut() += 1;
+            if cmp(&a.1, &b.1).is_some_and(|o| o != Ordering::Equal) {
+                self.bad.borrow_mut().push(format!("shortcut ({why}): exact {:?} and {:?} differ", a.1, b.1));
+            }
+        }
+        self.select(c, a, b)
     }
     /// The lemma's equation is checked too, in exact arithmetic: `v`'s exact value must
     /// be `like`'s (where both are defined).
@@ -965,7 +978,8 @@ fn gdam_turns(q: &[[f32; 3]; 3], r: &[[f32; 3]; 3], x: f32, y: f32) -> Vec<f64> 
 /// every other case with its winding turned. Every piece the code culls must have its
 /// exact counterpart true (the check's claim), and no time of it, at its ends, one f32
 /// step inside them and 7 points between, may
-/// have all three exact edge values of one strict sign (the method's claim). With
+/// have all three exact edge values of one strict sign (the method's claim); every
+/// shortcut taken (`select_same`) must keep its exact value. With
 /// `padded` false the pads are 0: the culls come as close to the edges as the rounding
 /// lets them. Returns the failures, the pieces tried, culled, and the times checked.
 fn gdam_attack<R: Round>(n: usize, seed: u64, padded: bool) -> (Vec<String>, usize, usize, usize) {
@@ -1054,6 +1068,11 @@ fn gdam_attack<R: Round>(n: usize, seed: u64, padded: bool) -> (Vec<String>, usi
             }
         }
     }
+    // Every shortcut taken kept its exact value.
+    bad.extend(ar.bad.borrow().iter().cloned());
+    let taken = *ar.shortcuts.borrow();
+    eprintln!("shortcuts taken (exact values compared): {taken}");
+    assert!(taken > 10_000, "only {taken} shortcuts taken");
     (bad, pieces, culled, times)
 }
 
@@ -1087,7 +1106,11 @@ fn gdam2010_safe_pieces_are_checked_and_hold_in_exact_arithmetic() {
     // (The slips, one side's steps dropped, rarely cull a covered time: the check
     // refuses them above; the attack needs both sides gone.)
     let (nearest, _, _, _) = gdam_attack::<Nearest>(700, 7, false);
-    eprintln!("unpadded, no steps: {} failures", nearest.len());
+    let wrong_shortcuts = nearest.iter().filter(|b| b.starts_with("shortcut")).count();
+    eprintln!("unpadded, no steps: {} failures, {wrong_shortcuts} of them shortcuts", nearest.len());
+    // (Without steps an interval [r, r] with r = 0 is taken as 0 where its exact value
+    // is not: the shortcut's check can fail too.)
+    assert!(wrong_shortcuts > 0, "no wrong shortcut found without steps");
     assert!(nearest.len() >= 10, "the attack cannot fail: {}", nearest.len());
 }
 
