@@ -318,14 +318,10 @@ impl<'t> Check<'t> {
                         self.rule("a shortcut's branches of one exact value");
                         rb
                     } else {
-                        let f = Failure {
+                        self.record(Failure {
                             what: format!("shortcut ({why})"),
                             found: "its branches' exact values are not shown equal under its condition".into(),
-                        };
-                        let mut fs = self.failures.borrow_mut();
-                        if !fs.contains(&f) {
-                            fs.push(f);
-                        }
+                        });
                         self.rnode(Real::Ite(c, ra, rb))
                     }
                 } else {
@@ -1170,8 +1166,11 @@ impl<'t> Check<'t> {
     }
 
     fn fail(&self, what: String, d: Dir) {
-        let found = describe(d);
-        let f = Failure { what, found };
+        self.record(Failure { what, found: describe(d) });
+    }
+
+    /// Record a failure (once).
+    fn record(&self, f: Failure) {
         let mut fs = self.failures.borrow_mut();
         if !fs.contains(&f) {
             fs.push(f);
