@@ -116,6 +116,8 @@ fn a_dropped_outward_step_fails_the_enclosure_check() {
         ("broken/planted-no-dn/wu2013-safe", "lower"),
         ("broken/planted-no-up/gdam2010-safe", "piece cull"),
         ("broken/planted-no-dn/gdam2010-safe", "piece cull"),
+        ("broken/planted-no-up/lb2011-safe", "patch"),
+        ("broken/planted-no-dn/lb2011-safe", "patch"),
     ] {
         let o = check(id).expect("a planted slip of a checked variant is checked");
         assert!(!o.failures.is_empty(), "{id} passed");
@@ -720,7 +722,7 @@ fn proofs_fails_on_every_planted_dropped_step() {
     use cullproof::cli::proofs::{render, run, run_enclosure};
     use std::time::Duration;
     let limit = Duration::from_secs(120);
-    for id in ["nilsson2012-depth-safe", "mam2012-safe", "wu2013-safe", "gdam2010-safe"] {
+    for id in ["nilsson2012-depth-safe", "mam2012-safe", "wu2013-safe", "gdam2010-safe", "lb2011-safe"] {
         let r = run(&[id], limit, 100, 2, false);
         assert!(r.ok(), "{}", render(&r));
         assert_eq!(r.enclosure.len(), 1);
@@ -734,6 +736,8 @@ fn proofs_fails_on_every_planted_dropped_step() {
         "broken/planted-no-dn/wu2013-safe",
         "broken/planted-no-up/gdam2010-safe",
         "broken/planted-no-dn/gdam2010-safe",
+        "broken/planted-no-up/lb2011-safe",
+        "broken/planted-no-dn/lb2011-safe",
     ] {
         let r = run(&[id], limit, 100, 2, false);
         assert!(!r.ok(), "{id} passed");
@@ -1162,4 +1166,121 @@ fn a_shortcut_must_keep_its_exact_value() {
             assert!(o.rules.iter().any(|(r, k)| r.contains("shortcut") && *k > 0), "{name}: {:?}", o.rules);
         }
     }
+}
+
+/// lb2011-safe over the pair arithmetic: the t, u and v ranges (where the tile is
+/// kept), the tile reject, and each emitted patch's cull at samples next to its zero
+/// (l one to three f32 steps either side of the f32 root in l at t in {0, 1/4, 1/2, 1},
+/// and t likewise at l in {-1, -1/2, 0, 1/2, 1}). A cull's exact counterpart is the
+/// exact patch through the pinned corner values below 0 (the pins themselves are
+/// checked against the exact min and max by the pair arithmetic); with `padded` false
+/// the cull reads the patch without its pad (`pad_off`) instead.
+fn lb2011_with<R: Round>(
+    ar: &Pair,
+    tri: &TriOf<V>,
+    tile: &[V; 4],
+    padded: bool,
+) -> (Vec<(&'static str, [V; 2])>, Vec<T>) {
+    use cullproof::bounds::lb2011::{axis_answer, axis_of, coefficients, eval_of, tile_of};
+    let [ax, ay] = [0, 1].map(|a| axis_of::<R, Pair>(ar, tri, a));
+    let (xa, xp) = axis_answer::<R, Pair>(ar, &ax, &tile[0], &tile[2]);
+    let (ya, yp) = axis_answer::<R, Pair>(ar, &ay, &tile[1], &tile[3]);
+    let (reject, t, u, v) = tile_of(ar, &xa, &ya);
+    let kept = ar.not(&reject);
+    let mut ranges = vec![];
+    for (name, r, full) in [("t", &t, [0.0, 1.0]), ("u", &u, [-1.0, 1.0]), ("v", &v, [-1.0, 1.0])] {
+        ranges.push((name, [0, 1].map(|k| ar.select(&kept, &r[k], &ar.lit(full[k])))));
+    }
+    let mut culls = vec![reject];
+    for p in xp.iter().chain(&yp) {
+        if !p.emit.0 {
+            continue;
+        }
+        let plain = coefficients(ar, &p.g);
+        let coef = if padded { p.coef.clone() } else { plain.clone() };
+        let c: [f32; 4] = coef.each_ref().map(|x| x.0);
+        let mut samples = vec![];
+        for tv in [0.0f32, 0.25, 0.5, 1.0] {
+            let root = -(c[0] + c[2] * tv) / (c[1] + c[3] * tv);
+            samples.extend(around(root).map(|l| (l, tv)));
+        }
+        for lv in [-1.0f32, -0.5, 0.0, 0.5, 1.0] {
+            let root = -(c[0] + c[1] * lv) / (c[2] + c[3] * lv);
+            samples.extend(around(root).map(|t| (lv, t)));
+        }
+        for (lv, tv) in samples {
+            if !(lv.abs() <= 1.0 && (0.0..=1.0).contains(&tv)) {
+                continue;
+            }
+            let (l, st) = (ar.lit(lv), ar.lit(tv));
+            let g = eval_of(ar, &coef, &l, &st);
+            let exact = eval_of(ar, &plain, &l, &st);
+            let below = cmp(&exact.1, &X::Num(0.into(), 1.into())).map(|o| o == Ordering::Less);
+            culls.push((g.0 < 0.0, below));
+        }
+    }
+    (ranges, culls)
+}
+
+/// Seven f32 values around `x`: three steps down, `x`, three steps up.
+fn around(x: f32) -> [f32; 7] {
+    let mut v = [x; 7];
+    for k in 1..4 {
+        v[3 - k] = v[4 - k].next_down();
+        v[3 + k] = v[2 + k].next_up();
+    }
+    v
+}
+
+fn lb2011<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, Vec<T>) {
+    lb2011_with::<R>(ar, tri, tile, true)
+}
+
+fn lb2011_unpadded(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, Vec<T>) {
+    lb2011_with::<Nearest>(ar, tri, tile, false)
+}
+
+/// lb2011-safe: the check passes over its code (the corners pinned, every patch's f32
+/// value found to be `lb2011_safe.g`'s formula), a script with another pad, floor or
+/// limit is refused, and in exact arithmetic on drawn inputs no end lies on the wrong
+/// side, no pin either, and no patch culls a sample its exact patch keeps. Controls: the
+/// slips leave ends on the wrong side, and the patches rounded to nearest without steps
+/// or pad cull samples they must keep.
+#[test]
+fn lb2011_safe_is_checked_and_holds_in_exact_arithmetic() {
+    use cullproof::bounds::proofs::LB_PAD;
+    use cullproof::tools::proofs::check::with_constant;
+    use cullproof::tools::proofs::enclosure::check_lb2011_with;
+    let o = check("lb2011-safe").expect("lb2011-safe is checked");
+    assert!(o.failures.is_empty(), "{:?}", o.failures);
+    assert_eq!(o.outputs, 11, "t, u, v: both ends each, the tile reject and the four patches' culls");
+    assert_eq!(o.lemmas.len(), 3, "the corners, the chord, lb2011_safe.g: {:?}", o.lemmas);
+    let used = |r: &str| o.rules.iter().find(|(n, _)| *n == r).map_or(0, |x| x.1);
+    assert!(used("an end a lemma proves") >= 4, "every patch's f32 value: {:?}", o.rules);
+    assert!(used("fused multiply-add of an end by an exact factor of known sign") >= 2, "{:?}", o.rules);
+    for (name, value) in [("PAD", "1b-19"), ("FLOOR", "1b-139"), ("LIMIT", "1b121")] {
+        let text = with_constant(&LB_PAD, name, value);
+        assert_ne!(text, LB_PAD.text);
+        let o = check_lb2011_with(&text);
+        assert!(o.failures.iter().any(|f| f.what.contains("patch")), "{name} = {value} passed: {:?}", o.failures);
+        assert!(!o.failures.iter().any(|f| f.what.contains("tile reject")), "{name}: {:?}", o.failures);
+    }
+    let (bad, n, inside, culls) = attack(lb2011::<Outward>, 20_000, 3);
+    assert!(bad.is_empty(), "{} of {n}: {:?}", bad.len(), &bad[..bad.len().min(5)]);
+    assert!(inside * 20 > n, "only {inside} of {n} ends inside the domain");
+    assert!(culls >= 100, "only {culls} tiles culled");
+    let (bad_up, _, _, _) = attack(lb2011::<NoUp>, 4000, 3);
+    let (bad_dn, _, _, _) = attack(lb2011::<NoDn>, 4000, 3);
+    let (nearest, _, _, _) = attack(lb2011_unpadded, 4000, 3);
+    let sample = nearest.iter().filter(|b| b.starts_with("per-sample")).count();
+    eprintln!(
+        "lb2011-safe: ends compared {n}, inside the domain {inside}, tiles culled {culls}; slips: {} and {} wrong; \
+         no steps, no pad: {} wrong, {sample} of them per-sample culls",
+        bad_up.len(),
+        bad_dn.len(),
+        nearest.len()
+    );
+    assert!(bad_up.iter().any(|b| b.contains("Hi")), "the no-up slip was not caught by the attack");
+    assert!(bad_dn.iter().any(|b| b.contains("Lo")), "the no-dn slip was not caught by the attack");
+    assert!(sample > 0, "the unpadded patches culled no sample wrongly: the attack cannot fail");
 }

@@ -11,6 +11,8 @@ mod gdam2010_safe_old;
 mod hyperplane_old;
 #[path = "encoded/la2011_old.rs"]
 mod la2011_old;
+#[path = "encoded/lb2011_safe_old.rs"]
+mod lb2011_safe_old;
 #[path = "encoded/mam2012_old.rs"]
 mod mam2012_old;
 #[path = "encoded/mam2012_safe_old.rs"]
@@ -57,6 +59,13 @@ fn la2011_is_its_old_code_bit_for_bit() {
 #[test]
 fn la2011_safe_is_its_old_code_bit_for_bit() {
     let (tiles, culled) = compare("la2011-safe", N, |tri, tile| la2011_old::answer(true, tri, tile));
+    assert_eq!(tiles, 2 * N);
+    assert!(culled > N / 20, "only {culled} of {tiles} tiles culled: the reject went untested");
+}
+
+#[test]
+fn lb2011_safe_is_its_old_code_bit_for_bit() {
+    let (tiles, culled) = compare("lb2011-safe", N, lb2011_safe_old::answer);
     assert_eq!(tiles, 2 * N);
     assert!(culled > N / 20, "only {culled} of {tiles} tiles culled: the reject went untested");
 }

@@ -4,7 +4,7 @@
 //! false lemma must fail, so that a passing run means something. Needs `z3` and `gappa`
 //! on the PATH (`.ci/run` installs both); a missing tool fails with how to install it.
 
-use cullproof::bounds::proofs::{Tool, BBOX_PAD, SCRIPTS, STEP, VARIANTS, WU_PAD};
+use cullproof::bounds::proofs::{Tool, BBOX_PAD, LB_PAD, SCRIPTS, STEP, VARIANTS, WU_PAD};
 use cullproof::cli::proofs as cli;
 use cullproof::tools::proofs::{check, run};
 use std::time::Duration;
@@ -58,6 +58,17 @@ fn a_smaller_line_pad_breaks_the_wu2013_proof() {
     let get = |n| check::script_constant(&WU_PAD, n).unwrap();
     check::wu_formula_with(get("PAD"), get("FLOOR"), 2_000).unwrap();
     assert!(check::wu_formula_with(get("PAD") * 2.0, get("FLOOR"), 2_000).is_err());
+}
+
+#[test]
+fn a_smaller_patch_pad_breaks_the_lb2011_proof() {
+    assert_eq!(run::run_text(Tool::Gappa, LB_PAD.text, LIMIT).verdict, run::Verdict::Proven);
+    for (name, value) in [("PAD", "1b-19"), ("FLOOR", "1b-146"), ("LIMIT", "1b124")] {
+        let text = check::with_constant(&LB_PAD, name, value);
+        assert_ne!(text, LB_PAD.text, "{name} not found in {}", LB_PAD.file);
+        let o = run::run_text(Tool::Gappa, &text, LIMIT);
+        assert!(matches!(o.verdict, run::Verdict::Refuted(_)), "{name} = {value}: {o:?}");
+    }
 }
 
 #[test]

@@ -336,7 +336,7 @@ fn bounds_f32<R: Round>(ax: &Axis<f32, bool>, cols: &Iv) -> Option<(Iv, Iv)> {
 }
 
 /// The union of two lens hulls `(nonempty, [lo, hi])`.
-fn join<A: F32Arith>(ar: &A, h: &(A::B, [A::F; 2]), r: &(A::B, [A::F; 2])) -> (A::B, [A::F; 2]) {
+pub(crate) fn join<A: F32Arith>(ar: &A, h: &(A::B, [A::F; 2]), r: &(A::B, [A::F; 2])) -> (A::B, [A::F; 2]) {
     let lo = ar.select(&r.0, &ar.select(&h.0, &ar.min(&h.1[0], &r.1[0]), &r.1[0]), &h.1[0]);
     let hi = ar.select(&r.0, &ar.select(&h.0, &ar.max(&h.1[1], &r.1[1]), &r.1[1]), &h.1[1]);
     (ar.or(&h.0, &r.0), [lo, hi])

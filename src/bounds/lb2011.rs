@@ -196,20 +196,27 @@
 
 use super::la2011::chord_nonpos;
 use super::*;
+use crate::bounds::arith::{F32Arith, Plain, TriOf};
+use crate::bounds::round::{Outward, Round};
+use std::marker::PhantomData;
+
+mod safe;
+pub use safe::{
+    axis_answer, axis_of, coefficients, largest, SafeAxis, SafePatch, CORNER_LEMMA, EVAL_LEMMA, FLOOR, LIMIT, PAD,
+};
 
 /// `[min, max]` corner values of one axis, each indexed `[lens index][shutter end]`.
 type Corners = [[[f32; 2]; 2]; 2];
 
-/// One screen axis at the two shutter ends (index e = 0 at t = 0, 1 at t = 1).
+/// One screen axis at the two shutter ends (index e = 0 at t = 0, 1 at t = 1), for
+/// `lb2011` (f32, rounded to nearest).
 #[derive(Clone, Copy, Debug)]
 struct Axis {
     /// Vertex position on this axis (x or y), clip space.
     p: [[f32; 3]; 2],
     w: [[f32; 3]; 2],
-    /// Lens shear per unit lens coordinate: `c` for x, `k c` for y.
+    /// Lens shear per unit lens coordinate: `c` for x, `fl(k c)` for y.
     s: [[f32; 3]; 2],
-    /// True when `s` is exact (`1 c` for x); else `fl(k c)`, one rounding off `k c`.
-    s_exact: bool,
 }
 
 impl Axis {
@@ -218,7 +225,6 @@ impl Axis {
             p: [tri.q.map(|v| v[axis]), tri.r.map(|v| v[axis])],
             w: [tri.q.map(|v| v[3]), tri.r.map(|v| v[3])],
             s: [tri.c0.map(|c| scale * c), tri.c1.map(|c| scale * c)],
-            s_exact: scale == 1.0,
         }
     }
 
@@ -237,36 +243,6 @@ impl Axis {
                         }
                         mn[li][e] = mn[li][e].min(val);
                         mx[li][e] = mx[li][e].max(val);
-                    }
-                }
-            }
-        }
-        Some([mn, mx])
-    }
-
-    /// `lb2011-safe`: the same corner values as [`corners`](Self::corners) rounded
-    /// outward (f32 interval arithmetic, one `next_up` / `next_down` step after every
-    /// rounded operation): `[lower bounds of the min, upper bounds of the max]` of the
-    /// exact `p - X w + l k c`. None if any is NaN or infinite.
-    fn corners_safe(&self, lo: f32, hi: f32) -> Option<Corners> {
-        let mut mn = [[f32::INFINITY; 2]; 2];
-        let mut mx = [[f32::NEG_INFINITY; 2]; 2];
-        for e in 0..2 {
-            for i in 0..3 {
-                let s = self.s[e][i];
-                let (s_lo, s_hi) = if self.s_exact { (s, s) } else { (s.next_down(), s.next_up()) };
-                for x in [lo, hi] {
-                    // p - X w with one rounding (fused multiply-add), enclosed by a step.
-                    let a = (-x).mul_add(self.w[e][i], self.p[e][i]);
-                    let (a_lo, a_hi) = (a.next_down(), a.next_up());
-                    let lows = [(a_lo - s_hi).next_down(), (a_lo + s_lo).next_down()];
-                    let highs = [(a_hi - s_lo).next_up(), (a_hi + s_hi).next_up()];
-                    for li in 0..2 {
-                        if !(lows[li].is_finite() && highs[li].is_finite()) {
-                            return None;
-                        }
-                        mn[li][e] = mn[li][e].min(lows[li]);
-                        mx[li][e] = mx[li][e].max(highs[li]);
                     }
                 }
             }
@@ -294,14 +270,16 @@ pub struct Patch {
     s: f32,
 }
 
+/// The patch's value `fl(fl(P + fl(Q l)) + fl(t fl(R + fl(S l))))` over any
+/// [`F32Arith`], for the coefficients `[P, Q, R, S]`: what [`Patch::eval`] computes.
+pub fn eval_of<A: F32Arith>(ar: &A, c: &[A::F; 4], l: &A::F, t: &A::F) -> A::F {
+    ar.add(&ar.add(&c[0], &ar.mul(&c[1], l)), &ar.mul(t, &ar.add(&c[2], &ar.mul(&c[3], l))))
+}
+
 impl Patch {
     /// From the g values at (l, t) = (-1, 0), (1, 0), (-1, 1), (1, 1).
     fn from_corners(name: &'static str, lens: Lens, g: [[f32; 2]; 2]) -> Patch {
-        let (g00, g10, g01, g11) = (g[0][0], g[1][0], g[0][1], g[1][1]);
-        let p = (g00 + g10) * 0.5;
-        let q = (g10 - g00) * 0.5;
-        let r = (g01 + g11) * 0.5 - p;
-        let s = (g11 - g01) * 0.5 - q;
+        let [p, q, r, s] = coefficients(&Plain, &g);
         Patch { name, lens, p, q, r, s }
     }
     /// True when every coefficient is finite and `|P| + |Q| + |R| + |S| < 2^125`, so
@@ -325,6 +303,9 @@ impl Patch {
             Lens::V => smp.v,
         }
     }
+    fn coef(&self) -> [f32; 4] {
+        [self.p, self.q, self.r, self.s]
+    }
 }
 
 impl SampleConstraint for Patch {
@@ -332,9 +313,7 @@ impl SampleConstraint for Patch {
         self.name.to_string()
     }
     fn eval(&self, smp: &Sample) -> f32 {
-        let l = self.lens_of(smp);
-        let t = smp.t;
-        (self.p + self.q * l) + t * (self.r + self.s * l)
+        eval_of(&Plain, &self.coef(), &self.lens_of(smp), &smp.t)
     }
     /// `eval` over the columns (the same four operations per sample, side by side).
     fn eval_row(&self, c: &SampleCols, out: &mut [f32]) {
@@ -342,9 +321,9 @@ impl SampleConstraint for Patch {
             Lens::U => c.u,
             Lens::V => c.v,
         };
-        let (p, q, r, s) = (self.p, self.q, self.r, self.s);
-        for ((o, &l), &t) in out.iter_mut().zip(ls).zip(c.t) {
-            *o = (p + q * l) + t * (r + s * l);
+        let coef = self.coef();
+        for ((o, l), t) in out.iter_mut().zip(ls).zip(c.t) {
+            *o = eval_of(&Plain, &coef, l, t);
         }
     }
     fn eval_box(&self, b: &SampleBox) -> Interval {
@@ -383,231 +362,192 @@ impl SampleConstraint for Patch {
     }
 }
 
-/// The arithmetic of one variant: `lb2011` (f32 rounded to nearest, the published
-/// test) or `lb2011-safe` (every quantity rounded outward). The algorithm
-/// ([`patch_ranges`], [`Prep::tile`]) is shared.
-struct Arith {
-    /// `[min, max]` corner values of one axis for the tile's columns (or rows); see
-    /// [`Axis::corners`].
-    corners: fn(&Axis, f32, f32) -> Option<Corners>,
-    /// The part of [0, 1] where the chord `(1-t) a + t b` is >= 0; None if it is < 0
-    /// on all of it.
-    chord: fn(f32, f32) -> Option<[f32; 2]>,
-    /// The lens range `2 sigma - 1` (within [-1, 1]) of a range of sigma in [0, 1].
-    lens: fn([f32; 2]) -> [f32; 2],
-    /// The constraint of a patch with these corner values, or None to emit none.
-    patch: fn(&'static str, Lens, [[f32; 2]; 2]) -> Option<Patch>,
+/// `lb2011`: the patch with these corner values, or None when it cannot cull (no
+/// corner < 0) or its `eval` could overflow (a non-finite coefficient, or one so large
+/// that `eval` could give inf - inf = NaN, which culls).
+fn plain_patch(name: &'static str, lens: Lens, g: [[f32; 2]; 2]) -> Option<Patch> {
+    let can_cull = g.iter().flatten().any(|&v| v < 0.0);
+    let patch = Patch::from_corners(name, lens, g);
+    (can_cull && patch.usable()).then_some(patch)
 }
 
-/// The published arithmetic (f32, round to nearest, no epsilon).
-static PLAIN: Arith = Arith {
-    corners: Axis::corners,
+/// `lb2011`: the ranges implied by one patch (g values at the corners, `g[l][e]`): the
+/// t where some l has g >= 0 and the l where some t has g >= 0, or None if g < 0 on
+/// the whole square.
+fn plain_ranges(g: [[f32; 2]; 2]) -> Option<([f32; 2], [f32; 2])> {
     // g >= 0  <=>  -g <= 0: chord_nonpos keeps where its argument line is <= 0.
-    chord: |a, b| chord_nonpos(-a, -b),
-    lens: |sigma| [(2.0 * sigma[0] - 1.0).max(-1.0), (2.0 * sigma[1] - 1.0).min(1.0)],
-    patch: |name, lens, g| {
-        let can_cull = g.iter().flatten().any(|&v| v < 0.0);
-        let patch = Patch::from_corners(name, lens, g);
-        // A non-finite coefficient, or one so large that `eval` could overflow to
-        // inf - inf = NaN (which culls), drops the patch.
-        (can_cull && patch.usable()).then_some(patch)
-    },
-};
-
-/// `lb2011-safe`'s arithmetic: outward rounding (see the module's error analysis).
-static SAFE: Arith =
-    Arith { corners: Axis::corners_safe, chord: chord_nonneg_safe, lens: lens_safe, patch: patch_safe };
-
-/// `lb2011-safe`: the part of [0, 1] where `(1-t) a + t b >= 0`, rounded outward (a, b
-/// finite). The crossing `t* = a / (a - b)` is a quotient of two positive numbers when
-/// the chord changes sign; its lower bound divides by an upper bound of the denominator
-/// and steps down, its upper bound divides by a lower bound and steps up.
-fn chord_nonneg_safe(a: f32, b: f32) -> Option<[f32; 2]> {
-    if a < 0.0 && b < 0.0 {
-        None
-    } else if a < 0.0 {
-        // Rising through 0: kept [t*, 1], t* = (-a) / ((-a) + b), -a > 0, b >= 0. The
-        // denominator rounds to >= -a > 0; an overflow to inf gives 0 (still below t*).
-        let t = (-a / (b - a).next_up()).next_down();
-        Some([t.max(0.0), 1.0])
-    } else if b < 0.0 {
-        // Falling through 0: kept [0, t*], t* = a / (a + (-b)), a >= 0, -b > 0. The
-        // lower bound of the denominator can be 0 (a = 0, b = -2^-149): the quotient is
-        // then NaN or inf, and the range the whole [0, 1].
-        let t = (a / (a - b).next_down()).next_up();
-        Some([0.0, if (0.0..1.0).contains(&t) { t } else { 1.0 }])
-    } else {
-        Some([0.0, 1.0])
-    }
-}
-
-/// `lb2011-safe`: `l = 2 sigma - 1` rounded outward (`2 sigma` is exact, the difference
-/// is rounded once: one step encloses it).
-fn lens_safe(sigma: [f32; 2]) -> [f32; 2] {
-    [(2.0 * sigma[0] - 1.0).next_down().max(-1.0), (2.0 * sigma[1] - 1.0).next_up().min(1.0)]
-}
-
-/// `lb2011-safe`: the patch with its constant coefficient raised by
-/// `pad = 2^-18 mg + 2^-140` (mg the largest |corner value|), so that its f32 `eval`
-/// is >= the exact bilinear interpolant of the corner values for |l| <= 1, t in
-/// [0, 1] (module doc, "Per-sample evaluation"). None when no corner is < 0 (it cannot
-/// cull) or mg >= 2^120 (the analysis assumes no overflow; dropping a patch is always
-/// conservative).
-fn patch_safe(name: &'static str, lens: Lens, g: [[f32; 2]; 2]) -> Option<Patch> {
-    const PAD: f32 = 1.0 / (1u32 << 18) as f32; // 2^-18 = 64 u
-    const FLOOR: f32 = 1.0 / (1u128 << 120) as f32 / (1u32 << 20) as f32; // 2^-140
-    const LIMIT: f32 = (1u128 << 120) as f32; // 2^120
-    if !g.iter().flatten().any(|&v| v < 0.0) {
-        return None;
-    }
-    let mg = g.iter().flatten().fold(0.0f32, |m, v| m.max(v.abs()));
-    // (A NaN cannot reach here: corners are finite.)
-    if mg >= LIMIT || mg.is_nan() {
-        return None;
-    }
-    let mut patch = Patch::from_corners(name, lens, g);
-    patch.p = (patch.p + (mg * PAD + FLOOR)).next_up();
-    patch.usable().then_some(patch)
-}
-
-/// Ranges implied by one patch (g values at the corners, `g[l][e]`): the t where some
-/// l has g >= 0 and the l where some t has g >= 0, or None if g < 0 on the whole square.
-fn patch_ranges(ar: &Arith, g: [[f32; 2]; 2]) -> Option<([f32; 2], [f32; 2])> {
+    let chord = |a: f32, b: f32| chord_nonpos(-a, -b);
     let hull = |a: Option<[f32; 2]>, b: Option<[f32; 2]>| match (a, b) {
         (Some(a), Some(b)) => Some([a[0].min(b[0]), a[1].max(b[1])]),
         (a, b) => a.or(b),
     };
-    let t = hull((ar.chord)(g[0][0], g[0][1]), (ar.chord)(g[1][0], g[1][1]))?;
-    let sigma = hull((ar.chord)(g[0][0], g[1][0]), (ar.chord)(g[0][1], g[1][1]))?;
-    Some((t, (ar.lens)(sigma)))
+    let t = hull(chord(g[0][0], g[0][1]), chord(g[1][0], g[1][1]))?;
+    let sigma = hull(chord(g[0][0], g[1][0]), chord(g[0][1], g[1][1]))?;
+    Some((t, [(2.0 * sigma[0] - 1.0).max(-1.0), (2.0 * sigma[1] - 1.0).min(1.0)]))
 }
 
-struct Prep {
+/// What one axis (x with u, or y with v) says of a tile, over any [`F32Arith`]: its
+/// part of [`tile_of`]'s answer.
+#[derive(Clone, Debug)]
+pub struct AxisAnswer<F, B> {
+    /// The axis's corner values are finite: its ranges and patches are used (else it
+    /// gives nothing: the whole lens range, no patch).
+    pub ok: B,
+    /// Where `ok`: some patch is < 0 at all four corners (no covered sample: the tile is
+    /// Empty).
+    pub none: B,
+    /// The two patches' t ranges (where `ok` and not `none`).
+    pub ts: [[F; 2]; 2],
+    /// `[-1, 1]` met with the two patches' lens ranges.
+    pub l: [F; 2],
+}
+
+/// A tile answer `(reject, t, u, v)` over any [`F32Arith`].
+pub type TileAnswer<F, B> = (B, [F; 2], [F; 2], [F; 2]);
+
+/// The tile answer from its column's x part and its row's y part: `[0, 1]` met with
+/// x's two t ranges, then y's (in that order), the lens ranges, and the reject (a patch
+/// < 0 on its whole square, or an empty range). Both variants, every tile path.
+pub fn tile_of<A: F32Arith>(ar: &A, x: &AxisAnswer<A::F, A::B>, y: &AxisAnswer<A::F, A::B>) -> TileAnswer<A::F, A::B> {
+    let mut t = [ar.lit(0.0), ar.lit(1.0)];
+    for a in [x, y] {
+        for r in &a.ts {
+            t = [ar.select(&a.ok, &ar.max(&t[0], &r[0]), &t[0]), ar.select(&a.ok, &ar.min(&t[1], &r[1]), &t[1])];
+        }
+    }
+    let lens = |a: &AxisAnswer<A::F, A::B>| {
+        [ar.select(&a.ok, &a.l[0], &ar.lit(-1.0)), ar.select(&a.ok, &a.l[1], &ar.lit(1.0))]
+    };
+    let (u, v) = (lens(x), lens(y));
+    let none = ar.or(&ar.and(&x.ok, &x.none), &ar.and(&y.ok, &y.none));
+    let empty = [ar.gt(&t[0], &t[1]), ar.gt(&u[0], &u[1]), ar.gt(&v[0], &v[1])];
+    (ar.or(&none, &ar.any(&empty)), t, u, v)
+}
+
+/// One column's (x, u) or one row's (y, v) part of a tile answer, in f32: the axis's
+/// answer and the patches it emits, in order.
+struct AxisPart {
+    ans: AxisAnswer<f32, bool>,
+    patches: Vec<Patch>,
+}
+
+/// The part of an axis with no usable corners, or one proving the tile Empty.
+fn part_without(ok: bool, none: bool) -> AxisPart {
+    AxisPart { ans: AxisAnswer { ok, none, ts: [[0.0, 1.0]; 2], l: [-1.0, 1.0] }, patches: Vec::new() }
+}
+
+/// The per-axis computation of one variant: an axis's part for the edges `[lo, hi]` of
+/// a column (x) or a row (y).
+trait Parts: Send + Sync {
+    fn part(&self, y: bool, edges: [f32; 2]) -> AxisPart;
+}
+
+const NAMES: [[&str; 2]; 2] = [
+    ["x1 patch (min delta, u-t)", "x0 patch (max delta, u-t)"],
+    ["y1 patch (min eps, v-t)", "y0 patch (max eps, v-t)"],
+];
+
+/// `lb2011`'s axes.
+struct PlainParts {
     x: Axis,
     y: Axis,
-    arith: &'static Arith,
 }
 
-impl Prepared for Prep {
-    fn tile(&self, tile: &Tile) -> TileResult {
-        let ar = self.arith;
-        let mut out = TileBounds::full();
-        let axes = [
-            (&self.x, tile.x0, tile.x1, Lens::U, ["x1 patch (min delta, u-t)", "x0 patch (max delta, u-t)"]),
-            (&self.y, tile.y0, tile.y1, Lens::V, ["y1 patch (min eps, v-t)", "y0 patch (max eps, v-t)"]),
-        ];
-        for (ax, lo, hi, lens, names) in axes {
-            let Some([mn, mx]) = (ar.corners)(ax, lo, hi) else {
-                continue;
+impl Parts for PlainParts {
+    fn part(&self, y: bool, [lo, hi]: [f32; 2]) -> AxisPart {
+        let (ax, lens) = if y { (&self.y, Lens::V) } else { (&self.x, Lens::U) };
+        let Some([mn, mx]) = ax.corners(lo, hi) else {
+            return part_without(false, false);
+        };
+        // g = -min (culls where the min patch is > 0), g = max (culls where < 0).
+        let gs = [mn.map(|r| r.map(|v| -v)), mx];
+        let mut part = part_without(true, false);
+        for (k, (g, name)) in gs.into_iter().zip(NAMES[y as usize]).enumerate() {
+            let Some((t, l)) = plain_ranges(g) else {
+                return part_without(true, true);
             };
-            // g = -min (culls where the min patch is > 0), g = max (culls where < 0).
-            let gs = [mn.map(|r| r.map(|v| -v)), mx];
-            for (g, name) in gs.into_iter().zip(names) {
-                let Some((t, l)) = patch_ranges(ar, g) else {
-                    return TileResult::Empty;
-                };
-                out.t = [out.t[0].max(t[0]), out.t[1].min(t[1])];
-                let lr = if lens == Lens::U { &mut out.u } else { &mut out.v };
-                *lr = [lr[0].max(l[0]), lr[1].min(l[1])];
-                if let Some(patch) = (ar.patch)(name, lens, g) {
-                    out.constraints.push(Box::new(patch));
-                }
-            }
+            part.ans.ts[k] = t;
+            part.ans.l = [part.ans.l[0].max(l[0]), part.ans.l[1].min(l[1])];
+            part.patches.extend(plain_patch(name, lens, g));
         }
-        if out.t[0] > out.t[1] || out.u[0] > out.u[1] || out.v[0] > out.v[1] {
-            return TileResult::Empty;
+        part
+    }
+}
+
+/// `lb2011-safe`'s axes (or a planted slip's: the rounding discipline `R`).
+struct SafeParts<R> {
+    x: SafeAxis<f32>,
+    y: SafeAxis<f32>,
+    round: PhantomData<fn() -> R>,
+}
+
+impl<R: Round> Parts for SafeParts<R> {
+    fn part(&self, y: bool, [lo, hi]: [f32; 2]) -> AxisPart {
+        let (ax, lens) = if y { (&self.y, Lens::V) } else { (&self.x, Lens::U) };
+        let (ans, patches) = axis_answer::<R, Plain>(&Plain, ax, &lo, &hi);
+        if !ans.ok || ans.none {
+            return part_without(ans.ok, ans.none);
         }
-        TileResult::Bounds(out)
+        let emitted = patches.iter().zip(NAMES[y as usize]).filter(|(p, _)| p.emit);
+        let patches = emitted.map(|(p, name)| {
+            let [p, q, r, s] = p.coef;
+            Patch { name, lens, p, q, r, s }
+        });
+        AxisPart { ans, patches: patches.collect() }
+    }
+}
+
+/// The tile answer from an x part and a y part ([`tile_of`] in f32, then the patches
+/// of both, x's first).
+fn answer(x: &AxisPart, y: &AxisPart) -> TileResult {
+    let (reject, t, u, v) = tile_of(&Plain, &x.ans, &y.ans);
+    if reject {
+        return TileResult::Empty;
+    }
+    let mut constraints: Vec<Box<dyn SampleConstraint>> = Vec::with_capacity(x.patches.len() + y.patches.len());
+    for &p in x.patches.iter().chain(&y.patches) {
+        constraints.push(Box::new(p));
+    }
+    TileResult::Bounds(TileBounds { u, v, t, z: None, constraints })
+}
+
+struct Prep<P> {
+    parts: P,
+}
+
+impl<P: Parts> Prepared for Prep<P> {
+    fn tile(&self, tile: &Tile) -> TileResult {
+        answer(&self.parts.part(false, [tile.x0, tile.x1]), &self.parts.part(true, [tile.y0, tile.y1]))
     }
     /// Each axis's corners, patch ranges and patches read only its own two tile edges:
-    /// computed once per column (x) and once per row (y), then met per tile in
-    /// [`tile`](Self::tile)'s order (see [`PatchGrid`]).
+    /// computed once per column (x) and once per row (y), then met per tile as
+    /// [`tile`](Self::tile) meets them (see [`PatchGrid`]).
     fn grid<'a>(&'a self, grid: Grid<'a>) -> Box<dyn TileGrid + 'a> {
-        let x = ["x1 patch (min delta, u-t)", "x0 patch (max delta, u-t)"];
-        let y = ["y1 patch (min eps, v-t)", "y0 patch (max eps, v-t)"];
-        let cols = (0..grid.columns()).map(|i| self.axis_part(&self.x, grid.column(i), Lens::U, x)).collect();
-        let rows = (0..grid.rows()).map(|j| self.axis_part(&self.y, grid.row(j), Lens::V, y)).collect();
+        let cols = (0..grid.columns()).map(|i| self.parts.part(false, grid.column(i))).collect();
+        let rows = (0..grid.rows()).map(|j| self.parts.part(true, grid.row(j))).collect();
         Box::new(PatchGrid { cols, rows })
     }
 }
 
-impl Prep {
-    /// One axis's part of [`tile`](Prepared::tile) for the edges `[lo, hi]` of a column
-    /// (or row), in the same operations: None when a patch proves the tile Empty.
-    fn axis_part(&self, ax: &Axis, [lo, hi]: [f32; 2], lens: Lens, names: [&'static str; 2]) -> Option<AxisPart> {
-        let ar = self.arith;
-        let full = TileBounds::full();
-        let mut part = AxisPart { t: full.t, ts: None, l: full.u, patches: Vec::new() };
-        let Some([mn, mx]) = (ar.corners)(ax, lo, hi) else {
-            return Some(part);
-        };
-        let gs = [mn.map(|r| r.map(|v| -v)), mx];
-        let mut ts = [[0.0; 2]; 2];
-        for ((g, name), tr) in gs.into_iter().zip(names).zip(&mut ts) {
-            let (t, l) = patch_ranges(ar, g)?;
-            *tr = t;
-            part.t = [part.t[0].max(t[0]), part.t[1].min(t[1])];
-            part.l = [part.l[0].max(l[0]), part.l[1].min(l[1])];
-            part.patches.extend((ar.patch)(name, lens, g));
-        }
-        part.ts = Some(ts);
-        Some(part)
-    }
-}
-
-/// One column's (x, u) or one row's (y, v) part of a tile answer ([`Prep::axis_part`]).
-struct AxisPart {
-    /// `[0, 1]` met with the axis's two patches' t ranges, in order (a column's share of
-    /// the tile's t: x comes first).
-    t: [f32; 2],
-    /// The two patches' t ranges themselves (a row's share, met after x's), or None when
-    /// the axis's corners are None (it gives nothing).
-    ts: Option<[[f32; 2]; 2]>,
-    /// `[-1, 1]` met with the two patches' lens ranges, in order: the tile's u (column)
-    /// or v (row).
-    l: [f32; 2],
-    /// The patches the axis emits, in order.
-    patches: Vec<Patch>,
-}
-
-/// [`Prep::grid`]: per column the x part and per row the y part ([`AxisPart`]; None:
-/// that axis proves every tile of its column / row Empty, as [`tile`](Prepared::tile)'s
-/// early return does whichever axis it comes from). Per tile only: the column's t met
-/// with the row's two t ranges (f32 `max` / `min` in [`tile`](Prepared::tile)'s order:
-/// x's ranges, then y's), the emptiness check and the boxed patches (x's, then y's).
+/// [`Prep::grid`]: per column the x part and per row the y part ([`AxisPart`]), met per
+/// tile by [`answer`].
 struct PatchGrid {
-    cols: Vec<Option<AxisPart>>,
-    rows: Vec<Option<AxisPart>>,
+    cols: Vec<AxisPart>,
+    rows: Vec<AxisPart>,
 }
 
 impl TileGrid for PatchGrid {
     fn tile(&self, i: usize, j: usize) -> TileResult {
-        let (Some(x), Some(y)) = (&self.cols[i], &self.rows[j]) else {
-            return TileResult::Empty;
-        };
-        let mut t = x.t;
-        for r in y.ts.iter().flatten() {
-            t = [t[0].max(r[0]), t[1].min(r[1])];
-        }
-        let (u, v) = (x.l, y.l);
-        if t[0] > t[1] || u[0] > u[1] || v[0] > v[1] {
-            return TileResult::Empty;
-        }
-        let mut constraints: Vec<Box<dyn SampleConstraint>> = Vec::with_capacity(x.patches.len() + y.patches.len());
-        for &p in x.patches.iter().chain(&y.patches) {
-            constraints.push(Box::new(p));
-        }
-        TileResult::Bounds(TileBounds { u, v, t, z: None, constraints })
+        answer(&self.cols[i], &self.rows[j])
     }
 }
 
-/// lb2011 or lb2011-safe: the same algorithm in another arithmetic.
+/// `lb2011`: the published test in f32.
 struct Lb2011 {
     info: &'static MethodInfo,
-    arith: &'static Arith,
 }
 
-static INFO: MethodInfo = MethodInfo {
+pub(crate) static INFO: MethodInfo = MethodInfo {
     id: "lb2011",
     source: "reconstruction of Laine & Karras 2011, NVR-2011-004 (LK11), as described in \
              Munkberg & Akenine-Möller 2012 §1, §2.1 (under Eq. 1) and Table 3; per \
@@ -623,11 +563,17 @@ impl Method for Lb2011 {
         self.info
     }
     fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
-        Box::new(Prep { x: Axis::new(tri, 0, 1.0), y: Axis::new(tri, 1, tri.k), arith: self.arith })
+        Box::new(Prep { parts: PlainParts { x: Axis::new(tri, 0, 1.0), y: Axis::new(tri, 1, tri.k) } })
     }
 }
 
-pub static METHOD: &dyn Method = &Lb2011 { info: &INFO, arith: &PLAIN };
+pub static METHOD: &dyn Method = &Lb2011 { info: &INFO };
+
+/// `lb2011-safe` (`R = Outward`), or a planted slip in its arithmetic.
+pub(crate) struct Lb2011Safe<R> {
+    pub(crate) info: &'static MethodInfo,
+    pub(crate) round: PhantomData<fn() -> R>,
+}
 
 static INFO_SAFE: MethodInfo = MethodInfo {
     id: "lb2011-safe",
@@ -640,8 +586,19 @@ static INFO_SAFE: MethodInfo = MethodInfo {
     ..INFO
 };
 
+impl<R: Round> Method for Lb2011Safe<R> {
+    fn info(&self) -> &'static MethodInfo {
+        self.info
+    }
+    fn setup(&self, tri: &Triangle) -> Box<dyn Prepared> {
+        let tri = TriOf::of(tri);
+        let axis = |a| safe::axis_of::<R, Plain>(&Plain, &tri, a);
+        Box::new(Prep { parts: SafeParts::<R> { x: axis(0), y: axis(1), round: PhantomData } })
+    }
+}
+
 /// `lb2011-safe`: lb2011 rounded outward (see the module's error analysis).
-pub static METHOD_SAFE: &dyn Method = &Lb2011 { info: &INFO_SAFE, arith: &SAFE };
+pub static METHOD_SAFE: &dyn Method = &Lb2011Safe::<Outward> { info: &INFO_SAFE, round: PhantomData };
 
 #[cfg(test)]
 mod grid_cases;

@@ -187,6 +187,7 @@ mod tests {
             row("lb2011", 9, 0, 1),
             row("gdam2010-safe", 10, 0, 0),
             row("wu2013-safe", 9, 1, 0),
+            row("lb2011-safe", 10, 0, 0),
         ];
         let s = of_rows(&rows);
         let by: Vec<(&str, Strength)> = s.iter().map(|m| (m.method.as_str(), m.strength)).collect();
@@ -199,6 +200,7 @@ mod tests {
                 ("lb2011", Strength::Unproven),
                 ("gdam2010-safe", Strength::MachineChecked),
                 ("wu2013-safe", Strength::Violated),
+                ("lb2011-safe", Strength::MachineChecked),
             ]
         );
         assert_eq!((s[0].cases, s[0].violated_regimes, s[0].regimes), (20, 1, 2));

@@ -13,7 +13,7 @@
 //!
 //! And two slips in the arithmetic of each variant written with the shared rounding
 //! discipline ([`crate::bounds::round`]: `la2011-safe`, `nilsson2012-depth-safe`,
-//! `mam2012-safe`, `wu2013-safe`, `gdam2010-safe`), for
+//! `mam2012-safe`, `wu2013-safe`, `gdam2010-safe`, `lb2011-safe`), for
 //! the proofs tied to the code ([`crate::bounds::proofs`]):
 //! `broken/planted-no-up/M-safe` keeps every lower end's outward step but drops the
 //! upper ends' (each upper end is the value rounded to nearest, as in the published
@@ -27,6 +27,7 @@ use crate::bounds::arith::F32Arith;
 use crate::bounds::bbox::{padded_corner, BBox, Corner, SafeCorner};
 use crate::bounds::gdam2010::Gdam2010Safe;
 use crate::bounds::la2011::La2011;
+use crate::bounds::lb2011::Lb2011Safe;
 use crate::bounds::mam2012::Mam2012Safe;
 use crate::bounds::nilsson2012_depth::Nilsson2012Depth;
 use crate::bounds::round::Round;
@@ -219,6 +220,22 @@ pub static NO_UP_GDAM: &dyn Method = &Gdam2010Safe::<NoUp> { info: &INFO_NO_UP_G
 /// `broken/planted-no-dn/gdam2010-safe`.
 pub static NO_DN_GDAM: &dyn Method = &Gdam2010Safe::<NoDn> { info: &INFO_NO_DN_GDAM, round: std::marker::PhantomData };
 
+static INFO_NO_UP_LB: MethodInfo = slip(
+    "broken/planted-no-up/lb2011-safe",
+    "lb2011-safe with the outward step of every upper end dropped",
+    crate::bounds::lb2011::INFO,
+);
+static INFO_NO_DN_LB: MethodInfo = slip(
+    "broken/planted-no-dn/lb2011-safe",
+    "lb2011-safe with the outward step of every lower end dropped",
+    crate::bounds::lb2011::INFO,
+);
+
+/// `broken/planted-no-up/lb2011-safe`.
+pub static NO_UP_LB: &dyn Method = &Lb2011Safe::<NoUp> { info: &INFO_NO_UP_LB, round: std::marker::PhantomData };
+/// `broken/planted-no-dn/lb2011-safe`.
+pub static NO_DN_LB: &dyn Method = &Lb2011Safe::<NoDn> { info: &INFO_NO_DN_LB, round: std::marker::PhantomData };
+
 static INFO_NO_UP_BOX: MethodInfo =
     slip("broken/planted-no-up/bbox-safe", "bbox-safe with the outward steps of every upper end dropped", INFO_EQ);
 static INFO_NO_DN_BOX: MethodInfo =
@@ -249,6 +266,8 @@ pub fn parse(id: &str) -> Option<&'static dyn Method> {
         NO_DN_WU,
         NO_UP_GDAM,
         NO_DN_GDAM,
+        NO_UP_LB,
+        NO_DN_LB,
         NO_UP_BOX,
         NO_DN_BOX,
     ]

@@ -516,7 +516,8 @@ fn safe_chord_and_patch_enclose() {
             m * 2f32.powi(rng.gen_range(-149..127))
         };
         let (a, b) = (e(&mut rng), e(&mut rng));
-        let r = chord_nonneg_safe(a, b);
+        let (some, r) = crate::bounds::la2011::chord::<Outward, Plain>(&Plain, &-a, &-b);
+        let r = some.then_some(r);
         let (a64, b64) = (a as f64, b as f64);
         if a < 0.0 && b < 0.0 {
             assert!(r.is_none());
@@ -536,7 +537,15 @@ fn safe_chord_and_patch_enclose() {
     for n in 0..20_000 {
         let scale = 2f32.powi(rng.gen_range(-140..118));
         let g = [[0; 2]; 2].map(|r: [i32; 2]| r.map(|_| rng.gen_range(-1.0f32..1.0) * scale));
-        let Some(p) = patch_safe("t", Lens::U, g) else { continue };
+        let sp = safe::patch_of::<Outward, Plain>(&Plain, &true, g);
+        if !sp.emit {
+            continue;
+        }
+        let [p, q, r, s] = sp.coef;
+        let p = Patch { name: "t", lens: Lens::U, p, q, r, s };
+        // Never dropped for a magnitude (the error analysis bounds |P'| + |Q| + |R| + |S|
+        // by about 6 mg < 2^123).
+        assert!(p.usable(), "{p:?}");
         for k in 0..20 {
             let (l, t): (f32, f32) = match (n + k) % 3 {
                 0 => ([-1.0, 1.0][k % 2], [0.0, 1.0][(k / 2) % 2]),

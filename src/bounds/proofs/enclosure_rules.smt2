@@ -156,6 +156,31 @@
   (=> (and (>= b18 (+ el18 a18)) (>= b18 (- er18 a18)) (>= el18 EL18) (>= er18 ER18)
            (<= -1.0 l18) (<= l18 1.0))
       (>= (+ (* a18 l18) b18) (+ (* (/ (- 1.0 l18) 2.0) EL18) (* (/ (+ 1.0 l18) 2.0) ER18)))))
+; -- lemma "lb2011-safe corners": the patch P + Q l + t (R + S l) with P = (g00 + g10) / 2,
+;    Q = (g10 - g00) / 2, R = (g01 + g11) / 2 - P, S = (g11 - g01) / 2 - Q through corner
+;    values g_ij at or above the exact ones G_ij is at or above the bilinear interpolant
+;    of the G_ij at (s, t), s = (l + 1) / 2, for |l| <= 1 and t in [0, 1].
+(declare-const g00 Real) (declare-const g10 Real) (declare-const g01 Real) (declare-const g11 Real)
+(declare-const G00 Real) (declare-const G10 Real) (declare-const G01 Real) (declare-const G11 Real)
+(declare-const l19 Real) (declare-const t19 Real)
+(define-fun lpatch () Real
+  (let ((p (/ (+ g00 g10) 2.0)) (q (/ (- g10 g00) 2.0)))
+    (let ((r (- (/ (+ g01 g11) 2.0) p)) (s (- (/ (- g11 g01) 2.0) q)))
+      (+ p (* q l19) (* t19 (+ r (* s l19)))))))
+(define-fun lcorners () Bool
+  (=> (and (>= g00 G00) (>= g10 G10) (>= g01 G01) (>= g11 G11)
+           (<= -1.0 l19) (<= l19 1.0) (<= 0.0 t19) (<= t19 1.0))
+      (let ((s19 (/ (+ l19 1.0) 2.0)))
+        (>= lpatch (+ (* (- 1.0 s19) (- 1.0 t19) G00) (* s19 (- 1.0 t19) G10)
+                      (* (- 1.0 s19) t19 G01) (* s19 t19 G11))))))
+; -- a fused multiply-add of an end by an exact factor y of known sign plus an end: the
+;    product is not rounded, so `scale` and `sum` compose: a y + c <= A y + C for a <= A,
+;    y >= 0, c <= C (flipped for y <= 0).
+(declare-const a20 Real) (declare-const A20 Real) (declare-const y20 Real)
+(declare-const c20 Real) (declare-const C20 Real)
+(define-fun fmarule () Bool
+  (and (=> (and (<= a20 A20) (>= y20 0.0) (<= c20 C20)) (<= (+ (* a20 y20) c20) (+ (* A20 y20) C20)))
+       (=> (and (<= a20 A20) (<= y20 0.0) (>= c20 C20)) (>= (+ (* a20 y20) c20) (+ (* A20 y20) C20)))))
 (assert (not (and sum scale prod quot_hi quot_lo minmax cmp absmax signs chord wbound
-                 corners mcorners mcolumns msame mline ksigns wlens wline)))
+                 corners mcorners mcolumns msame mline ksigns wlens wline lcorners fmarule)))
 (check-sat)

@@ -11,6 +11,8 @@
 //! - `bbox_safe.g`: Gappa, `bbox-safe`'s pad against the error of its corner value;
 //! - `wu2013_safe.g`: Gappa, `wu2013-safe`'s line pad against the error of the line's
 //!   per-sample evaluation;
+//! - `lb2011_safe.g`: Gappa, `lb2011-safe`'s patch pad against the error of the patch's
+//!   coefficients and its per-sample evaluation;
 //! - `enclosure_rules.smt2`: z3 in real arithmetic, the rules of the enclosure check and
 //!   the lemmas the code pins.
 //!
@@ -153,6 +155,18 @@ pub const WU_PAD: Script = Script {
     text: include_str!("wu2013_safe.g"),
 };
 
+/// lb2011-safe's patch pad (Gappa).
+pub const LB_PAD: Script = Script {
+    name: "lb2011-safe pad",
+    file: "lb2011_safe.g",
+    tool: Tool::Gappa,
+    claim: "the pad 2^-18 max |g| + 2^-140 on a patch's constant term and one step keep its f32 \
+            evaluation at or above the exact patch through its corner values g for every |l| <= 1 and \
+            t in [0, 1], and finite for max |g| < 2^120",
+    prelude: false,
+    text: include_str!("lb2011_safe.g"),
+};
+
 /// The rules of the enclosure check, and the lemmas of its pins (z3, real arithmetic).
 pub const RULES: Script = Script {
     name: "enclosure rules",
@@ -167,7 +181,7 @@ pub const RULES: Script = Script {
 };
 
 /// Every script, each run once.
-pub const SCRIPTS: &[Script] = &[STEP, MONO, GAP, ULP, BBOX_PAD, WU_PAD, RULES];
+pub const SCRIPTS: &[Script] = &[STEP, MONO, GAP, ULP, BBOX_PAD, WU_PAD, LB_PAD, RULES];
 
 /// An input range of a claim.
 #[derive(Clone, Copy, Debug, Serialize)]
@@ -263,6 +277,45 @@ pub const VARIANTS: &[Variant] = &[
         by_argument: "the real-arithmetic derivation in la2011.rs (the exact values of the ends bound the \
                       covered samples), and that each branch the f32 code takes on its ends is one the \
                       exact values allow (fallbacks give the full domain)",
+        level: Level::MachineChecked,
+    },
+    Variant {
+        id: "lb2011-safe",
+        ranges: &[
+            Range {
+                inputs: "vertex x, y, w at both shutter ends, CoC c0, c1, aspect k, tile edges",
+                range: "every finite f32 value (subnormals, zeros of either sign, up to +-MAX)",
+            },
+            Range {
+                inputs: "sample lens coordinate u, v and time t (the patches' l, t)",
+                range: "|l| <= 1, t in [0, 1] (the model's lens and shutter)",
+            },
+            Range {
+                inputs: "any non-finite input or corner value",
+                range: "that axis gives nothing: no range, no patch (code inspection)",
+            },
+        ],
+        scripts: &["STEP", "ULP", "lb2011-safe pad", "enclosure rules"],
+        mechanical: "every rounded result stepped outward encloses the exact result (STEP, for the fused \
+                     multiply-adds, the corner sums, the chords' crossings and the lens ranges); the error \
+                     model (STEP, ULP) and the inequality that a patch's pad covers the error of its \
+                     coefficients and of its per-sample evaluation for |l| <= 1, t in [0, 1] with its \
+                     corner values within the code's limit, which keeps the evaluation finite \
+                     (lb2011_safe.g, with the code's PAD, FLOOR and LIMIT); the composition over the \
+                     method's own f32 code for every input: the enclosure check traces the setup and the \
+                     tile answer and finds every end of t, u and v an end of its side of its exact value, \
+                     and NaN-free, the tile reject to imply its exact counterpart, and each patch's cull \
+                     to put the sample where the exact patch through its pinned corner values is < 0, \
+                     with each patch's f32 value found to be lb2011_safe.g's formula with the script's \
+                     constants where the code tests the script's limit (so the lemma applies), by rules \
+                     z3 proves in real arithmetic (enclosure rules, with the lemmas of the corners and \
+                     the chord)",
+        by_argument: "the real-arithmetic derivation in lb2011.rs (a bilinear patch through corner values at \
+                      or above -min (max) of the clipless dual-space quantities over the tile's columns is \
+                      at or above -min (max) on the whole lens-time square, so a sample it culls is not \
+                      covered; the ranges keep every (l, t) where it is >= 0), and that each branch the \
+                      f32 code takes on its ends is one the exact values allow (fallbacks give the full \
+                      domain)",
         level: Level::MachineChecked,
     },
     Variant {

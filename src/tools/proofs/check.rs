@@ -13,8 +13,8 @@
 //!   values from every range (zeros, subnormals, MAX, infinities, ties); it is proven
 //!   (unsat) exactly when every one agrees.
 
-use crate::bounds::proofs::{Script, BBOX_PAD, WU_PAD};
-use crate::bounds::{bbox, wu2013, SampleConstraint};
+use crate::bounds::proofs::{Script, BBOX_PAD, LB_PAD, WU_PAD};
+use crate::bounds::{bbox, lb2011, wu2013, SampleConstraint};
 use crate::model::{Sample, Triangle};
 
 /// A constant as a script declares it (`NAME = value;` at the start of a line), parsed
@@ -66,6 +66,9 @@ pub fn shared_constants() -> Vec<(&'static Script, &'static str, f64)> {
         (&WU_PAD, "PAD", wu2013::PAD as f64),
         (&WU_PAD, "FLOOR", wu2013::FLOOR as f64),
         (&WU_PAD, "LIMIT", wu2013::LINE_LIMIT as f64),
+        (&LB_PAD, "PAD", lb2011::PAD as f64),
+        (&LB_PAD, "FLOOR", lb2011::FLOOR as f64),
+        (&LB_PAD, "LIMIT", lb2011::LIMIT as f64),
     ]
 }
 

@@ -465,6 +465,11 @@ impl<'t> Check<'t> {
             (BOp::Eq(a, b), true) => {
                 f.nan_free.insert(a);
                 f.nan_free.insert(b);
+                // A factor equal to 0 or ±1: one fact, kept as a disjunction of one term
+                // (what `exact_product` reads).
+                if [a, b].iter().any(|&x| t.lit_of(x).is_some_and(|v| v == 0.0 || v.abs() == 1.0)) {
+                    f.ors.push(vec![c]);
+                }
                 if t.lit_of(b) == Some(0.0) {
                     self.sign_fact(ctx, f, a, Sg::Zero, true);
                 }
@@ -696,7 +701,14 @@ impl<'t> Check<'t> {
                 Op::Div(a, b) => {
                     self.finite(a, ctx) && self.nan_free(b, ctx) && self.f_sign(b, ctx).is_some_and(|s| s.strict())
                 }
-                Op::Fma(a, b, c) => self.finite(a, ctx) && self.finite(b, ctx) && self.finite(c, ctx),
+                // Finite factors give a finite product; a nonzero finite literal factor
+                // a product that is not NaN: then a finite addend keeps it so.
+                Op::Fma(a, b, c) => {
+                    let nonzero = |x: N| t.lit_of(x).is_some_and(|v| v.is_finite() && v != 0.0);
+                    (self.finite(a, ctx) && self.finite(b, ctx) && self.nan_free(c, ctx))
+                        || (self.finite(c, ctx)
+                            && ((nonzero(a) && self.nan_free(b, ctx)) || (nonzero(b) && self.nan_free(a, ctx))))
+                }
                 Op::Neg(a)
                 | Op::Abs(a)
                 | Op::Up(a)
@@ -847,12 +859,25 @@ impl<'t> Check<'t> {
             Op::Mul(a, b) => self.product(a, b, ctx),
             Op::Div(a, b) => self.quotient(a, b, ctx),
             Op::Fma(a, b, c) => {
-                let all = [a, b, c].iter().all(|&x| self.operand(x, ctx) == Pre::Exact);
-                if all {
-                    rounded(Pre::Exact)
-                } else {
-                    ANY
+                let (da, db, dc) = (self.operand(a, ctx), self.operand(b, ctx), self.operand(c, ctx));
+                if da == Pre::Exact && db == Pre::Exact && dc == Pre::Exact {
+                    return rounded(Pre::Exact);
                 }
+                // An end times an exact factor of known sign (flipped when <= 0), plus an
+                // end: the product is not rounded, so the real rules compose (scale, sum).
+                for (dx, y, dy) in [(da, b, db), (db, a, da)] {
+                    if dy != Pre::Exact {
+                        continue;
+                    }
+                    let scaled = match self.f_sign(y, ctx) {
+                        Some(s) if s.ge0() => dx,
+                        Some(s) if s.le0() => flip(dx),
+                        _ => continue,
+                    };
+                    self.rule("fused multiply-add of an end by an exact factor of known sign");
+                    return rounded(add_pre(scaled, dc));
+                }
+                ANY
             }
             Op::Neg(a) => {
                 let d = self.dir(a, ctx);

@@ -48,4 +48,6 @@ pub mod variants;
 
 pub use check::{Check, Failure, Outcome};
 pub use trace::{Bn, Trace, N};
-pub use variants::{check, check_bbox_with, check_traced, check_wu2013_with, BBOX_LEMMA, CHECKED, WU_LEMMA};
+pub use variants::{
+    check, check_bbox_with, check_lb2011_with, check_traced, check_wu2013_with, BBOX_LEMMA, CHECKED, WU_LEMMA,
+};

@@ -101,6 +101,54 @@ fn gdam2010<R: Round>(t: &Trace) -> Demands {
     (vec![], vec![(piece, "piece cull".to_string()), (still, "still-triangle cull".to_string())])
 }
 
+/// The traced tile answer of `lb2011-safe` written with the arithmetic `R`: the t, u
+/// and v ranges' ends, the tile reject, and each patch's cull at a sample `(l, t)` of
+/// the lens and the shutter (a patch's value below 0 must put the sample where the
+/// exact patch through its pinned corner values is below 0). Each patch's f32 value is
+/// declared an upper end of that exact patch by [`EVAL_LEMMA`](crate::bounds::lb2011::EVAL_LEMMA)
+/// on the formula of `lb2011_safe.g` built with the script's own constants
+/// (`script_text`), where the code tests the script's limit on the corner values.
+fn lb2011<R: Round>(t: &Trace, script_text: &str) -> Result<Demands, String> {
+    use crate::bounds::lb2011::{axis_answer, axis_of, coefficients, eval_of, largest, tile_of, EVAL_LEMMA};
+    use crate::tools::proofs::check::constant_in;
+    let constant = |name| constant_in(crate::bounds::proofs::LB_PAD.file, script_text, name).map(|v| v as f32);
+    let (pad, floor, limit) = (constant("PAD")?, constant("FLOOR")?, constant("LIMIT")?);
+    let (tri, tile) = inputs(t);
+    let [ax, ay] = [0, 1].map(|a| axis_of::<R, Trace>(t, &tri, a));
+    let (xa, xp) = axis_answer::<R, Trace>(t, &ax, &tile[0], &tile[2]);
+    let (ya, yp) = axis_answer::<R, Trace>(t, &ay, &tile[1], &tile[3]);
+    let (reject, tt, u, v) = tile_of(t, &xa, &ya);
+    let kept = t.not(&reject);
+    let mut outs = vec![];
+    for (name, r, full) in [("t", &tt, [0.0, 1.0]), ("u", &u, [-1.0, 1.0]), ("v", &v, [-1.0, 1.0])] {
+        // (A rejected tile's ranges are never read: demanded all the same where kept.)
+        let r = [t.select(&kept, &r[0], &t.lit(full[0])), t.select(&kept, &r[1], &t.lit(full[1]))];
+        outs.extend(ends(name, &r));
+    }
+    let mut culls = vec![(reject, "tile reject".to_string())];
+    let (st, zero, one) = (t.input("t"), t.lit(0.0), t.lit(1.0));
+    let shutter = [t.le(&zero, &st), t.le(&st, &one)];
+    for (name, patches) in [("u", &xp), ("v", &yp)] {
+        let l = t.input(name);
+        let lens = [t.le(&t.lit(-1.0), &l), t.le(&l, &one)];
+        for (p, which) in patches.iter().zip(["min", "max"]) {
+            // The script's formula: the coefficients of the corner values, the constant
+            // term padded by RN(RN(mg PAD) + FLOOR) and stepped up, then the evaluation.
+            let [cp, cq, cr, cs] = coefficients(t, &p.g);
+            let mg = largest(t, &p.g);
+            let padded = t.next_up(&t.add(&cp, &t.add(&t.mul(&mg, &t.lit(pad)), &t.lit(floor))));
+            let x = eval_of(t, &[padded, cq, cr, cs], &l, &st);
+            let exact = eval_of(t, &[cp, cq, cr, cs], &l, &st);
+            let conds = [t.lt(&mg, &t.lit(limit)), lens[0], lens[1], shutter[0], shutter[1]];
+            t.known_end_if(x, End::Hi, exact, &conds, EVAL_LEMMA);
+            let g = eval_of(t, &p.coef, &l, &st);
+            let cull = t.all(&[p.emit, lens[0], lens[1], shutter[0], shutter[1], t.lt(&g, &zero)]);
+            culls.push((cull, format!("{name}t {which} patch")));
+        }
+    }
+    Ok((outs, culls))
+}
+
 /// The lemma of `wu2013_safe.g`, as the check applies it.
 pub const WU_LEMMA: &str = "wu2013_safe.g: for line endpoints |e_left|, |e_right| <= LIMIT and a lens value \
      |l| <= 1, the padded line's f32 value fl(fl(a l) + b') is finite and at or above a l + b (upper lines; lower \
@@ -203,8 +251,15 @@ fn bbox<C: crate::bounds::bbox::Corner>(t: &Trace, corner: &C, script_text: &str
 }
 
 /// The variants whose composition the check covers.
-pub const CHECKED: &[&str] =
-    &["bbox-safe", "la2011-safe", "mam2012-safe", "nilsson2012-depth-safe", "wu2013-safe", "gdam2010-safe"];
+pub const CHECKED: &[&str] = &[
+    "bbox-safe",
+    "la2011-safe",
+    "mam2012-safe",
+    "nilsson2012-depth-safe",
+    "wu2013-safe",
+    "gdam2010-safe",
+    "lb2011-safe",
+];
 
 /// Trace the tile answer of `id` (a variant of [`CHECKED`] or one of its planted slips
 /// `broken/planted-no-up/ID`, `broken/planted-no-dn/ID`) and check it: its output ends
@@ -244,6 +299,14 @@ pub fn check_wu2013_with(script_text: &str) -> Outcome {
     finish_demands(&t, wu2013::<Outward>(&t, script_text))
 }
 
+/// `lb2011-safe` checked against another text of its Gappa script (the lemma's formula
+/// takes that text's constants): a control that a script other than the code's is
+/// refused.
+pub fn check_lb2011_with(script_text: &str) -> Outcome {
+    let t = Trace::new();
+    finish_demands(&t, lb2011::<Outward>(&t, script_text))
+}
+
 /// `bbox-safe` checked against another text of its Gappa script (the lemma's formula
 /// takes that text's constants): a control that a script other than the code's is
 /// refused.
@@ -273,10 +336,14 @@ pub fn check_traced(id: &str) -> Option<Outcome> {
     if let Some(culls) = culls {
         return Some(finish(&t, culls));
     }
+    let (wu_text, lb_text) = (crate::bounds::proofs::WU_PAD.text, crate::bounds::proofs::LB_PAD.text);
     let wu = match (id.strip_suffix(base)?, base) {
-        ("", "wu2013-safe") => Some(wu2013::<Outward>(&t, crate::bounds::proofs::WU_PAD.text)),
-        ("broken/planted-no-up/", "wu2013-safe") => Some(wu2013::<NoUp>(&t, crate::bounds::proofs::WU_PAD.text)),
-        ("broken/planted-no-dn/", "wu2013-safe") => Some(wu2013::<NoDn>(&t, crate::bounds::proofs::WU_PAD.text)),
+        ("", "wu2013-safe") => Some(wu2013::<Outward>(&t, wu_text)),
+        ("broken/planted-no-up/", "wu2013-safe") => Some(wu2013::<NoUp>(&t, wu_text)),
+        ("broken/planted-no-dn/", "wu2013-safe") => Some(wu2013::<NoDn>(&t, wu_text)),
+        ("", "lb2011-safe") => Some(lb2011::<Outward>(&t, lb_text)),
+        ("broken/planted-no-up/", "lb2011-safe") => Some(lb2011::<NoUp>(&t, lb_text)),
+        ("broken/planted-no-dn/", "lb2011-safe") => Some(lb2011::<NoDn>(&t, lb_text)),
         _ => None,
     };
     if let Some(demands) = wu {
