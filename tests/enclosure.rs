@@ -55,6 +55,10 @@ fn the_checked_variants_pass_over_their_code() {
     assert!(used("an end a lemma proves") >= 4, "every line's f32 value: {:?}", o.rules);
     assert!(used("an end moved outward (MONO)") >= 4, "every padded intercept: {:?}", o.rules);
     assert!(used("min (max) of the four end products or quotients") > 0, "{:?}", o.rules);
+    let o = check("lc-safe").expect("lc-safe is checked");
+    assert!(o.failures.is_empty(), "{:?}", o.failures);
+    assert_eq!(o.outputs, 11, "t, u, v met: both ends each, the tile reject and lb2011-safe's four patches");
+    assert_eq!(o.lemmas.len(), 3, "the chord (both parts), lb2011-safe's corners, lb2011_safe.g: {:?}", o.lemmas);
     let o = check("bbox-safe").expect("bbox-safe is checked");
     assert!(o.failures.is_empty(), "{:?}", o.failures);
     assert_eq!(o.outputs, 1, "the tile reject");
@@ -118,6 +122,8 @@ fn a_dropped_outward_step_fails_the_enclosure_check() {
         ("broken/planted-no-dn/gdam2010-safe", "piece cull"),
         ("broken/planted-no-up/lb2011-safe", "patch"),
         ("broken/planted-no-dn/lb2011-safe", "patch"),
+        ("broken/planted-no-up/lc-safe", "patch"),
+        ("broken/planted-no-dn/lc-safe", "patch"),
     ] {
         let o = check(id).expect("a planted slip of a checked variant is checked");
         assert!(!o.failures.is_empty(), "{id} passed");
@@ -607,11 +613,12 @@ fn attack(answer: Answer, n: usize, seed: u64) -> (Vec<String>, usize, usize, us
 /// slips finds ends on the wrong side (so it can fail).
 #[test]
 fn the_checked_ends_enclose_their_exact_values_on_drawn_inputs() {
-    let methods: [(&str, Answer, Answer, Answer); 4] = [
+    let methods: [(&str, Answer, Answer, Answer); 5] = [
         ("la2011-safe", la2011::<Outward>, la2011::<NoUp>, la2011::<NoDn>),
         ("nilsson2012-depth-safe", nilsson::<Outward>, nilsson::<NoUp>, nilsson::<NoDn>),
         ("mam2012-safe", mam2012::<Outward>, mam2012::<NoUp>, mam2012::<NoDn>),
         ("wu2013-safe", wu2013::<Outward>, wu2013::<NoUp>, wu2013::<NoDn>),
+        ("lc-safe", lc::<Outward>, lc::<NoUp>, lc::<NoDn>),
     ];
     for (id, safe, no_up, no_dn) in methods {
         let (bad, n, inside, culls) = attack(safe, 20_000, 1);
@@ -722,7 +729,7 @@ fn proofs_fails_on_every_planted_dropped_step() {
     use cullproof::cli::proofs::{render, run, run_enclosure};
     use std::time::Duration;
     let limit = Duration::from_secs(120);
-    for id in ["nilsson2012-depth-safe", "mam2012-safe", "wu2013-safe", "gdam2010-safe", "lb2011-safe"] {
+    for id in ["nilsson2012-depth-safe", "mam2012-safe", "wu2013-safe", "gdam2010-safe", "lb2011-safe", "lc-safe"] {
         let r = run(&[id], limit, 100, 2, false);
         assert!(r.ok(), "{}", render(&r));
         assert_eq!(r.enclosure.len(), 1);
@@ -738,6 +745,8 @@ fn proofs_fails_on_every_planted_dropped_step() {
         "broken/planted-no-dn/gdam2010-safe",
         "broken/planted-no-up/lb2011-safe",
         "broken/planted-no-dn/lb2011-safe",
+        "broken/planted-no-up/lc-safe",
+        "broken/planted-no-dn/lc-safe",
     ] {
         let r = run(&[id], limit, 100, 2, false);
         assert!(!r.ok(), "{id} passed");
@@ -1230,6 +1239,25 @@ fn around(x: f32) -> [f32; 7] {
         v[3 + k] = v[2 + k].next_up();
     }
     v
+}
+
+/// lc-safe: la2011-safe's and lb2011-safe's answers met (`meet_of`, as the conjunction
+/// meets them), the combined tile reject, and lb2011-safe's patch culls.
+fn lc<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, Vec<T>) {
+    use cullproof::bounds::meet_of;
+    let (la, la_culls) = la2011::<R>(ar, tri, tile);
+    let (lb, lb_culls) = lb2011_with::<R>(ar, tri, tile, true);
+    // la2011's ranges (t, u, v) are its answer's; lb2011's are selected where kept,
+    // which is what the conjunction reads (a rejected part makes the whole Empty).
+    let met: Vec<[V; 2]> = la.iter().zip(&lb).map(|((_, a), (_, b))| meet_of(ar, a, b)).collect();
+    let empty: Vec<T> = met.iter().map(|r| ar.lt(&r[1], &r[0])).collect();
+    let reject = ar.any(&[la_culls[0], lb_culls[0], ar.any(&empty)]);
+    let kept = ar.not(&reject);
+    let mut ranges = vec![];
+    for ((name, _), (r, full)) in la.iter().zip(met.iter().zip([[0.0, 1.0], [-1.0, 1.0], [-1.0, 1.0]])) {
+        ranges.push((*name, [0, 1].map(|k| ar.select(&kept, &r[k], &ar.lit(full[k])))));
+    }
+    (ranges, [vec![reject], lb_culls[1..].to_vec()].concat())
 }
 
 fn lb2011<R: Round>(ar: &Pair, tri: &TriOf<V>, tile: &[V; 4]) -> (Vec<(&'static str, [V; 2])>, Vec<T>) {

@@ -47,9 +47,9 @@ impl Prepared for Prep {
 }
 
 /// lc, or lc-safe: the same conjunction of two other registered methods (LA, then LB).
-struct Lc {
-    info: &'static MethodInfo,
-    parts: &'static [&'static &'static dyn Method; 2],
+pub(crate) struct Lc {
+    pub(crate) info: &'static MethodInfo,
+    pub(crate) parts: &'static [&'static &'static dyn Method; 2],
 }
 
 impl Lc {
@@ -58,7 +58,7 @@ impl Lc {
     }
 }
 
-static INFO: MethodInfo = MethodInfo {
+pub(crate) static INFO: MethodInfo = MethodInfo {
     id: "lc",
     source: "reconstruction of LC, the combination of LA (Laine et al. 2011) and LB (Laine & \
              Karras 2011, NVR-2011-004) evaluated in Munkberg & Akenine-Möller 2012 §3, \

@@ -234,7 +234,7 @@ impl Meet {
     /// The intervals met with those of `o` (f32 max of the lower ends, min of the upper
     /// ends; a depth interval on one side only is kept); None when one becomes empty.
     pub fn with(self, o: &TileBounds) -> Option<Meet> {
-        let cut = |a: [f32; 2], b: [f32; 2]| [a[0].max(b[0]), a[1].min(b[1])];
+        let cut = |a: [f32; 2], b: [f32; 2]| meet_of(&arith::Plain, &a, &b);
         let (u, v, t) = (cut(self.u, o.u), cut(self.v, o.v), cut(self.t, o.t));
         let z = match (self.z, o.z) {
             (Some(a), Some(b)) => Some(cut(a, b)),
@@ -245,6 +245,13 @@ impl Meet {
         }
         Some(Meet { u, v, t, z })
     }
+}
+
+/// Two intervals met, over any [`arith::F32Arith`]: `[max(a0, b0), min(a1, b1)]` (what
+/// [`Meet::with`] computes for each interval; empty when the lower end is above the
+/// upper).
+pub fn meet_of<A: arith::F32Arith>(ar: &A, a: &[A::F; 2], b: &[A::F; 2]) -> [A::F; 2] {
+    [ar.max(&a[0], &b[0]), ar.min(&a[1], &b[1])]
 }
 
 /// How a method's tile answer is made of other registered methods' answers for the

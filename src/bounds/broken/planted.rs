@@ -13,7 +13,8 @@
 //!
 //! And two slips in the arithmetic of each variant written with the shared rounding
 //! discipline ([`crate::bounds::round`]: `la2011-safe`, `nilsson2012-depth-safe`,
-//! `mam2012-safe`, `wu2013-safe`, `gdam2010-safe`, `lb2011-safe`), for
+//! `mam2012-safe`, `wu2013-safe`, `gdam2010-safe`, `lb2011-safe`, and `lc-safe` through its
+//! two parts), for
 //! the proofs tied to the code ([`crate::bounds::proofs`]):
 //! `broken/planted-no-up/M-safe` keeps every lower end's outward step but drops the
 //! upper ends' (each upper end is the value rounded to nearest, as in the published
@@ -28,6 +29,7 @@ use crate::bounds::bbox::{padded_corner, BBox, Corner, SafeCorner};
 use crate::bounds::gdam2010::Gdam2010Safe;
 use crate::bounds::la2011::La2011;
 use crate::bounds::lb2011::Lb2011Safe;
+use crate::bounds::lc::Lc;
 use crate::bounds::mam2012::Mam2012Safe;
 use crate::bounds::nilsson2012_depth::Nilsson2012Depth;
 use crate::bounds::round::Round;
@@ -236,6 +238,22 @@ pub static NO_UP_LB: &dyn Method = &Lb2011Safe::<NoUp> { info: &INFO_NO_UP_LB, r
 /// `broken/planted-no-dn/lb2011-safe`.
 pub static NO_DN_LB: &dyn Method = &Lb2011Safe::<NoDn> { info: &INFO_NO_DN_LB, round: std::marker::PhantomData };
 
+static INFO_NO_UP_LC: MethodInfo = slip(
+    "broken/planted-no-up/lc-safe",
+    "lc-safe with the outward step of every upper end dropped (in both parts)",
+    crate::bounds::lc::INFO,
+);
+static INFO_NO_DN_LC: MethodInfo = slip(
+    "broken/planted-no-dn/lc-safe",
+    "lc-safe with the outward step of every lower end dropped (in both parts)",
+    crate::bounds::lc::INFO,
+);
+
+/// `broken/planted-no-up/lc-safe`: the conjunction of the two parts' no-up slips.
+pub static NO_UP_LC: &dyn Method = &Lc { info: &INFO_NO_UP_LC, parts: &[&NO_UP, &NO_UP_LB] };
+/// `broken/planted-no-dn/lc-safe`: the conjunction of the two parts' no-dn slips.
+pub static NO_DN_LC: &dyn Method = &Lc { info: &INFO_NO_DN_LC, parts: &[&NO_DN, &NO_DN_LB] };
+
 static INFO_NO_UP_BOX: MethodInfo =
     slip("broken/planted-no-up/bbox-safe", "bbox-safe with the outward steps of every upper end dropped", INFO_EQ);
 static INFO_NO_DN_BOX: MethodInfo =
@@ -268,6 +286,8 @@ pub fn parse(id: &str) -> Option<&'static dyn Method> {
         NO_DN_GDAM,
         NO_UP_LB,
         NO_DN_LB,
+        NO_UP_LC,
+        NO_DN_LC,
         NO_UP_BOX,
         NO_DN_BOX,
     ]

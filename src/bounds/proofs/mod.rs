@@ -319,6 +319,34 @@ pub const VARIANTS: &[Variant] = &[
         level: Level::MachineChecked,
     },
     Variant {
+        id: "lc-safe",
+        ranges: &[
+            Range {
+                inputs: "vertex x, y, z, w at both shutter ends, CoC c0, c1, aspect k, tile edges",
+                range: "every finite f32 value (subnormals, zeros of either sign, up to +-MAX)",
+            },
+            Range {
+                inputs: "sample lens coordinate u, v and time t (the patches' l, t)",
+                range: "|l| <= 1, t in [0, 1] (the model's lens and shutter)",
+            },
+            Range { inputs: "any non-finite input", range: "la2011-safe's part gives the full domain, lb2011-safe's that axis nothing (code inspection)" },
+        ],
+        scripts: &["STEP", "MONO", "ULP", "lb2011-safe pad", "enclosure rules"],
+        mechanical: "what la2011-safe's and lb2011-safe's proofs check (STEP, MONO, ULP, lb2011_safe.g); \
+                     the composition over the method's own f32 code for every input: the enclosure check \
+                     traces both parts' tile answers for one triangle and tile and their meet (the code's \
+                     own `meet_of`, as `TileResult::and` meets them) and finds every end of the met t, u \
+                     and v an end of its side of its exact value, and NaN-free, the tile reject (either \
+                     part's, or an empty met range) to imply its exact counterpart, and each of \
+                     lb2011-safe's patch culls to put the sample where the exact patch through its \
+                     pinned corner values is < 0 (enclosure rules)",
+        by_argument: "the derivations of la2011.rs and lb2011.rs; that `Conjunction::combine` is Empty when \
+                      a part is Empty and otherwise meets the parts' intervals with `meet_of` and keeps \
+                      both parts' constraints (code inspection); and that each branch the f32 code takes on \
+                      its ends is one the exact values allow",
+        level: Level::MachineChecked,
+    },
+    Variant {
         id: "mam2012-safe",
         ranges: ALL_FINITE,
         scripts: &["STEP", "MONO", "enclosure rules"],

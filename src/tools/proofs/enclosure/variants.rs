@@ -109,15 +109,8 @@ fn gdam2010<R: Round>(t: &Trace) -> Demands {
 /// on the formula of `lb2011_safe.g` built with the script's own constants
 /// (`script_text`), where the code tests the script's limit on the corner values.
 fn lb2011<R: Round>(t: &Trace, script_text: &str) -> Result<Demands, String> {
-    use crate::bounds::lb2011::{axis_answer, axis_of, coefficients, eval_of, largest, tile_of, EVAL_LEMMA};
-    use crate::tools::proofs::check::constant_in;
-    let constant = |name| constant_in(crate::bounds::proofs::LB_PAD.file, script_text, name).map(|v| v as f32);
-    let (pad, floor, limit) = (constant("PAD")?, constant("FLOOR")?, constant("LIMIT")?);
     let (tri, tile) = inputs(t);
-    let [ax, ay] = [0, 1].map(|a| axis_of::<R, Trace>(t, &tri, a));
-    let (xa, xp) = axis_answer::<R, Trace>(t, &ax, &tile[0], &tile[2]);
-    let (ya, yp) = axis_answer::<R, Trace>(t, &ay, &tile[1], &tile[3]);
-    let (reject, tt, u, v) = tile_of(t, &xa, &ya);
+    let ((reject, tt, u, v), culls) = lb2011_parts::<R>(t, script_text, &tri, &tile)?;
     let kept = t.not(&reject);
     let mut outs = vec![];
     for (name, r, full) in [("t", &tt, [0.0, 1.0]), ("u", &u, [-1.0, 1.0]), ("v", &v, [-1.0, 1.0])] {
@@ -125,7 +118,23 @@ fn lb2011<R: Round>(t: &Trace, script_text: &str) -> Result<Demands, String> {
         let r = [t.select(&kept, &r[0], &t.lit(full[0])), t.select(&kept, &r[1], &t.lit(full[1]))];
         outs.extend(ends(name, &r));
     }
-    let mut culls = vec![(reject, "tile reject".to_string())];
+    Ok((outs, [vec![(reject, "tile reject".to_string())], culls].concat()))
+}
+
+/// `lb2011-safe`'s traced tile answer `(reject, t, u, v)` for a triangle and a tile, and
+/// its four patches' culls (see [`lb2011`]).
+type LbParts = ((Bn, [N; 2], [N; 2], [N; 2]), Vec<(Bn, String)>);
+
+fn lb2011_parts<R: Round>(t: &Trace, script_text: &str, tri: &TriOf<N>, tile: &[N; 4]) -> Result<LbParts, String> {
+    use crate::bounds::lb2011::{axis_answer, axis_of, coefficients, eval_of, largest, tile_of, EVAL_LEMMA};
+    use crate::tools::proofs::check::constant_in;
+    let constant = |name| constant_in(crate::bounds::proofs::LB_PAD.file, script_text, name).map(|v| v as f32);
+    let (pad, floor, limit) = (constant("PAD")?, constant("FLOOR")?, constant("LIMIT")?);
+    let [ax, ay] = [0, 1].map(|a| axis_of::<R, Trace>(t, tri, a));
+    let (xa, xp) = axis_answer::<R, Trace>(t, &ax, &tile[0], &tile[2]);
+    let (ya, yp) = axis_answer::<R, Trace>(t, &ay, &tile[1], &tile[3]);
+    let answer = tile_of(t, &xa, &ya);
+    let mut culls = vec![];
     let (st, zero, one) = (t.input("t"), t.lit(0.0), t.lit(1.0));
     let shutter = [t.le(&zero, &st), t.le(&st, &one)];
     for (name, patches) in [("u", &xp), ("v", &yp)] {
@@ -146,7 +155,33 @@ fn lb2011<R: Round>(t: &Trace, script_text: &str) -> Result<Demands, String> {
             culls.push((cull, format!("{name}t {which} patch")));
         }
     }
-    Ok((outs, culls))
+    Ok((answer, culls))
+}
+
+/// The traced tile answer of `lc-safe` written with the arithmetic `R`: `la2011-safe`'s
+/// and `lb2011-safe`'s answers for one triangle and tile, met as [`TileResult::and`]
+/// meets them ([`crate::bounds::meet_of`], each interval; Empty when either part is or a
+/// met interval is empty): the met t, u and v ranges' ends, the tile reject, and
+/// `lb2011-safe`'s four patches' culls.
+///
+/// [`TileResult::and`]: crate::bounds::TileResult::and
+fn lc<R: Round>(t: &Trace, script_text: &str) -> Result<Demands, String> {
+    use crate::bounds::la2011::{setup_of, tile_answer};
+    use crate::bounds::meet_of;
+    let (tri, tile) = inputs(t);
+    let s = setup_of::<R, Trace>(t, &tri);
+    let (nonempty, ta, ua, va) = tile_answer::<R, Trace>(t, &s, &tile);
+    let ((lb_reject, tb, ub, vb), culls) = lb2011_parts::<R>(t, script_text, &tri, &tile)?;
+    let met = [(&ta, &tb), (&ua, &ub), (&va, &vb)].map(|(a, b)| meet_of(t, a, b));
+    let empty: Vec<Bn> = met.iter().map(|r| t.gt(&r[0], &r[1])).collect();
+    let reject = t.any(&[t.not(&nonempty), lb_reject, t.any(&empty)]);
+    let kept = t.not(&reject);
+    let mut outs = vec![];
+    for (name, r, full) in [("t", &met[0], [0.0, 1.0]), ("u", &met[1], [-1.0, 1.0]), ("v", &met[2], [-1.0, 1.0])] {
+        let r = [t.select(&kept, &r[0], &t.lit(full[0])), t.select(&kept, &r[1], &t.lit(full[1]))];
+        outs.extend(ends(name, &r));
+    }
+    Ok((outs, [vec![(reject, "tile reject".to_string())], culls].concat()))
 }
 
 /// The lemma of `wu2013_safe.g`, as the check applies it.
@@ -259,6 +294,7 @@ pub const CHECKED: &[&str] = &[
     "wu2013-safe",
     "gdam2010-safe",
     "lb2011-safe",
+    "lc-safe",
 ];
 
 /// Trace the tile answer of `id` (a variant of [`CHECKED`] or one of its planted slips
@@ -344,6 +380,9 @@ pub fn check_traced(id: &str) -> Option<Outcome> {
         ("", "lb2011-safe") => Some(lb2011::<Outward>(&t, lb_text)),
         ("broken/planted-no-up/", "lb2011-safe") => Some(lb2011::<NoUp>(&t, lb_text)),
         ("broken/planted-no-dn/", "lb2011-safe") => Some(lb2011::<NoDn>(&t, lb_text)),
+        ("", "lc-safe") => Some(lc::<Outward>(&t, lb_text)),
+        ("broken/planted-no-up/", "lc-safe") => Some(lc::<NoUp>(&t, lb_text)),
+        ("broken/planted-no-dn/", "lc-safe") => Some(lc::<NoDn>(&t, lb_text)),
         _ => None,
     };
     if let Some(demands) = wu {
