@@ -21,9 +21,9 @@
 //!   the tightness signature must see it at any seed and case count). Not in
 //!   `cullproof power`'s list.
 //!
-//! Fourteen more, `broken/planted-eq/bbox-safe`, `broken/planted-band/bbox-safe`, and
+//! Eighteen more, `broken/planted-eq/bbox-safe`, `broken/planted-band/bbox-safe`, and
 //! `broken/planted-no-up/M-safe` and `broken/planted-no-dn/M-safe` for M = `bbox`,
-//! `la2011`, `nilsson2012-depth`, `mam2012`, `wu2013` and `gdam2010`, are rare slips
+//! `la2011`, `nilsson2012-depth`, `mam2012`, `wu2013`, `gdam2010`, `lb2011` and `lc`, are rare slips
 //! planted in the `-safe` variants themselves ([`planted`]), not in `cullproof power`.
 
 pub mod planted;

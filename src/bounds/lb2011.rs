@@ -100,9 +100,13 @@
 //! wrong side, worst where the patch values are large: CoCs of thousands of pixels,
 //! |X w| near 2^18, tiles far from the origin) and covered tiles it rejects at the
 //! limit. The claim above (B <= m) is true in real arithmetic, so no correction of the
-//! algorithm is needed: `lb2011-safe` is the same algorithm (one code path, `Arith`
-//! chooses the arithmetic) with every quantity the answer depends on rounded outward.
-//! Nothing else changes: the same corners, ranges, reject and four patches.
+//! algorithm is needed: `lb2011-safe` is the same algorithm with every quantity the
+//! answer depends on rounded outward. Nothing else changes: the same corners, ranges,
+//! reject and four patches. It is written once over `F32Arith` (`lb2011/safe.rs`, with a
+//! rounding discipline `Round`): the gate runs it in f32, and the enclosure check of
+//! `cullproof proofs` traces the same code for every input (`docs/proofs.md` §3c, §4c).
+//! The published `lb2011` keeps its own f32 code; both share the tile combination
+//! ([`tile_of`]) and the per-sample evaluation ([`eval_of`]).
 //!
 //! *Corner values: f32 interval arithmetic by directed steps.* A result r of one f32
 //! operation rounded to nearest has the exact result between r and its neighbour on
@@ -144,20 +148,26 @@
 //! *Reject and ranges.* The tile is Empty when all four `g_ij < 0` (exact comparisons;
 //! G < 0 on the square). For t: G is affine in l, so `G(l_s, t) >= 0` needs
 //! `G(-1, t) >= 0` or `G(1, t) >= 0`; the crossing of a chord `(1-t) a + t b` that
-//! changes sign is `t* = |a| / (|a| + |b|)`, and `chord_nonneg_safe` keeps `[t_lo, 1]`
-//! with `t_lo = next_down(|a| / next_up(fl(|a| + |b|)))` when it rises (a quotient of
-//! positive numbers with the denominator rounded up is below t*, its rounding is
-//! enclosed by the step) and `[0, t_hi]`, `t_hi = next_up(|a| / next_down(fl(|a| +
-//! |b|)))` when it falls (a zero or non-finite quotient gives the whole [0, 1]); the
-//! same for l in sigma = (l + 1)/2 along t = 0 and t = 1, and `l = 2 sigma - 1` is
-//! rounded outward by one step (`2 sigma` is exact).
+//! changes sign is `t* = |a| / (|a| + |b|)`, and `la2011`'s chord, given `-a, -b`,
+//! keeps `[t_lo, 1]` with `t_lo = next_down(-a / next_up(fl(b - a)))` when it rises (a
+//! quotient of positive numbers with the denominator rounded up is below t*, its
+//! rounding is enclosed by the step) and `[0, t_hi]`, `t_hi = next_up(-a / next_up(fl(b
+//! - a)))` (the same quotient: both negative) when it falls (a zero or non-finite
+//! quotient gives the whole [0, 1]); the same for l in sigma = (l + 1)/2 along t = 0 and
+//! t = 1, and `l = 2 sigma - 1` is one fused multiply-add (`2 sigma` is exact, so it is
+//! `fl(2 sigma - 1)`) stepped outward. The corner values are pinned (`F32Arith::pin`)
+//! as upper ends of `-m` and `M` at the corners: from there on the patch is the one
+//! through them, exact, and every range is an end of its exact counterpart.
 //!
 //! *Per-sample evaluation: one padded coefficient.* `eval` stays the plain f32
 //! `fl(fl(P + fl(Q l)) + fl(t fl(R + fl(S l))))` with the rounded coefficients
-//! `P~, Q~, R~, S~` of `Patch::from_corners`; only `P` is raised by a pad. Error
-//! bound in Higham's style, u = 2^-24, `eta = 2^-150` (the absolute error of a product
-//! or halving that underflows; a sum that underflows is exact), `mg = max |g_ij|`, for
-//! |l| <= 1 and t in [0, 1] (the domain; a covered sample lies in it):
+//! `P~, Q~, R~, S~` of `Patch::from_corners`; only `P` is raised by a pad. The
+//! machine-checked bound is the Gappa script `src/bounds/proofs/lb2011_safe.g`
+//! (`docs/proofs.md` §3c: about 25 ulps of `mg = max |g_ij|` against the pad's 32, in
+//! the error model `|fl(z) - z| <= 2^-23 |fl(z)| + 2^-149`); the same bound in Higham's
+//! style, u = 2^-24, `eta = 2^-150` (the absolute error of a product or halving that
+//! underflows; a sum that underflows is exact), for |l| <= 1 and t in [0, 1] (the
+//! domain; a covered sample lies in it):
 //! - coefficients: `|P~ - P|, |Q~ - Q| <= u mg + eta` (one rounded sum, an exact or
 //!   underflowing halving); `R~ = fl(fl(fl(g01 + g11) 0.5) - P~)` errs by the half-sum's
 //!   `u mg + eta`, `P~`'s `u mg + eta` and its own `u |R~| <= 2u mg (1 + u) + 2u eta`:
@@ -173,7 +183,9 @@
 //! `pad >= 35 u mg + 13 eta`. The pad is computed as `fl(mg 2^-18 + 2^-140)`: the
 //! scaling is exact or underflows by at most eta, the sum rounds down by at most a
 //! factor (1 - u), so `pad >= 63.9 u mg + 2^-141`, enough. A patch with `mg >= 2^120`
-//! is dropped (the bound assumes no overflow; `usable` drops the rest as before).
+//! (or a NaN corner value: `mg` is a NaN-propagating max) is dropped: the bound assumes
+//! no overflow, and below the limit the script bounds every rounded value of the
+//! evaluation below 2^125, so `lb2011`'s `usable` test is not needed.
 //! The padded coefficient is stored in the same `Patch`, so `eval_box` (which encloses
 //! the f32 `eval` of any stored coefficients, see above) is unchanged and still
 //! encloses it. Cost: per patch and tile a max over 4 values, a multiply, two adds and
@@ -192,7 +204,8 @@
 //! edges, so over a grid of tiles ([`Prepared::grid`]) they are computed once per column
 //! (x, u) and once per row (y, v); a tile meets its column's t with its row's two t
 //! ranges in the order `tile` uses and boxes the two axes' patches (`PatchGrid`). Both
-//! variants; the answers are `tile`'s bit for bit (`grid_tests.rs`).
+//! variants (each a `Parts`: an axis's part from its two edges); the answers are
+//! `tile`'s bit for bit (`grid_tests.rs`).
 
 use super::la2011::chord_nonpos;
 use super::*;

@@ -163,12 +163,7 @@ pub type AxisOf<F, B> = (AxisAnswer<F, B>, [SafePatch<F, B>; 2]);
 /// One axis's answer for the edges `lo`, `hi` of a column (x) or a row (y), and its two
 /// patches (the min patch `g = -min`, culling where the min is > 0, then the max patch
 /// `g = max`, culling where the max is < 0).
-pub fn axis_answer<R: Round, A: F32Arith>(
-    ar: &A,
-    ax: &SafeAxis<A::F>,
-    lo: &A::F,
-    hi: &A::F,
-) -> AxisOf<A::F, A::B> {
+pub fn axis_answer<R: Round, A: F32Arith>(ar: &A, ax: &SafeAxis<A::F>, lo: &A::F, hi: &A::F) -> AxisOf<A::F, A::B> {
     let (ok, [mn, mx]) = corners_of::<R, A>(ar, ax, lo, hi);
     // Upper ends of -min and of max: from here on the patch is the one through them.
     let pin = |c: [[A::F; 2]; 2]| c.map(|r| r.map(|v| ar.pin(&v, End::Hi, CORNER_LEMMA)));

@@ -329,7 +329,10 @@ pub const VARIANTS: &[Variant] = &[
                 inputs: "sample lens coordinate u, v and time t (the patches' l, t)",
                 range: "|l| <= 1, t in [0, 1] (the model's lens and shutter)",
             },
-            Range { inputs: "any non-finite input", range: "la2011-safe's part gives the full domain, lb2011-safe's that axis nothing (code inspection)" },
+            Range {
+                inputs: "any non-finite input",
+                range: "la2011-safe's part gives the full domain, lb2011-safe's that axis nothing (code inspection)",
+            },
         ],
         scripts: &["STEP", "MONO", "ULP", "lb2011-safe pad", "enclosure rules"],
         mechanical: "what la2011-safe's and lb2011-safe's proofs check (STEP, MONO, ULP, lb2011_safe.g); \
