@@ -151,8 +151,8 @@
 //! changes sign is `t* = |a| / (|a| + |b|)`, and `la2011`'s chord, given `-a, -b`,
 //! keeps `[t_lo, 1]` with `t_lo = next_down(-a / next_up(fl(b - a)))` when it rises (a
 //! quotient of positive numbers with the denominator rounded up is below t*, its
-//! rounding is enclosed by the step) and `[0, t_hi]`, `t_hi = next_up(-a / next_up(fl(b
-//! - a)))` (the same quotient: both negative) when it falls (a zero or non-finite
+//! rounding is enclosed by the step) and `[0, t_hi]`,
+//! `t_hi = next_up(-a / next_up(fl(b - a)))` (the same quotient: both negative) when it falls (a zero or non-finite
 //! quotient gives the whole [0, 1]); the same for l in sigma = (l + 1)/2 along t = 0 and
 //! t = 1, and `l = 2 sigma - 1` is one fused multiply-add (`2 sigma` is exact, so it is
 //! `fl(2 sigma - 1)`) stepped outward. The corner values are pinned (`F32Arith::pin`)
