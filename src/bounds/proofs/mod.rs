@@ -16,9 +16,11 @@
 //! - `enclosure_rules.smt2`: z3 in real arithmetic, the rules of the enclosure check and
 //!   the lemmas the code pins.
 //!
-//! - [`crate::tools::proofs::enclosure`] (with the command): for `bbox-safe`,
-//!   `la2011-safe` and `nilsson2012-depth-safe`, the composition over the method's own
-//!   f32 code, for every input.
+//! - [`crate::tools::proofs::enclosure`] (with the command): for every variant of
+//!   [`crate::tools::proofs::enclosure::CHECKED`] (`bbox-safe`, `la2011-safe`,
+//!   `mam2012-safe`, `nilsson2012-depth-safe`, `wu2013-safe`, `gdam2010-safe`,
+//!   `lb2011-safe`, `lc-safe`), the composition over the method's own f32 code, for
+//!   every input.
 //! - [`crate::tools::proofs::composition`] (with the command, built on the symbolic search):
 //!   for `la2011-safe`, the composition over the method's own f32 code, as SMT queries
 //!   on a template's ranges.
@@ -174,8 +176,10 @@ pub const RULES: Script = Script {
     tool: Tool::Z3,
     claim: "how ends of intervals combine (sums, products by a factor of known sign, products of \
             ends of one sign, quotients by a divisor of one strict sign, min/max, max(|lo|, |hi|), \
-            signs of ends, comparisons of ends) and the lemmas pinned in the code (la2011's chord through lower ends, \
-            nilsson2012-depth's w bound from a plane), in real arithmetic",
+            signs of ends, comparisons of ends, a fused multiply-add of an end by an exact factor of known sign) and \
+            the lemmas pinned in the code (la2011's chord through lower ends, nilsson2012-depth's w bound from a plane, \
+            mam2012-safe's and wu2013-safe's lens ranges, patches and lines, lb2011-safe's patch through corner \
+            values at or above the exact ones), in real arithmetic",
     prelude: false,
     text: include_str!("enclosure_rules.smt2"),
 };
