@@ -111,14 +111,20 @@ fn gdam2010<R: Round>(t: &Trace) -> Demands {
 fn lb2011<R: Round>(t: &Trace, script_text: &str) -> Result<Demands, String> {
     let (tri, tile) = inputs(t);
     let ((reject, tt, u, v), culls) = lb2011_parts::<R>(t, script_text, &tri, &tile)?;
-    let kept = t.not(&reject);
+    let outs = kept_ends(t, &t.not(&reject), [("t", &tt), ("u", &u), ("v", &v)]);
+    Ok((outs, [vec![(reject, "tile reject".to_string())], culls].concat()))
+}
+
+/// The ends of a kept tile's t, u and v ranges (the full domain where it is not kept: a
+/// rejected tile's ranges are never read, and are demanded all the same where kept).
+fn kept_ends(t: &Trace, kept: &Bn, ranges: [(&str, &[N; 2]); 3]) -> Vec<(N, End, String)> {
     let mut outs = vec![];
-    for (name, r, full) in [("t", &tt, [0.0, 1.0]), ("u", &u, [-1.0, 1.0]), ("v", &v, [-1.0, 1.0])] {
-        // (A rejected tile's ranges are never read: demanded all the same where kept.)
-        let r = [t.select(&kept, &r[0], &t.lit(full[0])), t.select(&kept, &r[1], &t.lit(full[1]))];
+    for (name, r) in ranges {
+        let full = if name == "t" { [0.0, 1.0] } else { [-1.0, 1.0] };
+        let r = [t.select(kept, &r[0], &t.lit(full[0])), t.select(kept, &r[1], &t.lit(full[1]))];
         outs.extend(ends(name, &r));
     }
-    Ok((outs, [vec![(reject, "tile reject".to_string())], culls].concat()))
+    outs
 }
 
 /// `lb2011-safe`'s traced tile answer `(reject, t, u, v)` for a triangle and a tile, and
@@ -175,12 +181,7 @@ fn lc<R: Round>(t: &Trace, script_text: &str) -> Result<Demands, String> {
     let met = [(&ta, &tb), (&ua, &ub), (&va, &vb)].map(|(a, b)| meet_of(t, a, b));
     let empty: Vec<Bn> = met.iter().map(|r| t.gt(&r[0], &r[1])).collect();
     let reject = t.any(&[t.not(&nonempty), lb_reject, t.any(&empty)]);
-    let kept = t.not(&reject);
-    let mut outs = vec![];
-    for (name, r, full) in [("t", &met[0], [0.0, 1.0]), ("u", &met[1], [-1.0, 1.0]), ("v", &met[2], [-1.0, 1.0])] {
-        let r = [t.select(&kept, &r[0], &t.lit(full[0])), t.select(&kept, &r[1], &t.lit(full[1]))];
-        outs.extend(ends(name, &r));
-    }
+    let outs = kept_ends(t, &t.not(&reject), [("t", &met[0]), ("u", &met[1]), ("v", &met[2])]);
     Ok((outs, [vec![(reject, "tile reject".to_string())], culls].concat()))
 }
 
@@ -205,12 +206,7 @@ fn wu2013<R: Round>(t: &Trace, script_text: &str) -> Result<Demands, String> {
     let (finite, axes) = setup_of::<R, Trace>(t, &tri);
     let a = tile_answer::<R, Trace>(t, &axes, &tile);
     let kept = t.and(&finite, &t.not(&a.reject));
-    let mut outs = vec![];
-    for (name, r, full) in [("u", &a.u, [-1.0, 1.0]), ("v", &a.v, [-1.0, 1.0]), ("t", &a.t, [0.0, 1.0])] {
-        // (A rejected tile's ranges are never read: demanded all the same where kept.)
-        let r = [t.select(&kept, &r[0], &t.lit(full[0])), t.select(&kept, &r[1], &t.lit(full[1]))];
-        outs.extend(ends(name, &r));
-    }
+    let outs = kept_ends(t, &kept, [("u", &a.u), ("v", &a.v), ("t", &a.t)]);
     let mut culls = vec![(t.and(&finite, &a.reject), "tile reject".to_string())];
     let st = t.input("t");
     for (name, cut) in [("u", &a.lines[0]), ("v", &a.lines[1])] {
